@@ -1,0 +1,366 @@
+//! The robot file format: JSON, human-editable, one robot per file. Angles in degrees,
+//! lengths in the file's `length_unit`. The format is documented in
+//! `assets/robots/README.md`; every preset in that folder is an example.
+//!
+//! ```json
+//! {
+//!   "name": "Planar 2R",
+//!   "convention": "standard",
+//!   "length_unit": "m",
+//!   "joints": [
+//!     { "type": "revolute", "theta_deg": 0, "d": 0, "a": 2, "alpha_deg": 0 },
+//!     { "type": "revolute", "theta_deg": 0, "d": 0, "a": 1, "alpha_deg": 0 }
+//!   ]
+//! }
+//! ```
+
+use serde_json::{Map, Value, json};
+
+use super::error::{Place, RobotError};
+use super::orientation::ZyxEuler;
+use super::robot::{
+    Convention, DhRow, Joint, JointKind, JointLimits, LengthUnit, MAX_JOINTS, Robot,
+    isometry_from_xyz_rpy,
+};
+
+const ROBOT_FIELDS: &[&str] = &[
+    "format",
+    "name",
+    "description",
+    "convention",
+    "length_unit",
+    "joints",
+    "base",
+    "tool",
+];
+const JOINT_FIELDS: &[&str] = &[
+    "name",
+    "type",
+    "theta_deg",
+    "d",
+    "a",
+    "alpha_deg",
+    "min_deg",
+    "max_deg",
+    "min",
+    "max",
+    "home",
+    "max_speed",
+];
+const TRANSFORM_FIELDS: &[&str] = &["xyz", "rpy_deg"];
+
+/// Reads a robot from the JSON text of a robot file, with a typed error for every
+/// problem (the first one found).
+pub fn robot_from_json(text: &str) -> Result<Robot, RobotError> {
+    let value: Value = serde_json::from_str(text).map_err(|e| RobotError::from_json(&e))?;
+    robot_from_value(&value)
+}
+
+/// Reads a robot from an already parsed JSON value (used by the JS API and URLs).
+pub fn robot_from_value(value: &Value) -> Result<Robot, RobotError> {
+    let obj = object(value, &Place::Robot, "robot", "a JSON object { ... }")?;
+    check_fields(obj, &Place::Robot, ROBOT_FIELDS)?;
+    let place = Place::Robot;
+    let name = string(obj, &place, "name")?.ok_or_else(|| missing(&place, "name"))?;
+    let description = string(obj, &place, "description")?.unwrap_or_default();
+    let convention = match string(obj, &place, "convention")?.as_deref() {
+        Some("standard") => Convention::Standard,
+        Some("modified") => Convention::Modified,
+        Some(other) => return Err(RobotError::UnknownConvention(other.to_string())),
+        None => return Err(missing(&place, "convention")),
+    };
+    let length_unit = match string(obj, &place, "length_unit")?.as_deref() {
+        Some("mm") => LengthUnit::Millimetre,
+        Some("m") => LengthUnit::Metre,
+        Some(other) => return Err(RobotError::UnknownLengthUnit(other.to_string())),
+        None => return Err(missing(&place, "length_unit")),
+    };
+    let list = match obj.get("joints") {
+        None => return Err(missing(&place, "joints")),
+        Some(Value::Array(list)) => list,
+        Some(_) => return Err(wrong(&place, "joints", "a list of joints [ {...}, ... ]")),
+    };
+    if list.is_empty() {
+        return Err(RobotError::EmptyChain);
+    }
+    if list.len() > MAX_JOINTS {
+        return Err(RobotError::TooManyJoints {
+            count: list.len(),
+            max: MAX_JOINTS,
+        });
+    }
+    let joints = list
+        .iter()
+        .enumerate()
+        .map(|(i, v)| joint_from_value(i + 1, v))
+        .collect::<Result<Vec<_>, _>>()?;
+    let world_from_base = transform_from_value(obj.get("base"), Place::Base)?;
+    let flange_from_tool = transform_from_value(obj.get("tool"), Place::Tool)?;
+    Robot {
+        name,
+        description,
+        convention,
+        length_unit,
+        joints,
+        world_from_base,
+        flange_from_tool,
+    }
+    .validated()
+}
+
+fn joint_from_value(n: usize, value: &Value) -> Result<Joint, RobotError> {
+    let place = Place::Joint(n);
+    let obj = object(value, &place, "joint", "a JSON object { ... }")?;
+    check_fields(obj, &place, JOINT_FIELDS)?;
+    let kind = match string(obj, &place, "type")?.as_deref() {
+        Some("revolute") => JointKind::Revolute,
+        Some("prismatic") => JointKind::Prismatic,
+        Some(other) => {
+            return Err(RobotError::UnknownJointType {
+                joint: n,
+                found: other.to_string(),
+            });
+        }
+        None => return Err(missing(&place, "type")),
+    };
+    let required = |field: &str| number(obj, &place, field)?.ok_or_else(|| missing(&place, field));
+    let dh = DhRow {
+        theta: required("theta_deg")?.to_radians(),
+        d: required("d")?,
+        a: required("a")?,
+        alpha: required("alpha_deg")?.to_radians(),
+    };
+    let (limits, home, max_speed) = match kind {
+        JointKind::Revolute => {
+            for field in ["min", "max"] {
+                if obj.contains_key(field) {
+                    return Err(RobotError::UnknownField {
+                        place: place.clone(),
+                        field: field.to_string(),
+                        known: "a revolute joint's limits are \"min_deg\" and \"max_deg\"".into(),
+                    });
+                }
+            }
+            let min = number(obj, &place, "min_deg")?.map(f64::to_radians);
+            let max = number(obj, &place, "max_deg")?.map(f64::to_radians);
+            let limits = JointLimits {
+                min: min.unwrap_or(JointLimits::FULL_TURN.min),
+                max: max.unwrap_or(JointLimits::FULL_TURN.max),
+            };
+            let home = number(obj, &place, "home")?.map_or(0.0, f64::to_radians);
+            let speed = number(obj, &place, "max_speed")?.map(f64::to_radians);
+            (limits, home, speed)
+        }
+        JointKind::Prismatic => {
+            for field in ["min_deg", "max_deg"] {
+                if obj.contains_key(field) {
+                    return Err(RobotError::UnknownField {
+                        place: place.clone(),
+                        field: field.to_string(),
+                        known:
+                            "a prismatic joint's limits are \"min\" and \"max\", in length units"
+                                .into(),
+                    });
+                }
+            }
+            let (Some(min), Some(max)) = (number(obj, &place, "min")?, number(obj, &place, "max")?)
+            else {
+                return Err(RobotError::PrismaticWithoutLimits { joint: n });
+            };
+            let home = number(obj, &place, "home")?.unwrap_or(min);
+            let speed = number(obj, &place, "max_speed")?;
+            (JointLimits { min, max }, home, speed)
+        }
+    };
+    let name = string(obj, &place, "name")?.unwrap_or_else(|| format!("joint {n}"));
+    Ok(Joint {
+        name,
+        kind,
+        dh,
+        limits,
+        max_speed,
+        home,
+    })
+}
+
+fn transform_from_value(
+    value: Option<&Value>,
+    place: Place,
+) -> Result<nalgebra::IsometryMatrix3<f64>, RobotError> {
+    let Some(value) = value else {
+        return Ok(nalgebra::IsometryMatrix3::identity());
+    };
+    let obj = object(
+        value,
+        &place,
+        "transform",
+        "an object { \"xyz\": [..], \"rpy_deg\": [..] }",
+    )?;
+    check_fields(obj, &place, TRANSFORM_FIELDS)?;
+    let xyz = triple(obj, &place, "xyz")?.unwrap_or([0.0; 3]);
+    let rpy = triple(obj, &place, "rpy_deg")?.unwrap_or([0.0; 3]);
+    Ok(isometry_from_xyz_rpy(
+        xyz,
+        [
+            rpy[0].to_radians(),
+            rpy[1].to_radians(),
+            rpy[2].to_radians(),
+        ],
+    ))
+}
+
+/// Writes a robot as the JSON text of a robot file (pretty-printed). Reading it back with
+/// [`robot_from_json`] gives the same robot up to rounding of degree conversions.
+pub fn robot_to_json(robot: &Robot) -> String {
+    let joints: Vec<Value> = robot
+        .joints
+        .iter()
+        .map(|j| {
+            let mut obj = Map::new();
+            obj.insert("name".into(), json!(j.name));
+            obj.insert("type".into(), json!(j.kind.as_str()));
+            obj.insert("theta_deg".into(), json!(tidy(j.dh.theta.to_degrees())));
+            obj.insert("d".into(), json!(j.dh.d));
+            obj.insert("a".into(), json!(j.dh.a));
+            obj.insert("alpha_deg".into(), json!(tidy(j.dh.alpha.to_degrees())));
+            match j.kind {
+                JointKind::Revolute => {
+                    obj.insert("min_deg".into(), json!(tidy(j.limits.min.to_degrees())));
+                    obj.insert("max_deg".into(), json!(tidy(j.limits.max.to_degrees())));
+                    obj.insert("home".into(), json!(tidy(j.home.to_degrees())));
+                    if let Some(s) = j.max_speed {
+                        obj.insert("max_speed".into(), json!(tidy(s.to_degrees())));
+                    }
+                }
+                JointKind::Prismatic => {
+                    obj.insert("min".into(), json!(j.limits.min));
+                    obj.insert("max".into(), json!(j.limits.max));
+                    obj.insert("home".into(), json!(j.home));
+                    if let Some(s) = j.max_speed {
+                        obj.insert("max_speed".into(), json!(s));
+                    }
+                }
+            }
+            Value::Object(obj)
+        })
+        .collect();
+    let mut root = Map::new();
+    root.insert("format".into(), json!("armlab-robot/1"));
+    root.insert("name".into(), json!(robot.name));
+    if !robot.description.is_empty() {
+        root.insert("description".into(), json!(robot.description));
+    }
+    root.insert("convention".into(), json!(robot.convention.as_str()));
+    root.insert("length_unit".into(), json!(robot.length_unit.symbol()));
+    root.insert("joints".into(), Value::Array(joints));
+    for (key, iso) in [
+        ("base", &robot.world_from_base),
+        ("tool", &robot.flange_from_tool),
+    ] {
+        if *iso != nalgebra::IsometryMatrix3::identity() {
+            let e = ZyxEuler::from_rotation(iso.rotation.matrix());
+            let t = iso.translation.vector;
+            root.insert(
+                key.into(),
+                json!({
+                    "xyz": [t.x, t.y, t.z],
+                    "rpy_deg": [tidy(e.gamma.to_degrees()), tidy(e.beta.to_degrees()), tidy(e.alpha.to_degrees())],
+                }),
+            );
+        }
+    }
+    serde_json::to_string_pretty(&Value::Object(root)).unwrap_or_default()
+}
+
+/// Rounds values within 1e−9 of a whole number of degrees, so files stay readable.
+fn tidy(deg: f64) -> f64 {
+    let r = deg.round();
+    if (deg - r).abs() < 1e-9 { r } else { deg }
+}
+
+fn missing(place: &Place, field: &str) -> RobotError {
+    RobotError::MissingField {
+        place: place.clone(),
+        field: field.to_string(),
+    }
+}
+
+fn wrong(place: &Place, field: &str, expected: &str) -> RobotError {
+    RobotError::WrongType {
+        place: place.clone(),
+        field: field.to_string(),
+        expected: expected.to_string(),
+    }
+}
+
+fn object<'a>(
+    value: &'a Value,
+    place: &Place,
+    field: &str,
+    expected: &str,
+) -> Result<&'a Map<String, Value>, RobotError> {
+    value
+        .as_object()
+        .ok_or_else(|| wrong(place, field, expected))
+}
+
+fn check_fields(obj: &Map<String, Value>, place: &Place, known: &[&str]) -> Result<(), RobotError> {
+    match obj.keys().find(|k| !known.contains(&k.as_str())) {
+        Some(field) => Err(RobotError::UnknownField {
+            place: place.clone(),
+            field: field.clone(),
+            known: known.join(", "),
+        }),
+        None => Ok(()),
+    }
+}
+
+fn string(
+    obj: &Map<String, Value>,
+    place: &Place,
+    field: &str,
+) -> Result<Option<String>, RobotError> {
+    match obj.get(field) {
+        None | Some(Value::Null) => Ok(None),
+        Some(Value::String(s)) => Ok(Some(s.clone())),
+        Some(_) => Err(wrong(place, field, "a text in quotes")),
+    }
+}
+
+fn number(obj: &Map<String, Value>, place: &Place, field: &str) -> Result<Option<f64>, RobotError> {
+    match obj.get(field) {
+        None => Ok(None),
+        Some(Value::Number(n)) => match n.as_f64() {
+            Some(v) if v.is_finite() => Ok(Some(v)),
+            _ => Err(RobotError::NotFinite {
+                place: place.clone(),
+                field: field.to_string(),
+                value: f64::INFINITY,
+            }),
+        },
+        // JSON has no NaN; a string "NaN" or null is a type error, named as such.
+        Some(_) => Err(wrong(place, field, "a number")),
+    }
+}
+
+fn triple(
+    obj: &Map<String, Value>,
+    place: &Place,
+    field: &str,
+) -> Result<Option<[f64; 3]>, RobotError> {
+    let Some(value) = obj.get(field) else {
+        return Ok(None);
+    };
+    let expected = "a list of 3 numbers";
+    let list = value
+        .as_array()
+        .ok_or_else(|| wrong(place, field, expected))?;
+    if list.len() != 3 {
+        return Err(wrong(place, field, expected));
+    }
+    let mut out = [0.0; 3];
+    for (slot, v) in out.iter_mut().zip(list) {
+        *slot = v.as_f64().ok_or_else(|| wrong(place, field, expected))?;
+    }
+    Ok(Some(out))
+}

@@ -1,0 +1,29 @@
+//! The kinematics core: pure maths on nalgebra `f64`. No GUI, web or clock dependency:
+//! it builds with `--no-default-features`, natively and for `wasm32-unknown-unknown`.
+//!
+//! Data flow: [`Robot`] (a DH table) → [`ForwardKinematics`] (every A_i and T_0i) →
+//! [`geometric_jacobian`] → measures and IK.
+
+pub mod angles;
+pub mod error;
+pub mod file;
+pub mod fk;
+pub mod jacobian;
+pub mod orientation;
+pub mod presets;
+pub mod rng;
+pub mod robot;
+
+pub use error::{Place, RobotError};
+pub use file::{robot_from_json, robot_from_value, robot_to_json};
+pub use fk::{
+    ForwardKinematics, link_transform, modified_dh_transform, standard_dh_transform, tool_pose,
+};
+pub use jacobian::{
+    JacobianMeasures, NUMERIC_EPSILON, SINGULARITY_THRESHOLD, Task, ToolAxis, geometric_jacobian,
+    geometric_jacobian_into, jacobian_measures, numerical_jacobian, task_jacobian, tool_velocity,
+};
+pub use orientation::{AngleAxis, EulerParameters, Orientation, XyzFixed, ZyxEuler, rotation_log};
+pub use presets::{PRESETS, preset, preset_ids};
+pub use rng::SplitMix64;
+pub use robot::{Convention, DhRow, Joint, JointKind, JointLimits, LengthUnit, Robot};

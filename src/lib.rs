@@ -1,0 +1,16 @@
+//! ArmLab: a robot-arm kinematics lab that runs in a browser tab.
+//!
+//! - [`kinematics`] is the core: robots as DH tables, forward kinematics, Jacobians,
+//!   orientation forms. It has no GUI dependency and runs natively and as wasm.
+//! - `app` (feature `app`) is the eframe/egui application.
+//! - [`api`] is the JSON API over the core (JSON text in and out).
+//! - `js` (feature `js`) is the JavaScript API over the core, through wasm-bindgen.
+
+pub mod api;
+pub mod kinematics;
+
+#[cfg(feature = "app")]
+pub mod app;
+
+#[cfg(feature = "js")]
+pub mod js;

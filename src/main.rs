@@ -1,0 +1,2 @@
+//! ArmLab's entry point: a native window (`cargo run`) or the web page (trunk).
+fn main() {}

@@ -1,0 +1,66 @@
+//! Joint-angle bookkeeping (SPEC §2).
+
+#[cfg(target_arch = "wasm32")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+
+mod common;
+
+use armlab::kinematics::angles::{nearest_equivalent_within, wrap_to_pi};
+use armlab::kinematics::{JointLimits, preset};
+use std::f64::consts::{PI, TAU};
+
+#[test]
+fn wrap_covers_interval_ends() {
+    assert_eq!(wrap_to_pi(PI), PI);
+    assert_eq!(wrap_to_pi(-PI), PI);
+    assert!((wrap_to_pi(7.0) - (7.0 - TAU)).abs() < 1e-12);
+    assert!((wrap_to_pi(-7.0) - (-7.0 + TAU)).abs() < 1e-12);
+    let mut rng = common::rng(4);
+    for _ in 0..1000 {
+        let x = rng.uniform(-100.0, 100.0);
+        let w = wrap_to_pi(x);
+        assert!(w > -PI && w <= PI);
+        assert!(((x - w) / TAU - ((x - w) / TAU).round()).abs() < 1e-9);
+    }
+}
+
+#[test]
+fn nearest_equivalent_prefers_the_current_side() {
+    let wide = JointLimits {
+        min: -TAU,
+        max: TAU,
+    };
+    let v = 350f64.to_radians();
+    assert!((nearest_equivalent_within(v, 340f64.to_radians(), &wide) - v).abs() < 1e-12);
+    let near_zero = nearest_equivalent_within(v, -5f64.to_radians(), &wide);
+    assert!((near_zero - (-10f64).to_radians()).abs() < 1e-12);
+}
+
+#[test]
+fn narrow_limits_clamp_to_the_nearest_limit() {
+    let half = JointLimits { min: 0.0, max: PI };
+    assert_eq!(nearest_equivalent_within(-0.1, 0.0, &half), 0.0);
+    assert_eq!(nearest_equivalent_within(PI + 0.1, 3.0, &half), PI);
+    assert!((nearest_equivalent_within(1.0 + TAU, 0.0, &half) - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn joints_keep_angles_as_spec_says() {
+    let metrover = preset("metrover").unwrap();
+    // Joint 1 (±180°) wraps; joint 2 (0…180°) clamps.
+    assert!((metrover.joints[0].keep(4.0, 0.0) - (4.0 - TAU)).abs() < 1e-12);
+    assert_eq!(metrover.joints[1].keep(-0.2, 0.1), 0.0);
+    // Puma joint 6 is ±266°: 250° stays 250° when the joint is near 200°.
+    let puma = preset("puma560").unwrap();
+    let j6 = &puma.joints[5];
+    assert!(!j6.wraps());
+    let v = 250f64.to_radians();
+    assert!((j6.keep(v, 200f64.to_radians()) - v).abs() < 1e-12);
+    assert!((j6.keep(v, 0.0) - (v - TAU)).abs() < 1e-12);
+    // A joint's change is the wrapped difference.
+    assert!((j6.change(3.0, -3.0) - (TAU - 6.0)).abs() < 1e-12);
+    // Prismatic joints clamp to their stroke.
+    let stanford = preset("stanford").unwrap();
+    assert_eq!(stanford.joints[2].keep(5.0, 0.5), 1.27);
+    assert_eq!(stanford.joints[2].change(0.4, 0.9), 0.5);
+}

@@ -1,0 +1,200 @@
+//! The geometric Jacobian against its central-difference check (SPEC §2), the measures,
+//! and velocity kinematics.
+
+#[cfg(target_arch = "wasm32")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+
+mod common;
+
+use armlab::kinematics::{
+    ForwardKinematics, NUMERIC_EPSILON, Task, ToolAxis, geometric_jacobian, jacobian_measures,
+    numerical_jacobian, preset, tool_pose, tool_velocity,
+};
+
+#[test]
+fn numeric_and_geometric_agree_for_every_preset_at_1000_random_q() {
+    for (id, robot) in common::all_presets() {
+        let mut rng = common::rng(42);
+        for _ in 0..1000 {
+            let q = rng.joint_vector(&robot);
+            let fk = ForwardKinematics::new(&robot, &q).unwrap();
+            let geometric = geometric_jacobian(&fk);
+            let numeric = numerical_jacobian(&robot, &q, NUMERIC_EPSILON);
+            let tol = 1e-5 * geometric.norm().max(1.0);
+            let diff = (&geometric - &numeric).abs().max();
+            assert!(
+                diff <= tol,
+                "{id} at q = {q:?}: rows differ by {diff} > {tol}"
+            );
+        }
+    }
+}
+
+#[test]
+fn standard_and_modified_ur10_have_the_same_jacobian() {
+    let a = preset("ur10").unwrap();
+    let b = preset("ur10-standard").unwrap();
+    let mut rng = common::rng(7);
+    for _ in 0..100 {
+        let q = rng.joint_vector(&a);
+        let ja = geometric_jacobian(&ForwardKinematics::new(&a, &q).unwrap());
+        let jb = geometric_jacobian(&ForwardKinematics::new(&b, &q).unwrap());
+        assert!((ja - jb).abs().max() < 1e-9);
+    }
+}
+
+#[test]
+fn planar_2r_jacobian_matches_textbook_and_is_singular_when_stretched() {
+    let robot = preset("planar-2r").unwrap();
+    let (t1, t2) = (0.4_f64, 1.1_f64);
+    let fk = ForwardKinematics::new(&robot, &[t1, t2]).unwrap();
+    let j = geometric_jacobian(&fk);
+    let (s1, c1, s12, c12) = (t1.sin(), t1.cos(), (t1 + t2).sin(), (t1 + t2).cos());
+    let want = [[-2.0 * s1 - s12, -s12], [2.0 * c1 + c12, c12]];
+    for r in 0..2 {
+        for c in 0..2 {
+            assert!((j[(r, c)] - want[r][c]).abs() < 1e-12);
+        }
+    }
+    // det J = l1 l2 s2 for the 2×2 position block (x, y).
+    let det = j[(0, 0)] * j[(1, 1)] - j[(0, 1)] * j[(1, 0)];
+    assert!((det - 2.0 * t2.sin()).abs() < 1e-12);
+
+    let stretched = ForwardKinematics::new(&robot, &[0.3, 0.0]).unwrap();
+    let m = jacobian_measures(
+        &geometric_jacobian(&stretched),
+        Task::Position,
+        stretched.tool_rotation(),
+        robot.reach(),
+    );
+    assert!(m.near_singular, "s2 = 0 is singular: {m:?}");
+    assert!(m.manipulability.abs() < 1e-12);
+    let bent = ForwardKinematics::new(&robot, &[0.3, 1.2]).unwrap();
+    let m = jacobian_measures(
+        &geometric_jacobian(&bent),
+        Task::Position,
+        bent.tool_rotation(),
+        robot.reach(),
+    );
+    assert!(!m.near_singular, "a bent elbow is not singular: {m:?}");
+}
+
+#[test]
+fn measures_do_not_depend_on_the_length_unit() {
+    // The same arm in mm and in m gives the same scaled measures.
+    let mm = preset("rrr").unwrap();
+    let mut m = mm.clone();
+    m.length_unit = armlab::kinematics::LengthUnit::Metre;
+    for j in &mut m.joints {
+        j.dh.a /= 1000.0;
+        j.dh.d /= 1000.0;
+    }
+    let q = [0.3, 0.8, -1.2];
+    let fa = ForwardKinematics::new(&mm, &q).unwrap();
+    let fb = ForwardKinematics::new(&m, &q).unwrap();
+    let a = jacobian_measures(
+        &geometric_jacobian(&fa),
+        Task::FullPose,
+        fa.tool_rotation(),
+        mm.reach(),
+    );
+    let b = jacobian_measures(
+        &geometric_jacobian(&fb),
+        Task::FullPose,
+        fb.tool_rotation(),
+        m.reach(),
+    );
+    for (x, y) in a.singular_values.iter().zip(&b.singular_values) {
+        assert!((x - y).abs() < 1e-9 * x.max(1.0), "{x} vs {y}");
+    }
+    assert!((a.manipulability - b.manipulability).abs() < 1e-12);
+}
+
+#[test]
+fn rrr_singular_on_base_axis_and_with_straight_elbow() {
+    let robot = preset("rrr").unwrap();
+    let (l2, l3) = (222.1_f64, 136.2_f64);
+    // L2 c2 + L3 c23 = 0: choose θ2 = 90°, θ3 = 0 (tool straight above the base).
+    let on_axis = [0.2, std::f64::consts::FRAC_PI_2, 0.0];
+    let elbow_straight = [0.2, 0.5, 0.0];
+    let elbow_bent = [0.2, 0.5, 1.0];
+    assert!((l2 * on_axis[1].cos() + l3 * (on_axis[1] + on_axis[2]).cos()).abs() < 1e-9);
+    for (q, singular) in [(on_axis, true), (elbow_straight, true), (elbow_bent, false)] {
+        let fk = ForwardKinematics::new(&robot, &q).unwrap();
+        let m = jacobian_measures(
+            &geometric_jacobian(&fk),
+            Task::Position,
+            fk.tool_rotation(),
+            robot.reach(),
+        );
+        assert_eq!(m.near_singular, singular, "q = {q:?}: {m:?}");
+        assert_eq!(m.determinant.is_some(), true, "3×3 task is square");
+    }
+}
+
+#[test]
+fn ur10_wrist_singular_at_theta5_zero() {
+    let robot = preset("ur10").unwrap();
+    let q = [0.3, -1.0, 1.2, -0.5, 0.0, 0.7];
+    let fk = ForwardKinematics::new(&robot, &q).unwrap();
+    let m = jacobian_measures(
+        &geometric_jacobian(&fk),
+        Task::FullPose,
+        fk.tool_rotation(),
+        robot.reach(),
+    );
+    assert!(m.near_singular && m.determinant.unwrap().abs() < 1e-12);
+    assert!(m.condition_number.is_none_or(|c| c > 1e10));
+    let q = [0.3, -1.0, 1.2, -0.5, 0.8, 0.7];
+    let fk = ForwardKinematics::new(&robot, &q).unwrap();
+    let m = jacobian_measures(
+        &geometric_jacobian(&fk),
+        Task::FullPose,
+        fk.tool_rotation(),
+        robot.reach(),
+    );
+    assert!(!m.near_singular, "{m:?}");
+    assert!(m.condition_number.unwrap() >= 1.0);
+    let product: f64 = m.singular_values.iter().product();
+    assert!((product - m.determinant.unwrap().abs()).abs() < 1e-12);
+}
+
+#[test]
+fn five_axis_task_has_five_rows_and_full_rank_in_general() {
+    let robot = preset("metrover").unwrap();
+    let q = [0.3, 0.9, 0.4, 0.5, 0.2];
+    let fk = ForwardKinematics::new(&robot, &q).unwrap();
+    let j = geometric_jacobian(&fk);
+    let m = jacobian_measures(
+        &j,
+        Task::PositionAndAxis(ToolAxis::Z),
+        fk.tool_rotation(),
+        robot.reach(),
+    );
+    assert_eq!(m.singular_values.len(), 5);
+    assert!(!m.near_singular, "{m:?}");
+    // Full pose on five joints: five singular values, no determinant.
+    let m6 = jacobian_measures(&j, Task::FullPose, fk.tool_rotation(), robot.reach());
+    assert_eq!(m6.singular_values.len(), 5);
+    assert!(m6.determinant.is_none());
+}
+
+#[test]
+fn velocity_kinematics_predicts_small_motions() {
+    for (id, robot) in common::all_presets() {
+        let mut rng = common::rng(99);
+        let q = rng.joint_vector(&robot);
+        let q_dot: Vec<f64> = (0..robot.dof()).map(|_| rng.uniform(-1.0, 1.0)).collect();
+        let fk = ForwardKinematics::new(&robot, &q).unwrap();
+        let twist = tool_velocity(&geometric_jacobian(&fk), &q_dot);
+        let dt = 1e-7;
+        let q2: Vec<f64> = q.iter().zip(&q_dot).map(|(a, b)| a + b * dt).collect();
+        let moved = (tool_pose(&robot, &q2).translation.vector - fk.tool_position()) / dt;
+        let scale = twist.norm().max(1.0);
+        assert!(
+            (moved - twist.fixed_rows::<3>(0)).norm() < 1e-4 * scale,
+            "{id}: ẋ = J q̇ predicted {:?}, measured {moved:?}",
+            twist.fixed_rows::<3>(0)
+        );
+    }
+}

@@ -1,0 +1,283 @@
+//! Robot files: every preset loads, saving and loading round-trips, and every kind of
+//! bad input gives its own typed error with a sentence naming the joint and the field.
+
+#[cfg(target_arch = "wasm32")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+
+mod common;
+
+use armlab::kinematics::{
+    Convention, JointKind, LengthUnit, PRESETS, Place, RobotError, robot_from_json, robot_to_json,
+    tool_pose,
+};
+
+/// A valid one-joint robot with `joint` as its joint and `top` spliced into the object.
+fn robot_text(top: &str, joint: &str) -> String {
+    format!(
+        r#"{{ "name": "test", "convention": "standard", "length_unit": "mm"{top}, "joints": [ {joint} ] }}"#
+    )
+}
+
+const GOOD_JOINT: &str =
+    r#"{ "type": "revolute", "theta_deg": 0, "d": 10, "a": 20, "alpha_deg": 90 }"#;
+
+#[test]
+fn every_preset_loads_and_round_trips_through_its_file_format() {
+    assert_eq!(PRESETS.len(), 9);
+    for (id, robot) in common::all_presets() {
+        let again = robot_from_json(&robot_to_json(&robot)).unwrap();
+        assert_eq!(again.name, robot.name, "{id}");
+        assert_eq!(again.dof(), robot.dof());
+        let q = common::rng(1).joint_vector(&robot);
+        let diff = (tool_pose(&robot, &q).to_homogeneous()
+            - tool_pose(&again, &q).to_homogeneous())
+        .abs()
+        .max();
+        assert!(diff < 1e-9, "{id}: saved file changes the pose by {diff}");
+        for (a, b) in robot.joints.iter().zip(&again.joints) {
+            assert_eq!(a.kind, b.kind);
+            assert!(
+                (a.limits.min - b.limits.min).abs() < 1e-12
+                    && (a.limits.max - b.limits.max).abs() < 1e-12
+            );
+        }
+    }
+}
+
+#[test]
+fn a_minimal_file_gets_sensible_defaults() {
+    let robot = robot_from_json(&robot_text("", GOOD_JOINT)).unwrap();
+    assert_eq!(robot.convention, Convention::Standard);
+    assert_eq!(robot.length_unit, LengthUnit::Millimetre);
+    let j = &robot.joints[0];
+    assert_eq!(j.kind, JointKind::Revolute);
+    assert_eq!(j.name, "joint 1");
+    assert!((j.limits.max - std::f64::consts::PI).abs() < 1e-15);
+    assert!(j.wraps());
+}
+
+#[test]
+fn base_and_tool_transforms_apply() {
+    let text = robot_text(
+        r#", "base": { "xyz": [1, 2, 3] }, "tool": { "xyz": [0, 0, 5], "rpy_deg": [0, 0, 90] }"#,
+        r#"{ "type": "revolute", "theta_deg": 0, "d": 0, "a": 0, "alpha_deg": 0 }"#,
+    );
+    let robot = robot_from_json(&text).unwrap();
+    let pose = tool_pose(&robot, &[0.0]);
+    common::assert_vec_near("tool", &pose.translation.vector, [1.0, 2.0, 8.0], 1e-12);
+    common::assert_rot_near(
+        "tool",
+        pose.rotation.matrix(),
+        [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]],
+        1e-12,
+    );
+    let again = robot_from_json(&robot_to_json(&robot)).unwrap();
+    assert!(
+        (tool_pose(&again, &[0.3]).to_homogeneous() - tool_pose(&robot, &[0.3]).to_homogeneous())
+            .abs()
+            .max()
+            < 1e-12
+    );
+}
+
+#[test]
+fn malformed_files_each_give_their_own_typed_error() {
+    let many_joints = vec![GOOD_JOINT; 65].join(",");
+    let cases: Vec<(&str, String, fn(&RobotError) -> bool)> = vec![
+        ("not JSON", "{ name: ".to_string(), |e| {
+            matches!(e, RobotError::Syntax { line: 1, .. })
+        }),
+        ("not an object", "[1, 2]".to_string(), |e| {
+            matches!(
+                e,
+                RobotError::WrongType {
+                    place: Place::Robot,
+                    ..
+                }
+            )
+        }),
+        (
+            "no name",
+            r#"{ "convention": "standard", "length_unit": "mm", "joints": [] }"#.to_string(),
+            |e| matches!(e, RobotError::MissingField { place: Place::Robot, field } if field == "name"),
+        ),
+        (
+            "unknown convention",
+            r#"{ "name": "x", "convention": "craig", "length_unit": "mm", "joints": [] }"#
+                .to_string(),
+            |e| matches!(e, RobotError::UnknownConvention(c) if c == "craig"),
+        ),
+        (
+            "unknown unit",
+            r#"{ "name": "x", "convention": "standard", "length_unit": "inch", "joints": [] }"#
+                .to_string(),
+            |e| matches!(e, RobotError::UnknownLengthUnit(u) if u == "inch"),
+        ),
+        (
+            "empty chain",
+            robot_text("", "").replace("[  ]", "[]"),
+            |e| matches!(e, RobotError::EmptyChain),
+        ),
+        (
+            "unknown joint type",
+            robot_text(
+                "",
+                r#"{ "type": "spherical", "theta_deg": 0, "d": 0, "a": 0, "alpha_deg": 0 }"#,
+            ),
+            |e| matches!(e, RobotError::UnknownJointType { joint: 1, found } if found == "spherical"),
+        ),
+        (
+            "missing d",
+            robot_text(
+                "",
+                &format!(
+                    r#"{GOOD_JOINT}, {{ "type": "revolute", "theta_deg": 0, "a": 0, "alpha_deg": 0 }}"#
+                ),
+            ),
+            |e| matches!(e, RobotError::MissingField { place: Place::Joint(2), field } if field == "d"),
+        ),
+        (
+            "misspelt field",
+            robot_text(
+                "",
+                r#"{ "type": "revolute", "theta_deg": 0, "d": 0, "a": 0, "alpha": 90 }"#,
+            ),
+            |e| matches!(e, RobotError::UnknownField { place: Place::Joint(1), field, .. } if field == "alpha"),
+        ),
+        (
+            "number as text",
+            robot_text(
+                "",
+                r#"{ "type": "revolute", "theta_deg": 0, "d": "NaN", "a": 0, "alpha_deg": 0 }"#,
+            ),
+            |e| matches!(e, RobotError::WrongType { place: Place::Joint(1), field, .. } if field == "d"),
+        ),
+        (
+            "infinite number",
+            robot_text(
+                "",
+                r#"{ "type": "revolute", "theta_deg": 0, "d": 1e999, "a": 0, "alpha_deg": 0 }"#,
+            ),
+            |e| matches!(e, RobotError::Syntax { .. } | RobotError::NotFinite { .. }),
+        ),
+        (
+            "reversed limits",
+            robot_text(
+                "",
+                r#"{ "type": "revolute", "theta_deg": 0, "d": 0, "a": 0, "alpha_deg": 0, "min_deg": 90, "max_deg": -90 }"#,
+            ),
+            |e| matches!(e, RobotError::LimitsReversed { joint: 1, .. }),
+        ),
+        (
+            "prismatic without stroke",
+            robot_text(
+                "",
+                r#"{ "type": "prismatic", "theta_deg": 0, "d": 0, "a": 0, "alpha_deg": 0 }"#,
+            ),
+            |e| matches!(e, RobotError::PrismaticWithoutLimits { joint: 1 }),
+        ),
+        (
+            "absurd length",
+            robot_text(
+                "",
+                r#"{ "type": "revolute", "theta_deg": 0, "d": 0, "a": 2e6, "alpha_deg": 0 }"#,
+            ),
+            |e| matches!(e, RobotError::TooLarge { place: Place::Joint(1), field, .. } if field == "a"),
+        ),
+        ("too many joints", robot_text("", &many_joints), |e| {
+            matches!(e, RobotError::TooManyJoints { count: 65, max: 64 })
+        }),
+        (
+            "bad tool",
+            robot_text(r#", "tool": { "xyz": [1, 2] }"#, GOOD_JOINT),
+            |e| matches!(e, RobotError::WrongType { place: Place::Tool, field, .. } if field == "xyz"),
+        ),
+    ];
+    let mut seen = std::collections::HashSet::new();
+    for (what, text, is_expected) in &cases {
+        let err = robot_from_json(text).expect_err(what);
+        assert!(is_expected(&err), "{what}: unexpected error {err:?}");
+        let sentence = err.to_string();
+        assert!(
+            sentence.ends_with('.'),
+            "{what}: '{sentence}' is a sentence"
+        );
+        assert!(
+            seen.insert(sentence.clone()),
+            "{what}: message repeats another case: {sentence}"
+        );
+    }
+    // The messages name the joint and the field, in words.
+    let err = robot_from_json(&cases[7].1).unwrap_err();
+    assert_eq!(err.to_string(), "In joint 2, the field \"d\" is missing.");
+}
+
+#[test]
+fn nan_and_infinity_from_code_are_rejected_by_validation() {
+    let robot = common::all_presets().remove(0).1;
+    let mut bad = robot.clone();
+    bad.joints[2].dh.a = f64::NAN;
+    assert!(matches!(
+        bad.validated(),
+        Err(RobotError::NotFinite {
+            place: Place::Joint(3),
+            ..
+        })
+    ));
+    let mut bad = robot.clone();
+    bad.joints[0].limits.max = f64::INFINITY;
+    assert!(matches!(
+        bad.validated(),
+        Err(RobotError::NotFinite {
+            place: Place::Joint(1),
+            ..
+        })
+    ));
+    assert!(matches!(
+        robot.check_q(&[0.0; 3]),
+        Err(RobotError::WrongJointCount {
+            expected: 6,
+            found: 3
+        })
+    ));
+    assert!(matches!(
+        robot.check_q(&[0.0, 0.0, f64::NAN, 0.0, 0.0, 0.0]),
+        Err(RobotError::JointValueNotFinite { joint: 3, .. })
+    ));
+    assert!(matches!(
+        armlab::kinematics::preset("r2d2"),
+        Err(RobotError::UnknownPreset(..))
+    ));
+}
+
+#[test]
+fn json_api_answers_fk_and_jacobian_and_names_errors() {
+    use armlab::api;
+    let out: serde_json::Value =
+        serde_json::from_str(&api::fk(r#"{"robot": "ur10", "q": [0,0,0,0,0,0]}"#).unwrap())
+            .unwrap();
+    let p = out["position"].as_array().unwrap();
+    assert!((p[0].as_f64().unwrap() - 1184.5).abs() < 1e-9);
+    assert_eq!(out["links"].as_array().unwrap().len(), 6);
+    assert_eq!(out["tool"][1][2].as_f64().unwrap(), -1.0);
+    let j: serde_json::Value = serde_json::from_str(
+        &api::jacobian(r#"{"robot": "planar-2r", "q": [0.3, 0.0], "task": "position"}"#).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(j["near_singular"], true);
+    assert_eq!(j["geometric"].as_array().unwrap().len(), 6);
+    let err = api::fk(r#"{"robot": "ur10", "q": [0, 0]}"#).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "The robot has 6 joints but 2 joint values were given."
+    );
+    assert!(
+        api::fk("{")
+            .unwrap_err()
+            .to_string()
+            .starts_with("Bad request")
+    );
+    assert!(api::jacobian(r#"{"robot": "ur10", "task": "wiggle"}"#).is_err());
+    let list: serde_json::Value = serde_json::from_str(&api::presets()).unwrap();
+    assert_eq!(list.as_array().unwrap().len(), 9);
+}
