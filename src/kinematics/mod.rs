@@ -8,6 +8,7 @@ pub mod angles;
 pub mod error;
 pub mod file;
 pub mod fk;
+pub mod ik;
 pub mod jacobian;
 pub mod orientation;
 pub mod presets;
@@ -18,6 +19,11 @@ pub use error::{Place, RobotError};
 pub use file::{robot_from_json, robot_from_value, robot_to_json};
 pub use fk::{
     ForwardKinematics, link_transform, modified_dh_transform, standard_dh_transform, tool_pose,
+};
+pub use ik::{
+    ClosedFormFamily, ClosedFormSet, ClosedFormSolution, DEFAULT_MAX_JOINT_CHANGE, IkError,
+    IkMethod, IkResult, IkSettings, IkSolver, IkStep, JacobianSource, closed_form_family,
+    closed_form_solutions, drag_step, solve,
 };
 pub use jacobian::{
     JacobianMeasures, NUMERIC_EPSILON, SINGULARITY_THRESHOLD, Task, ToolAxis, geometric_jacobian,

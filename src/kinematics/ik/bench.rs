@@ -1,0 +1,1 @@
+//! The IK benchmark (TRAC-IK protocol), clock supplied by the caller.

@@ -1,0 +1,531 @@
+//! Inverse kinematics (SPEC §2): one interface over every method.
+//!
+//! - Numeric: damped least squares / Levenberg–Marquardt with adaptive damping
+//!   `Δq = Jᵀ(J·Jᵀ + λ²I)⁻¹·e` (the default, robust near singularities and at unreachable
+//!   targets), Newton with the Moore–Penrose pseudo-inverse `Δq = J⁺·e`, and Jacobian
+//!   transpose / gradient descent on ½‖e‖², `Δq = α·Jᵀ·e`. Each can use the geometric or
+//!   the central-difference Jacobian.
+//! - Closed form where the arm allows it: the planar 2R, the RRR of SPEC §1.4 and the
+//!   UR family (all up to eight solutions), see [`closed_form_solutions`].
+//!
+//! The error vector `e` has the position error `p_target − p` in its first three rows
+//! and, by task: nothing more (position), the rotation turning the chosen tool axis `a`
+//! onto the target's (the direction of `a × a_target`, of length the angle between them,
+//! in the two directions perpendicular to `a`: a 5D task), or the rotation vector
+//! `vee(log(R_target·Rᵀ))` (full pose). The damped and pseudo-inverse methods divide the
+//! linear rows by the arm's reach so that mm and m give the same steps.
+//!
+//! [`IkSolver`] holds the workspaces: keep one and call [`IkSolver::solve`] or
+//! [`IkSolver::drag_step`] every frame; the hot loop then never allocates. [`solve`] and
+//! [`drag_step`] are the one-shot forms. The core has no clock: budgets are iterations.
+
+pub mod bench;
+mod closed_form;
+mod numeric;
+
+use nalgebra::{IsometryMatrix3, Matrix3, Vector3};
+use thiserror::Error;
+
+use super::error::RobotError;
+use super::fk::tool_pose;
+use super::jacobian::Task;
+use super::robot::{JointKind, Robot};
+
+pub use closed_form::{
+    ClosedFormFamily, ClosedFormSet, ClosedFormSolution, closed_form_family,
+    closed_form_solutions,
+};
+use numeric::{TaskTarget, Workspace, evaluate};
+
+/// The largest change of any joint per [`drag_step`] call when the settings give none
+/// (radians; see [`IkSettings::max_joint_change`] for prismatic joints).
+pub const DEFAULT_MAX_JOINT_CHANGE: f64 = 0.1;
+
+/// Which Jacobian the numeric methods use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum JacobianSource {
+    /// The geometric Jacobian (SPEC §2): exact and cheap.
+    #[default]
+    Geometric,
+    /// Central differences with ε = [`crate::kinematics::NUMERIC_EPSILON`] (the Metrover
+    /// calculator's method): 2n forward kinematics per iteration.
+    CentralDifference,
+}
+
+/// An IK method.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum IkMethod {
+    /// Damped least squares / Levenberg–Marquardt, `Δq = Jᵀ(J·Jᵀ + λ²I)⁻¹·e`, with
+    /// `λ² = μ·(½‖e‖² + λ²_min)`: μ shrinks after a step that lowers the error and grows
+    /// after one that does not (the step is then retried). The robust default.
+    #[default]
+    DampedLeastSquares,
+    /// Newton–Raphson with the Moore–Penrose pseudo-inverse, `Δq = J⁺·e`, the undamped
+    /// full step (it can jump far: SPEC §1.3). Singular values below 10⁻⁶·σ_max are
+    /// dropped.
+    PseudoInverse,
+    /// Jacobian transpose / gradient descent on ½‖e‖²: `Δq = α·Jᵀ·e`. With `Some(α)` the
+    /// rows are in the robot's own units (as in class); with `None` the step is Buss's
+    /// `α = ⟨e, J·Jᵀe⟩ / ‖J·Jᵀe‖²` on the reach-scaled rows.
+    JacobianTranspose {
+        /// The fixed step α, or `None` for the adaptive one.
+        alpha: Option<f64>,
+    },
+    /// The closed form of the arm's family (2R, RRR, UR), the branch nearest the seed.
+    ClosedForm,
+}
+
+impl IkMethod {
+    /// A short name for the UI and the JSON API.
+    pub fn name(self) -> &'static str {
+        match self {
+            IkMethod::DampedLeastSquares => "dls",
+            IkMethod::PseudoInverse => "pinv",
+            IkMethod::JacobianTranspose { .. } => "gradient",
+            IkMethod::ClosedForm => "closed-form",
+        }
+    }
+}
+
+/// Settings of one IK call.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IkSettings {
+    /// Success needs the position error at most this, in metres (converted to the robot's
+    /// length unit, so it means the same for mm and m robots).
+    pub position_tolerance: f64,
+    /// Success needs the orientation error (radians) at most this.
+    pub orientation_tolerance: f64,
+    /// Iteration cap of one attempt (one start point).
+    pub max_iterations: usize,
+    /// Iteration budget of the whole call, restarts included.
+    pub budget: usize,
+    /// The most random restarts after a stalled or capped attempt (numeric methods).
+    pub restarts: usize,
+    /// Seed of the [`crate::kinematics::SplitMix64`] drawing restart points.
+    pub seed: u64,
+    /// The largest change of any joint relative to the seed in this call, measured as the
+    /// wrapped difference ([`crate::kinematics::Joint::change`]): the whole change is
+    /// scaled down to meet it. Radians for revolute joints; a prismatic joint may move
+    /// the same fraction of its stroke as this is of π. `None`: no limit (drag steps then
+    /// use [`DEFAULT_MAX_JOINT_CHANGE`]).
+    pub max_joint_change: Option<f64>,
+    /// The numeric methods' Jacobian.
+    pub jacobian: JacobianSource,
+    /// Record every iteration in [`IkResult::trace`] (allocates; off for dragging).
+    pub record_trace: bool,
+}
+
+impl Default for IkSettings {
+    fn default() -> Self {
+        IkSettings {
+            position_tolerance: 1e-6,
+            orientation_tolerance: 1e-6,
+            max_iterations: 100,
+            budget: 2000,
+            restarts: 100,
+            seed: 0x5EED_1C0D_E5A1_7A1B,
+            max_joint_change: None,
+            jacobian: JacobianSource::Geometric,
+            record_trace: false,
+        }
+    }
+}
+
+impl IkSettings {
+    /// Settings for dragging: a short budget, no restarts (they could pick a far branch)
+    /// and at most [`DEFAULT_MAX_JOINT_CHANGE`] per call.
+    pub fn drag() -> Self {
+        IkSettings {
+            max_iterations: 30,
+            budget: 30,
+            restarts: 0,
+            max_joint_change: Some(DEFAULT_MAX_JOINT_CHANGE),
+            ..IkSettings::default()
+        }
+    }
+
+    fn check(&self) -> Result<(), IkError> {
+        let positive = |v: f64| v.is_finite() && v > 0.0;
+        if !positive(self.position_tolerance) || !positive(self.orientation_tolerance) {
+            return Err(IkError::Settings(
+                "the tolerances must be positive numbers".into(),
+            ));
+        }
+        if let Some(limit) = self.max_joint_change
+            && !positive(limit)
+        {
+            return Err(IkError::Settings(
+                "the largest joint change must be a positive number".into(),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// One iteration of a numeric run, for replaying it step by step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IkStep {
+    /// The joint vector after this iteration (kept inside the limits / wrapped).
+    pub q: Vec<f64>,
+    /// The joint vector the step asked for, `q_before + Δq`, before wrapping or clamping
+    /// (for the seed entry: the seed as given).
+    pub raw_q: Vec<f64>,
+    /// The solver's error norm ‖e‖ (linear rows divided by the reach, except for the
+    /// fixed-step gradient method) at `q`.
+    pub error: f64,
+    /// Position error at `q`, in the robot's length unit.
+    pub position_error: f64,
+    /// Orientation error at `q` for the task, radians.
+    pub orientation_error: f64,
+    /// ‖Δq‖ of the step tried.
+    pub step: f64,
+    /// The damping λ of the step (damped least squares), else 0.
+    pub damping: f64,
+    /// Whether the step was taken (damped least squares retries rejected steps).
+    pub accepted: bool,
+    /// Whether this iteration started a new attempt from a random restart point.
+    pub restart: bool,
+}
+
+/// The answer of an IK call.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct IkResult {
+    /// The joint vector (inside the limits where the method could keep it there).
+    pub q: Vec<f64>,
+    /// Both errors are within the tolerances.
+    pub success: bool,
+    /// The target could not be reached: the solver stopped at the closest pose it found
+    /// (a minimum of the error), or the closed form has no exact solution.
+    pub unreachable: bool,
+    /// The closed-form solution chosen sits on a singularity (UR wrist at θ5 = 0, RRR
+    /// tool on the base axis, 2R stretched or folded); its free joint kept the seed's value.
+    pub singular: bool,
+    /// The move was scaled down to the largest joint change per call: `q` lies on the
+    /// way to the answer (call again to go on).
+    pub clipped: bool,
+    /// Every joint of `q` lies within its limits.
+    pub within_limits: bool,
+    /// ‖p_target − p(q)‖ in the robot's length unit.
+    pub position_error: f64,
+    /// The task's orientation error (radians): 0 for position only, the angle between the
+    /// tool axes (5D), the rotation angle of `R_target·Rᵀ` (full pose).
+    pub orientation_error: f64,
+    /// Iterations used, restarts included (0 for the closed form).
+    pub iterations: usize,
+    /// Random restarts used.
+    pub restarts: usize,
+    /// The per-iteration trace, when [`IkSettings::record_trace`] is on; the first entry
+    /// is the seed.
+    pub trace: Vec<IkStep>,
+}
+
+/// What can be wrong with an IK request.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum IkError {
+    /// The seed does not fit the robot.
+    #[error(transparent)]
+    Robot(#[from] RobotError),
+    /// The target pose holds NaN or infinity, or its rotation is not a rotation.
+    #[error("The target pose is not a valid pose: {0}.")]
+    Target(String),
+    /// A setting is out of range.
+    #[error("The IK settings are not valid: {0}.")]
+    Settings(String),
+    /// The closed form was asked for an arm that has none here.
+    #[error(
+        "\"{0}\" has no closed-form IK in ArmLab (only the planar 2R, the RRR arm and the UR family do): use a numeric method."
+    )]
+    NoClosedForm(String),
+}
+
+/// Position and task orientation error of `q` against `target` (robot units, radians).
+pub fn pose_error(
+    robot: &Robot,
+    q: &[f64],
+    target: &IsometryMatrix3<f64>,
+    task: Task,
+) -> (f64, f64) {
+    let pose = tool_pose(robot, q);
+    let ev = evaluate(&TaskTarget::new(target, task), &pose, 1.0);
+    (ev.position_error, ev.orientation_error)
+}
+
+/// The wrapped-difference distance Σ change(a_i, b_i)² between two joint vectors.
+pub fn joint_distance(robot: &Robot, a: &[f64], b: &[f64]) -> f64 {
+    robot
+        .joints
+        .iter()
+        .zip(a.iter().zip(b))
+        .map(|(j, (x, y))| {
+            let d = j.change(*x, *y);
+            d * d
+        })
+        .sum()
+}
+
+/// Every joint inside its limits (1e−9 slack)?
+pub fn within_limits(robot: &Robot, q: &[f64]) -> bool {
+    robot
+        .joints
+        .iter()
+        .zip(q)
+        .all(|(j, v)| j.limits.contains(*v, 1e-9))
+}
+
+fn check_target(target: &IsometryMatrix3<f64>) -> Result<(), IkError> {
+    let t = target.translation.vector;
+    let r = target.rotation.matrix();
+    if !t.iter().chain(r.iter()).all(|v| v.is_finite()) {
+        return Err(IkError::Target("it holds a value that is not finite".into()));
+    }
+    let err = (r.transpose() * r - Matrix3::identity()).abs().max();
+    if err > 1e-6 || r.determinant() < 0.0 {
+        return Err(IkError::Target(
+            "its 3×3 part is not a rotation (orthonormal, determinant +1)".into(),
+        ));
+    }
+    Ok(())
+}
+
+/// The reusable IK solver: its workspaces grow to the robot once and are reused, so
+/// repeated calls (dragging, benchmarks) do not allocate in the iteration loop.
+#[derive(Debug, Clone, Default)]
+pub struct IkSolver {
+    ws: Workspace,
+}
+
+impl IkSolver {
+    /// A solver with empty workspaces (they grow on the first call).
+    pub fn new() -> Self {
+        IkSolver::default()
+    }
+
+    /// Solves IK for `robot` from `seed` toward `target` (the tool pose in the base/world
+    /// frame, in the robot's length unit) for `task` with `method`.
+    ///
+    /// Numeric methods run from the seed (kept inside the limits first), then from random
+    /// restart points while the budget lasts, and return the best attempt. The closed
+    /// form returns the exact branch nearest the seed (inside the limits when one is);
+    /// when it has none (unreachable target) the damped method finds the closest pose.
+    /// Tasks the closed form does not fix (a 6R arm asked for position only) hold the
+    /// seed's orientation. With [`IkSettings::max_joint_change`] the move is clipped.
+    pub fn solve(
+        &mut self,
+        robot: &Robot,
+        target: &IsometryMatrix3<f64>,
+        task: Task,
+        seed: &[f64],
+        method: IkMethod,
+        settings: &IkSettings,
+    ) -> Result<IkResult, IkError> {
+        robot.check_q(seed)?;
+        check_target(target)?;
+        settings.check()?;
+        let mut result = match method {
+            IkMethod::ClosedForm => self.closed_form(robot, target, task, seed, settings)?,
+            _ => self.ws.run(robot, target, task, seed, method, settings),
+        };
+        if let Some(limit) = settings.max_joint_change {
+            self.clip(robot, target, task, seed, limit, settings, &mut result);
+        }
+        Ok(result)
+    }
+
+    /// One frame of dragging: moves from `q_current` toward `target` and never moves a
+    /// joint by more than the largest change per call ([`IkSettings::max_joint_change`],
+    /// default [`DEFAULT_MAX_JOINT_CHANGE`], measured as the wrapped difference), so the
+    /// arm never jumps. The closed form picks the branch nearest `q_current` (so the
+    /// branch stays stable while dragging); numeric methods warm-start from `q_current`.
+    /// An unreachable target gives the closest pose found, flagged `unreachable`.
+    /// Use [`IkSettings::drag`] for the settings.
+    pub fn drag_step(
+        &mut self,
+        robot: &Robot,
+        q_current: &[f64],
+        target: &IsometryMatrix3<f64>,
+        task: Task,
+        method: IkMethod,
+        settings: &IkSettings,
+    ) -> Result<IkResult, IkError> {
+        let limit = settings
+            .max_joint_change
+            .unwrap_or(DEFAULT_MAX_JOINT_CHANGE);
+        robot.check_q(q_current)?;
+        check_target(target)?;
+        settings.check()?;
+        let mut result = match method {
+            IkMethod::ClosedForm => {
+                self.closed_form(robot, target, task, q_current, settings)?
+            }
+            _ => self.ws.run(robot, target, task, q_current, method, settings),
+        };
+        self.clip(robot, target, task, q_current, limit, settings, &mut result);
+        Ok(result)
+    }
+
+    /// The closed form, the branch nearest `seed`, with the damped fallback.
+    fn closed_form(
+        &mut self,
+        robot: &Robot,
+        target: &IsometryMatrix3<f64>,
+        task: Task,
+        seed: &[f64],
+        settings: &IkSettings,
+    ) -> Result<IkResult, IkError> {
+        let family = closed_form_family(robot)
+            .ok_or_else(|| IkError::NoClosedForm(robot.name.clone()))?;
+        let cf_target = closed_form::target_for_task(robot, family, target, task, seed);
+        let set = closed_form_solutions(robot, &cf_target, seed)?;
+        let best = set
+            .solutions
+            .iter()
+            .filter(|s| s.exact)
+            .min_by(|a, b| {
+                (!a.within_limits, joint_distance(robot, seed, &a.q))
+                    .partial_cmp(&(!b.within_limits, joint_distance(robot, seed, &b.q)))
+                    .unwrap_or(std::cmp::Ordering::Equal)
+            });
+        let tt = TaskTarget::new(target, task);
+        let tol_p = settings.position_tolerance / robot.length_unit.in_metres();
+        match best {
+            Some(sol) => {
+                let ev = evaluate(&tt, &tool_pose(robot, &sol.q), 1.0);
+                let success = ev.position_error <= tol_p
+                    && ev.orientation_error <= settings.orientation_tolerance;
+                Ok(IkResult {
+                    within_limits: sol.within_limits,
+                    q: sol.q.clone(),
+                    success,
+                    unreachable: !success,
+                    singular: sol.singular,
+                    clipped: false,
+                    position_error: ev.position_error,
+                    orientation_error: ev.orientation_error,
+                    iterations: 0,
+                    restarts: 0,
+                    trace: Vec::new(),
+                })
+            }
+            None => {
+                // No exact branch: the closest pose, found by damped least squares from
+                // the seed (no restarts: stay near the current configuration).
+                let fallback = IkSettings {
+                    restarts: 0,
+                    ..settings.clone()
+                };
+                let mut r = self.ws.run(
+                    robot,
+                    target,
+                    task,
+                    seed,
+                    IkMethod::DampedLeastSquares,
+                    &fallback,
+                );
+                r.unreachable = !r.success;
+                r.singular = set.singular;
+                Ok(r)
+            }
+        }
+    }
+
+    /// Scales the move from `from` to `result.q` down so that no joint changes by more
+    /// than `limit` (wrapped difference), then re-evaluates the errors.
+    #[allow(clippy::too_many_arguments)]
+    fn clip(
+        &mut self,
+        robot: &Robot,
+        target: &IsometryMatrix3<f64>,
+        task: Task,
+        from: &[f64],
+        limit: f64,
+        settings: &IkSettings,
+        result: &mut IkResult,
+    ) {
+        let mut scale: f64 = 1.0;
+        for ((joint, a), b) in robot.joints.iter().zip(from).zip(&result.q) {
+            let delta = move_of(joint, *a, *b);
+            let allowed = joint_limit(joint, limit);
+            if delta.abs() > allowed {
+                scale = scale.min(allowed / delta.abs());
+            }
+        }
+        if scale >= 1.0 {
+            return;
+        }
+        // A hair below the limit so that rounding never lands above it.
+        let scale = scale * (1.0 - 1e-9);
+        for ((joint, a), b) in robot.joints.iter().zip(from).zip(result.q.iter_mut()) {
+            let delta = move_of(joint, *a, *b);
+            *b = joint.keep(a + scale * delta, *a);
+        }
+        let tt = TaskTarget::new(target, task);
+        let ev = evaluate(&tt, &tool_pose(robot, &result.q), 1.0);
+        let tol_p = settings.position_tolerance / robot.length_unit.in_metres();
+        result.position_error = ev.position_error;
+        result.orientation_error = ev.orientation_error;
+        result.success =
+            ev.position_error <= tol_p && ev.orientation_error <= settings.orientation_tolerance;
+        result.within_limits = within_limits(robot, &result.q);
+        result.clipped = true;
+    }
+}
+
+/// The motion of one joint from `a` to `b`: the wrapped difference for joints that wrap
+/// (±180°), the plain difference otherwise (both values lie inside the limits, so the
+/// straight path does too, and it is never shorter than the wrapped one).
+fn move_of(joint: &super::robot::Joint, a: f64, b: f64) -> f64 {
+    if joint.kind == JointKind::Revolute && !joint.wraps() {
+        b - a
+    } else {
+        joint.change(a, b)
+    }
+}
+
+/// The per-call limit of one joint: `limit` radians, or for a prismatic joint the same
+/// fraction of its stroke as `limit` is of π.
+fn joint_limit(joint: &super::robot::Joint, limit: f64) -> f64 {
+    match joint.kind {
+        JointKind::Revolute => limit,
+        JointKind::Prismatic => {
+            let stroke = joint.limits.max - joint.limits.min;
+            if stroke > 0.0 {
+                limit / std::f64::consts::PI * stroke
+            } else {
+                0.0
+            }
+        }
+    }
+}
+
+/// One-shot [`IkSolver::solve`] (allocates its workspaces).
+pub fn solve(
+    robot: &Robot,
+    target: &IsometryMatrix3<f64>,
+    task: Task,
+    seed: &[f64],
+    method: IkMethod,
+    settings: &IkSettings,
+) -> Result<IkResult, IkError> {
+    IkSolver::new().solve(robot, target, task, seed, method, settings)
+}
+
+/// One-shot [`IkSolver::drag_step`] (allocates its workspaces): what the GUI calls every
+/// frame while the user drags the target.
+pub fn drag_step(
+    robot: &Robot,
+    q_current: &[f64],
+    target: &IsometryMatrix3<f64>,
+    task: Task,
+    method: IkMethod,
+    settings: &IkSettings,
+) -> Result<IkResult, IkError> {
+    IkSolver::new().drag_step(robot, q_current, target, task, method, settings)
+}
+
+/// A target pose from a position and a rotation matrix (rows), for tests and the API.
+pub fn target_pose(position: Vector3<f64>, rotation: Matrix3<f64>) -> IsometryMatrix3<f64> {
+    IsometryMatrix3::from_parts(
+        nalgebra::Translation3::from(position),
+        nalgebra::Rotation3::from_matrix_unchecked(rotation),
+    )
+}

@@ -1,0 +1,519 @@
+//! The iterative methods: damped least squares (Levenberg–Marquardt), Newton with the
+//! pseudo-inverse and gradient descent, sharing one workspace and one error function.
+
+use nalgebra::{Cholesky, IsometryMatrix3, Matrix3, Matrix6, Matrix6xX, Vector3, Vector6};
+
+use super::{IkMethod, IkResult, IkSettings, IkStep, JacobianSource, within_limits};
+use crate::kinematics::fk::{ForwardKinematics, tool_pose};
+use crate::kinematics::jacobian::{NUMERIC_EPSILON, Task, geometric_jacobian_into};
+use crate::kinematics::orientation::rotation_log;
+use crate::kinematics::rng::SplitMix64;
+use crate::kinematics::robot::Robot;
+
+/// The target in the form the error function needs.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct TaskTarget {
+    pub task: Task,
+    pub position: Vector3<f64>,
+    pub rotation: Matrix3<f64>,
+}
+
+impl TaskTarget {
+    pub fn new(target: &IsometryMatrix3<f64>, task: Task) -> Self {
+        TaskTarget {
+            task,
+            position: target.translation.vector,
+            rotation: *target.rotation.matrix(),
+        }
+    }
+}
+
+/// The task error at one pose.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Eval {
+    /// The error vector: linear rows scaled, then the task's angular rows (unused rows 0).
+    pub e: Vector6<f64>,
+    /// ½‖e‖².
+    pub cost: f64,
+    /// ‖p_target − p‖ (robot units).
+    pub position_error: f64,
+    /// The task's orientation error (radians).
+    pub orientation_error: f64,
+}
+
+/// `vee(log R)`, fast for rotations below ~170° and through [`rotation_log`] beyond.
+pub(crate) fn rotation_vector(r: &Matrix3<f64>) -> Vector3<f64> {
+    let v = 0.5
+        * Vector3::new(
+            r[(2, 1)] - r[(1, 2)],
+            r[(0, 2)] - r[(2, 0)],
+            r[(1, 0)] - r[(0, 1)],
+        );
+    let c = 0.5 * (r.trace() - 1.0);
+    if c > -0.98 {
+        let s = v.norm();
+        if s < 1e-300 {
+            return Vector3::zeros();
+        }
+        v * (s.atan2(c) / s)
+    } else {
+        rotation_log(r)
+    }
+}
+
+/// The rotation vector turning unit axis `a` onto unit axis `b` (perpendicular to `a`,
+/// of length the angle), and the angle; `fallback` is a unit vector perpendicular to `a`
+/// used when they are opposite.
+fn axis_rotation(a: &Vector3<f64>, b: &Vector3<f64>, fallback: &Vector3<f64>) -> (Vector3<f64>, f64) {
+    let c = a.cross(b);
+    let s = c.norm();
+    let angle = s.atan2(a.dot(b));
+    if s > 1e-300 {
+        (c * (angle / s), angle)
+    } else if angle > 1.0 {
+        (fallback * angle, angle)
+    } else {
+        (Vector3::zeros(), 0.0)
+    }
+}
+
+/// The task error of `pose` against `tt`, linear rows multiplied by `inv_len`.
+pub(crate) fn evaluate(tt: &TaskTarget, pose: &IsometryMatrix3<f64>, inv_len: f64) -> Eval {
+    let dp = tt.position - pose.translation.vector;
+    let r = pose.rotation.matrix();
+    let mut e = Vector6::zeros();
+    e.fixed_rows_mut::<3>(0).copy_from(&(dp * inv_len));
+    let orientation_error = match tt.task {
+        Task::Position => 0.0,
+        Task::FullPose => {
+            let w = rotation_vector(&(tt.rotation * r.transpose()));
+            e.fixed_rows_mut::<3>(3).copy_from(&w);
+            w.norm()
+        }
+        Task::PositionAndAxis(axis) => {
+            let k = axis.index();
+            let a = r.column(k).into_owned();
+            let u = r.column((k + 1) % 3).into_owned();
+            let w = r.column((k + 2) % 3).into_owned();
+            let (rv, angle) = axis_rotation(&a, &tt.rotation.column(k).into_owned(), &u);
+            e[3] = u.dot(&rv);
+            e[4] = w.dot(&rv);
+            angle
+        }
+    };
+    let position_error = dp.norm();
+    let cost = 0.5 * e.norm_squared();
+    Eval {
+        e,
+        cost: if cost.is_finite() { cost } else { f64::INFINITY },
+        position_error,
+        orientation_error,
+    }
+}
+
+/// How an attempt ended.
+#[derive(Debug, Clone, Copy, Default)]
+struct Outcome {
+    iterations: usize,
+    converged: bool,
+    /// Stopped at a minimum of the error (no step lowers it): the closest pose nearby.
+    stationary: bool,
+}
+
+// Damped least squares: λ² = μ·(½‖e‖² + DLS_FLOOR), μ adapted in [DLS_MU_MIN, DLS_MU_MAX].
+const DLS_FLOOR: f64 = 1e-6;
+const DLS_MU_START: f64 = 1.0;
+const DLS_MU_MIN: f64 = 1e-3;
+const DLS_MU_MAX: f64 = 1e8;
+const DLS_MU_DOWN: f64 = 0.3;
+const DLS_MU_UP: f64 = 10.0;
+/// An accepted step lowering the cost by less than this fraction means a minimum.
+const DLS_STATIONARY: f64 = 1e-9;
+/// An attempt that does not halve its cost every this many iterations is restarted.
+const SLOW_WINDOW: usize = 12;
+
+/// The workspace of the numeric methods, sized to the robot on first use.
+#[derive(Debug, Clone)]
+pub(crate) struct Workspace {
+    fk: ForwardKinematics,
+    /// The 6×n geometric (or numerical) Jacobian.
+    j: Matrix6xX<f64>,
+    /// The task rows (linear rows scaled, unused rows zero).
+    jt: Matrix6xX<f64>,
+    /// J·Jᵀ of the task rows.
+    m: Matrix6<f64>,
+    q: Vec<f64>,
+    q_try: Vec<f64>,
+    raw: Vec<f64>,
+    dq: Vec<f64>,
+    best: Vec<f64>,
+    scratch: Vec<f64>,
+}
+
+impl Default for Workspace {
+    fn default() -> Self {
+        Workspace {
+            fk: ForwardKinematics::default(),
+            j: Matrix6xX::zeros(0),
+            jt: Matrix6xX::zeros(0),
+            m: Matrix6::zeros(),
+            q: Vec::new(),
+            q_try: Vec::new(),
+            raw: Vec::new(),
+            dq: Vec::new(),
+            best: Vec::new(),
+            scratch: Vec::new(),
+        }
+    }
+}
+
+/// Shared, per-call parameters of the attempts.
+struct Ctx<'a> {
+    robot: &'a Robot,
+    tt: TaskTarget,
+    method: IkMethod,
+    jacobian: JacobianSource,
+    inv_len: f64,
+    tol_p: f64,
+    tol_o: f64,
+}
+
+impl Ctx<'_> {
+    fn converged(&self, ev: &Eval) -> bool {
+        ev.position_error <= self.tol_p && ev.orientation_error <= self.tol_o
+    }
+}
+
+impl Workspace {
+    fn resize(&mut self, n: usize) {
+        for v in [
+            &mut self.q,
+            &mut self.q_try,
+            &mut self.raw,
+            &mut self.dq,
+            &mut self.best,
+            &mut self.scratch,
+        ] {
+            v.resize(n, 0.0);
+        }
+        if self.jt.ncols() != n {
+            self.jt = Matrix6xX::zeros(n);
+        }
+    }
+
+    /// The whole numeric solve: attempts from the seed, then from random restarts.
+    pub(crate) fn run(
+        &mut self,
+        robot: &Robot,
+        target: &IsometryMatrix3<f64>,
+        task: Task,
+        seed: &[f64],
+        method: IkMethod,
+        settings: &IkSettings,
+    ) -> IkResult {
+        let n = robot.dof();
+        self.resize(n);
+        let inv_len = match method {
+            IkMethod::JacobianTranspose { alpha: Some(_) } => 1.0,
+            _ => 1.0 / robot.reach(),
+        };
+        let ctx = Ctx {
+            robot,
+            tt: TaskTarget::new(target, task),
+            method,
+            jacobian: settings.jacobian,
+            inv_len,
+            tol_p: settings.position_tolerance / robot.length_unit.in_metres(),
+            tol_o: settings.orientation_tolerance,
+        };
+        let mut trace = Vec::new();
+        let mut rng = SplitMix64::new(settings.seed);
+        self.q.copy_from_slice(seed);
+        robot.keep_q(&mut self.q, seed);
+        if settings.record_trace {
+            self.fk.update(robot, &self.q);
+            let ev = evaluate(&ctx.tt, &self.fk.base_from_tool, inv_len);
+            trace.push(IkStep {
+                q: self.q.clone(),
+                raw_q: seed.to_vec(),
+                error: ev.e.norm(),
+                position_error: ev.position_error,
+                orientation_error: ev.orientation_error,
+                step: 0.0,
+                damping: 0.0,
+                accepted: true,
+                restart: false,
+            });
+        }
+        let record = settings.record_trace.then_some(&mut trace);
+        let mut record = record;
+        let mut total = 0usize;
+        let mut restarts = 0usize;
+        // (converged, cost, stationary, position error, orientation error)
+        let mut best: Option<(bool, f64, bool, f64, f64)> = None;
+        loop {
+            let cap = settings.max_iterations.min(settings.budget.saturating_sub(total));
+            let (out, ev) = self.attempt(&ctx, cap, record.as_deref_mut());
+            total += out.iterations;
+            let better = match best {
+                None => true,
+                Some((conv, cost, ..)) => (out.converged && !conv) || (out.converged == conv && ev.cost < cost),
+            };
+            if better {
+                self.best.copy_from_slice(&self.q);
+                best = Some((out.converged, ev.cost, out.stationary, ev.position_error, ev.orientation_error));
+            }
+            if out.converged || total >= settings.budget || restarts >= settings.restarts {
+                break;
+            }
+            restarts += 1;
+            for (v, joint) in self.q.iter_mut().zip(&robot.joints) {
+                *v = rng.uniform(joint.limits.min, joint.limits.max);
+            }
+            if let Some(t) = record.as_deref_mut() {
+                self.fk.update(robot, &self.q);
+                let ev = evaluate(&ctx.tt, &self.fk.base_from_tool, inv_len);
+                t.push(IkStep {
+                    q: self.q.clone(),
+                    raw_q: self.q.clone(),
+                    error: ev.e.norm(),
+                    position_error: ev.position_error,
+                    orientation_error: ev.orientation_error,
+                    step: 0.0,
+                    damping: 0.0,
+                    accepted: true,
+                    restart: true,
+                });
+            }
+        }
+        let (converged, _, stationary, position_error, orientation_error) =
+            best.unwrap_or((false, f64::INFINITY, false, f64::INFINITY, f64::INFINITY));
+        IkResult {
+            q: self.best.clone(),
+            success: converged,
+            unreachable: !converged && stationary,
+            singular: false,
+            clipped: false,
+            within_limits: within_limits(robot, &self.best),
+            position_error,
+            orientation_error,
+            iterations: total,
+            restarts,
+            trace,
+        }
+    }
+
+    /// Fills `jt` (and `m` = jt·jtᵀ) at the current `q`; `fk` must hold `q`.
+    fn task_jacobian(&mut self, ctx: &Ctx) {
+        match ctx.jacobian {
+            JacobianSource::Geometric => geometric_jacobian_into(&self.fk, &mut self.j),
+            JacobianSource::CentralDifference => self.central_difference(ctx.robot),
+        }
+        let r = *self.fk.base_from_tool.rotation.matrix();
+        let n = self.j.ncols();
+        if self.jt.ncols() != n {
+            self.jt = Matrix6xX::zeros(n);
+        }
+        let mut m = Matrix6::zeros();
+        for i in 0..n {
+            let col = self.j.column(i);
+            let v = col.fixed_rows::<3>(0) * ctx.inv_len;
+            let w = col.fixed_rows::<3>(3).into_owned();
+            let c = match ctx.tt.task {
+                Task::Position => Vector6::new(v.x, v.y, v.z, 0.0, 0.0, 0.0),
+                Task::FullPose => Vector6::new(v.x, v.y, v.z, w.x, w.y, w.z),
+                Task::PositionAndAxis(axis) => {
+                    let k = axis.index();
+                    let u1 = r.column((k + 1) % 3).dot(&w);
+                    let u2 = r.column((k + 2) % 3).dot(&w);
+                    Vector6::new(v.x, v.y, v.z, u1, u2, 0.0)
+                }
+            };
+            m += c * c.transpose();
+            self.jt.column_mut(i).copy_from(&c);
+        }
+        self.m = m;
+    }
+
+    /// The central-difference Jacobian (SPEC §2) into `j`, without allocating.
+    fn central_difference(&mut self, robot: &Robot) {
+        let n = robot.dof();
+        if self.j.ncols() != n {
+            self.j = Matrix6xX::zeros(n);
+        }
+        self.scratch.copy_from_slice(&self.q);
+        let eps = NUMERIC_EPSILON;
+        for i in 0..n {
+            let q0 = self.scratch[i];
+            self.scratch[i] = q0 + eps;
+            let plus = tool_pose(robot, &self.scratch);
+            self.scratch[i] = q0 - eps;
+            let minus = tool_pose(robot, &self.scratch);
+            self.scratch[i] = q0;
+            let v = (plus.translation.vector - minus.translation.vector) / (2.0 * eps);
+            let w = rotation_vector(&(plus.rotation.matrix() * minus.rotation.matrix().transpose()))
+                / (2.0 * eps);
+            let mut col = self.j.column_mut(i);
+            col.fixed_rows_mut::<3>(0).copy_from(&v);
+            col.fixed_rows_mut::<3>(3).copy_from(&w);
+        }
+    }
+
+    /// `dq = jtᵀ·y`; returns ‖dq‖.
+    fn back_substitute(&mut self, y: &Vector6<f64>) -> f64 {
+        let mut norm2 = 0.0;
+        for (i, d) in self.dq.iter_mut().enumerate() {
+            *d = self.jt.column(i).dot(y);
+            norm2 += *d * *d;
+        }
+        norm2.sqrt()
+    }
+
+    /// `q_try = keep(q + dq)` (and the raw sum in `raw`).
+    fn take_step(&mut self, robot: &Robot) {
+        for i in 0..self.q.len() {
+            self.raw[i] = self.q[i] + self.dq[i];
+            self.q_try[i] = robot.joints[i].keep(self.raw[i], self.q[i]);
+        }
+    }
+
+    /// One attempt from the current `q` with at most `cap` iterations. Leaves the
+    /// attempt's answer in `q` and returns its outcome and error.
+    fn attempt(&mut self, ctx: &Ctx, cap: usize, mut trace: Option<&mut Vec<IkStep>>) -> (Outcome, Eval) {
+        let robot = ctx.robot;
+        self.fk.update(robot, &self.q);
+        let mut ev = evaluate(&ctx.tt, &self.fk.base_from_tool, ctx.inv_len);
+        let mut out = Outcome::default();
+        if ctx.converged(&ev) {
+            out.converged = true;
+            return (out, ev);
+        }
+        if !ev.cost.is_finite() {
+            out.stationary = true;
+            return (out, ev);
+        }
+        self.task_jacobian(ctx);
+        let mut mu = DLS_MU_START;
+        let mut checkpoint = ev.cost;
+        while out.iterations < cap {
+            out.iterations += 1;
+            let mut damping = 0.0;
+            let step = match ctx.method {
+                IkMethod::PseudoInverse => {
+                    let y = pinv_times(&self.m, &ev.e);
+                    self.back_substitute(&y)
+                }
+                IkMethod::JacobianTranspose { alpha } => {
+                    let alpha = match alpha {
+                        Some(a) => a,
+                        None => {
+                            let me = self.m * ev.e;
+                            let den = me.norm_squared();
+                            if den > 0.0 { ev.e.dot(&me) / den } else { 0.0 }
+                        }
+                    };
+                    self.back_substitute(&(ev.e * alpha))
+                }
+                _ => {
+                    let lambda2 = mu * (ev.cost + DLS_FLOOR);
+                    damping = lambda2.sqrt();
+                    let mut a = self.m;
+                    for k in 0..6 {
+                        a[(k, k)] += lambda2;
+                    }
+                    match Cholesky::new(a) {
+                        Some(ch) => {
+                            let y = ch.solve(&ev.e);
+                            self.back_substitute(&y)
+                        }
+                        None => {
+                            mu *= DLS_MU_UP;
+                            if mu > DLS_MU_MAX {
+                                out.stationary = true;
+                                break;
+                            }
+                            continue;
+                        }
+                    }
+                }
+            };
+            if !step.is_finite() {
+                out.stationary = true;
+                break;
+            }
+            self.take_step(robot);
+            self.fk.update(robot, &self.q_try);
+            let ev_try = evaluate(&ctx.tt, &self.fk.base_from_tool, ctx.inv_len);
+            let damped = matches!(ctx.method, IkMethod::DampedLeastSquares | IkMethod::ClosedForm);
+            let accepted = !damped || ev_try.cost < ev.cost;
+            if accepted {
+                if !ev_try.cost.is_finite() {
+                    out.stationary = true;
+                    break;
+                }
+                let gain = (ev.cost - ev_try.cost) / ev.cost;
+                std::mem::swap(&mut self.q, &mut self.q_try);
+                ev = ev_try;
+                mu = (mu * DLS_MU_DOWN).max(DLS_MU_MIN);
+                self.record(&mut trace, &ev, step, damping, true);
+                if ctx.converged(&ev) {
+                    out.converged = true;
+                    break;
+                }
+                if damped && gain < DLS_STATIONARY {
+                    out.stationary = true;
+                    break;
+                }
+                self.task_jacobian(ctx);
+            } else {
+                self.record(&mut trace, &ev, step, damping, false);
+                mu *= DLS_MU_UP;
+                if mu > DLS_MU_MAX {
+                    out.stationary = true;
+                    break;
+                }
+            }
+            if damped && out.iterations.is_multiple_of(SLOW_WINDOW) {
+                if ev.cost > 0.5 * checkpoint {
+                    break;
+                }
+                checkpoint = ev.cost;
+            }
+        }
+        (out, ev)
+    }
+
+    fn record(&self, trace: &mut Option<&mut Vec<IkStep>>, ev: &Eval, step: f64, damping: f64, accepted: bool) {
+        if let Some(t) = trace.as_deref_mut() {
+            t.push(IkStep {
+                q: self.q.clone(),
+                raw_q: self.raw.clone(),
+                error: ev.e.norm(),
+                position_error: ev.position_error,
+                orientation_error: ev.orientation_error,
+                step,
+                damping,
+                accepted,
+                restart: false,
+            });
+        }
+    }
+}
+
+/// `y = (J·Jᵀ)⁺·e` from the symmetric eigen-decomposition `J·Jᵀ = U·Σ²·Uᵀ` (the left
+/// singular vectors and squared singular values of J), so that `Jᵀ·y = J⁺·e`. Singular
+/// values below 10⁻⁶·σ_max count as zero.
+fn pinv_times(m: &Matrix6<f64>, e: &Vector6<f64>) -> Vector6<f64> {
+    let eig = m.symmetric_eigen();
+    let largest = eig.eigenvalues.iter().fold(0.0_f64, |a, &b| a.max(b));
+    let cut = largest * 1e-12;
+    let mut y = Vector6::zeros();
+    for k in 0..6 {
+        let s2 = eig.eigenvalues[k];
+        if s2 > cut && s2 > 0.0 {
+            let u = eig.eigenvectors.column(k);
+            y += u * (u.dot(e) / s2);
+        }
+    }
+    y
+}
