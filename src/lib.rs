@@ -12,5 +12,8 @@ pub mod kinematics;
 #[cfg(feature = "app")]
 pub mod app;
 
+#[cfg(feature = "app")]
+pub mod render;
+
 #[cfg(feature = "js")]
 pub mod js;

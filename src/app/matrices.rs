@@ -1,0 +1,274 @@
+//! The matrices panel: every A_i and T_0i, the tool pose, the Jacobian with its measures,
+//! and the tool orientation in four forms. Values update live; precision is selectable;
+//! every matrix can be copied as plain text, LaTeX or NumPy.
+
+use nalgebra::DMatrix;
+
+use crate::kinematics::{
+    Convention, JointKind, NUMERIC_EPSILON, Orientation, jacobian_measures, numerical_jacobian,
+};
+
+use super::{ArmLabApp, style};
+
+/// Plain text rows, space-aligned.
+pub fn to_plain(m: &DMatrix<f64>, decimals: usize) -> String {
+    (0..m.nrows())
+        .map(|r| {
+            (0..m.ncols())
+                .map(|c| format!("{:>w$.p$}", clean(m[(r, c)], decimals), w = decimals + 7, p = decimals))
+                .collect::<Vec<_>>()
+                .join(" ")
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// A LaTeX `bmatrix`.
+pub fn to_latex(m: &DMatrix<f64>, decimals: usize) -> String {
+    let rows: Vec<String> = (0..m.nrows())
+        .map(|r| {
+            (0..m.ncols())
+                .map(|c| format!("{:.p$}", clean(m[(r, c)], decimals), p = decimals))
+                .collect::<Vec<_>>()
+                .join(" & ")
+        })
+        .collect();
+    format!("\\begin{{bmatrix}}\n{}\n\\end{{bmatrix}}", rows.join(" \\\\\n"))
+}
+
+/// A NumPy array expression.
+pub fn to_numpy(m: &DMatrix<f64>, decimals: usize) -> String {
+    let rows: Vec<String> = (0..m.nrows())
+        .map(|r| {
+            let cells: Vec<String> = (0..m.ncols())
+                .map(|c| format!("{:.p$}", clean(m[(r, c)], decimals), p = decimals))
+                .collect();
+            format!("[{}]", cells.join(", "))
+        })
+        .collect();
+    format!("np.array([{}])", rows.join(",\n          "))
+}
+
+/// Rounds away "−0.000".
+fn clean(v: f64, decimals: usize) -> f64 {
+    let scale = 10f64.powi(decimals as i32);
+    if (v * scale).round() == 0.0 { 0.0 } else { v }
+}
+
+/// A matrix as a grid with copy buttons; returns true when the header is hovered.
+fn matrix_block(
+    ui: &mut egui::Ui,
+    title: &str,
+    hover: &str,
+    m: &DMatrix<f64>,
+    decimals: usize,
+    highlighted: bool,
+) -> bool {
+    let mut hovered = false;
+    let frame = egui::Frame::group(ui.style()).stroke(if highlighted {
+        egui::Stroke::new(2.0, style::HIGHLIGHT)
+    } else {
+        ui.visuals().widgets.noninteractive.bg_stroke
+    });
+    frame.show(ui, |ui| {
+        let header = ui.horizontal(|ui| {
+            let title = ui.strong(title).on_hover_text(hover);
+            ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                for (label, text) in [
+                    ("NumPy", to_numpy(m, decimals)),
+                    ("LaTeX", to_latex(m, decimals)),
+                    ("Text", to_plain(m, decimals)),
+                ] {
+                    if ui.small_button(label).on_hover_text(format!("Copy as {label}")).clicked() {
+                        ui.ctx().copy_text(text);
+                    }
+                }
+                ui.label("copy:");
+            });
+            title.hovered()
+        });
+        hovered |= header.inner || header.response.hovered();
+        let grid = egui::Grid::new(title).spacing([10.0, 2.0]).show(ui, |ui| {
+            for r in 0..m.nrows() {
+                for c in 0..m.ncols() {
+                    let v = clean(m[(r, c)], decimals);
+                    ui.monospace(format!("{v:.decimals$}"));
+                }
+                ui.end_row();
+            }
+        });
+        hovered |= grid.response.hovered();
+    });
+    hovered
+}
+
+fn homogeneous(pose: &nalgebra::IsometryMatrix3<f64>) -> DMatrix<f64> {
+    let h = pose.to_homogeneous();
+    DMatrix::from_fn(4, 4, |r, c| h[(r, c)])
+}
+
+/// Shows the panel.
+pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui) {
+    let decimals = app.settings.precision;
+    ui.horizontal(|ui| {
+        ui.strong("Matrices");
+        let label = ui.label("decimals:");
+        ui.add(egui::DragValue::new(&mut app.settings.precision).range(0..=8))
+            .labelled_by(label.id);
+    });
+    let n = app.session.robot.dof();
+    let unit = app.session.robot.length_unit.symbol();
+    let mut hovered = None;
+
+    let tool = homogeneous(&app.fk.base_from_tool);
+    matrix_block(
+        ui,
+        &format!("T_0{n}  (tool pose, {unit})"),
+        "The tool frame in the base frame: the product of every A_i",
+        &tool,
+        decimals,
+        false,
+    );
+    orientation_block(ui, &Orientation::from_rotation(app.fk.tool_rotation()), app.settings.degrees, decimals);
+
+    egui::CollapsingHeader::new("Jacobian")
+        .default_open(true)
+        .show(ui, |ui| jacobian_block(app, ui, decimals));
+
+    let convention = match app.session.robot.convention {
+        Convention::Standard => "standard DH: A_i = Rz(θ)·Tz(d)·Tx(a)·Rx(α)",
+        Convention::Modified => "modified DH: A_i = Rx(α_{i−1})·Tx(a_{i−1})·Rz(θ)·Tz(d)",
+    };
+    egui::CollapsingHeader::new("Link transforms A_i and running products T_0i")
+        .default_open(true)
+        .show(ui, |ui| {
+            ui.label(convention);
+            for i in 0..n {
+                let highlighted = app.hovered_link == Some(i + 1);
+                let joint = &app.session.robot.joints[i];
+                let variable = match joint.kind {
+                    JointKind::Revolute => "θ",
+                    JointKind::Prismatic => "d",
+                };
+                let a = homogeneous(&app.fk.link_transforms[i]);
+                if matrix_block(
+                    ui,
+                    &format!("A_{}  ({}, {variable}{} variable)", i + 1, joint.name, i + 1),
+                    "Frame i in frame i−1",
+                    &a,
+                    decimals,
+                    highlighted,
+                ) {
+                    hovered = Some(i + 1);
+                }
+                let t = homogeneous(&app.fk.base_from_frames[i]);
+                if matrix_block(
+                    ui,
+                    &format!("T_0{}", i + 1),
+                    "Frame i in the base frame: A_1·…·A_i",
+                    &t,
+                    decimals,
+                    highlighted,
+                ) {
+                    hovered = Some(i + 1);
+                }
+            }
+        });
+    if hovered.is_some() {
+        app.hovered_link = hovered;
+        app.viewport.link_hover_from_panel = true;
+    } else if app.viewport.link_hover_from_panel {
+        app.hovered_link = None;
+        app.viewport.link_hover_from_panel = false;
+    }
+}
+
+fn jacobian_block(app: &ArmLabApp, ui: &mut egui::Ui, decimals: usize) {
+    let j = &app.jacobian;
+    let jm = DMatrix::from_fn(6, j.ncols(), |r, c| j[(r, c)]);
+    matrix_block(
+        ui,
+        "J (6×n, base frame; rows vx vy vz ωx ωy ωz)",
+        "Geometric Jacobian: revolute J_v = z × (o_n − o), J_ω = z; prismatic J_v = z",
+        &jm,
+        decimals,
+        false,
+    );
+    let robot = &app.session.robot;
+    let numeric = numerical_jacobian(robot, &app.session.q, NUMERIC_EPSILON);
+    let diff = (j - &numeric).abs().max();
+    let tol = 1e-5 * j.norm().max(1.0);
+    let text = format!("central differences (ε = 1e−6) agree to {diff:.1e}");
+    if diff <= tol {
+        ui.label(text);
+    } else {
+        ui.colored_label(style::ERROR, format!("{text}: above the tolerance {tol:.1e}"));
+    }
+    let m = jacobian_measures(j, app.session.task, app.fk.tool_rotation(), robot.reach());
+    let sv: Vec<String> = m.singular_values.iter().map(|s| format!("{s:.4}")).collect();
+    egui::Grid::new("measures").num_columns(2).show(ui, |ui| {
+        ui.label("task rows").on_hover_text("The rows the IK task uses");
+        ui.label(format!("{}", app.session.task.rows()));
+        ui.end_row();
+        ui.label("singular values").on_hover_text(format!(
+            "Of the task Jacobian with the linear rows divided by the reach ({:.0} {})",
+            m.length_scale,
+            robot.length_unit.symbol()
+        ));
+        ui.monospace(sv.join("  "));
+        ui.end_row();
+        ui.label("manipulability").on_hover_text("√det(J Jᵀ): the product of the singular values");
+        ui.monospace(format!("{:.5}", m.manipulability));
+        ui.end_row();
+        if let Some(det) = m.determinant {
+            ui.label("det J");
+            ui.monospace(format!("{det:.5}"));
+            ui.end_row();
+        }
+        ui.label("condition number");
+        ui.monospace(m.condition_number.map_or("∞".to_string(), |c| format!("{c:.2}")));
+        ui.end_row();
+    });
+    if m.near_singular {
+        ui.colored_label(style::UNREACHABLE, "At or near a singularity: some task direction needs very large joint speeds.");
+    }
+}
+
+fn orientation_block(ui: &mut egui::Ui, o: &Orientation, degrees: bool, decimals: usize) {
+    let ang = |v: f64| {
+        if degrees {
+            format!("{:.p$}°", v.to_degrees(), p = decimals.min(4))
+        } else {
+            format!("{:.p$}", v, p = decimals.max(3))
+        }
+    };
+    egui::CollapsingHeader::new("Tool orientation")
+        .default_open(true)
+        .show(ui, |ui| {
+            egui::Grid::new("orientation").num_columns(2).show(ui, |ui| {
+                let e = o.zyx_euler;
+                ui.label("Z-Y-X Euler (α, β, γ)");
+                ui.monospace(format!("{}  {}  {}{}", ang(e.alpha), ang(e.beta), ang(e.gamma), if e.degenerate { "  (β = ±90°: only α∓γ is defined)" } else { "" }));
+                ui.end_row();
+                let f = o.xyz_fixed;
+                ui.label("X-Y-Z fixed (γ, β, α)");
+                ui.monospace(format!("{}  {}  {}", ang(f.gamma), ang(f.beta), ang(f.alpha)));
+                ui.end_row();
+                let a = o.angle_axis;
+                ui.label("angle-axis (θ, k̂)");
+                ui.monospace(format!(
+                    "{}  ({:.4}, {:.4}, {:.4}){}",
+                    ang(a.angle),
+                    a.axis.x,
+                    a.axis.y,
+                    a.axis.z,
+                    if a.degenerate { "  (θ = 0: any axis)" } else { "" }
+                ));
+                ui.end_row();
+                let q = o.euler_parameters;
+                ui.label("Euler parameters (ε1..ε4)");
+                ui.monospace(format!("{:.5}  {:.5}  {:.5}  {:.5}", q.e1, q.e2, q.e3, q.e4));
+                ui.end_row();
+            });
+        });
+}

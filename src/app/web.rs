@@ -1,0 +1,228 @@
+//! The browser side: starting eframe on the canvas, the loading and error messages, the
+//! URL hash and localStorage, downloads and uploads, and the `window.armlab` test hook.
+
+use std::cell::RefCell;
+
+use wasm_bindgen::JsCast;
+use wasm_bindgen::prelude::*;
+
+use super::ArmLabApp;
+
+const STORAGE_KEY: &str = "armlab.session";
+
+thread_local! {
+    /// What `window.armlab` reads: the state JSON and the screen points, written each frame.
+    static HOOK: RefCell<(String, Vec<(String, [f32; 2])>, f32)> = const { RefCell::new((String::new(), Vec::new(), 1.0)) };
+    /// Recent frame times for `window.armlab.frameTimes()`.
+    static FRAMES: RefCell<Vec<f64>> = const { RefCell::new(Vec::new()) };
+    /// Text of a file the user picked, waiting for the next frame.
+    static UPLOAD: RefCell<Option<String>> = const { RefCell::new(None) };
+    /// A hash the page asked the app to open (back/forward, `window.armlab.open`).
+    static PENDING_HASH: RefCell<Option<String>> = const { RefCell::new(None) };
+    /// The egui context, to wake the app when something arrives from the page.
+    static CTX: RefCell<Option<egui::Context>> = const { RefCell::new(None) };
+}
+
+fn wake() {
+    CTX.with(|c| {
+        if let Some(ctx) = c.borrow().as_ref() {
+            ctx.request_repaint();
+        }
+    });
+}
+
+fn set_message(text: &str, error: bool) {
+    let Some(doc) = web_sys::window().and_then(|w| w.document()) else {
+        return;
+    };
+    if let Some(el) = doc.get_element_by_id("armlab_message") {
+        el.set_text_content(Some(text));
+        el.set_class_name(if error { "error" } else { "" });
+        if let Some(el) = el.dyn_ref::<web_sys::HtmlElement>() {
+            let _ = el.style().set_property("display", if text.is_empty() { "none" } else { "flex" });
+        }
+    }
+}
+
+/// Starts the app on `#armlab_canvas`; replaces the loading text by the app, or by a
+/// sentence when the browser has neither WebGPU nor WebGL2.
+pub fn start() {
+    eframe::WebLogger::init(log::LevelFilter::Warn).ok();
+    wasm_bindgen_futures::spawn_local(async {
+        let Some(window) = web_sys::window() else { return };
+        let Some(canvas) = window
+            .document()
+            .and_then(|d| d.get_element_by_id("armlab_canvas"))
+            .and_then(|e| e.dyn_into::<web_sys::HtmlCanvasElement>().ok())
+        else {
+            set_message("ArmLab could not find its canvas on this page.", true);
+            return;
+        };
+        let hash = window.location().hash().unwrap_or_default();
+        let stored = window
+            .local_storage()
+            .ok()
+            .flatten()
+            .and_then(|s| s.get_item(STORAGE_KEY).ok().flatten())
+            .unwrap_or_default();
+        // A link wins; without one, the last session returns.
+        let opening = if hash.trim_start_matches('#').is_empty() { stored } else { hash };
+        let options = eframe::WebOptions::default();
+        let runner = eframe::WebRunner::new();
+        let result = runner
+            .start(canvas, options, Box::new(move |cc| Ok(Box::new(ArmLabApp::new(cc, &opening)))))
+            .await;
+        match result {
+            Ok(()) => {
+                set_message("", false);
+                install_hook(&window);
+                install_hashchange(&window);
+            }
+            Err(e) => {
+                let detail = e.as_string().unwrap_or_else(|| format!("{e:?}"));
+                set_message(
+                    &format!(
+                        "ArmLab needs WebGPU or WebGL2 to draw the robot, and this browser offers neither \
+                         (or has them switched off). Try a current Chrome, Edge, Firefox or Safari, or enable \
+                         hardware acceleration. Details: {detail}"
+                    ),
+                    true,
+                );
+            }
+        }
+    });
+}
+
+/// Writes the hash into the address bar (without a history entry) and localStorage.
+pub fn store_hash(hash: &str) {
+    let Some(window) = web_sys::window() else { return };
+    if let Ok(history) = window.history() {
+        let _ = history.replace_state_with_url(&JsValue::NULL, "", Some(&format!("#{hash}")));
+    }
+    if let Ok(Some(storage)) = window.local_storage() {
+        let _ = storage.set_item(STORAGE_KEY, hash);
+    }
+}
+
+/// Publishes the state and screen points for `window.armlab`, and opens a hash the page
+/// asked for.
+pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
+    CTX.with(|c| {
+        if c.borrow().is_none() {
+            *c.borrow_mut() = Some(ctx.clone());
+        }
+    });
+    if let Some(hash) = PENDING_HASH.with(|p| p.borrow_mut().take()) {
+        app.open_hash(&hash);
+    }
+    // egui points to CSS pixels: the canvas fills the page from (0, 0).
+    let css_per_point = ctx.pixels_per_point() / ctx.native_pixels_per_point().unwrap_or(1.0);
+    let state = app.state_json();
+    HOOK.with(|h| *h.borrow_mut() = (state, app.viewport.points.clone(), css_per_point));
+    if let Some(ms) = app.frame_ms.back().copied() {
+        FRAMES.with(|f| {
+            let mut f = f.borrow_mut();
+            if f.len() >= 5000 {
+                f.remove(0);
+            }
+            f.push(ms);
+        });
+    }
+}
+
+fn install_hook(window: &web_sys::Window) {
+    let obj = js_sys::Object::new();
+    let state = Closure::<dyn Fn() -> String>::new(|| HOOK.with(|h| h.borrow().0.clone()));
+    let point = Closure::<dyn Fn(String) -> JsValue>::new(|name: String| {
+        HOOK.with(|h| {
+            let h = h.borrow();
+            match h.1.iter().find(|(n, _)| *n == name) {
+                Some((_, p)) => {
+                    let o = js_sys::Object::new();
+                    let _ = js_sys::Reflect::set(&o, &"x".into(), &((p[0] * h.2) as f64).into());
+                    let _ = js_sys::Reflect::set(&o, &"y".into(), &((p[1] * h.2) as f64).into());
+                    o.into()
+                }
+                None => JsValue::NULL,
+            }
+        })
+    });
+    let frames = Closure::<dyn Fn() -> Vec<f64>>::new(|| FRAMES.with(|f| std::mem::take(&mut *f.borrow_mut())));
+    let open = Closure::<dyn Fn(String)>::new(|hash: String| {
+        PENDING_HASH.with(|p| *p.borrow_mut() = Some(hash));
+        wake();
+    });
+    let _ = js_sys::Reflect::set(&obj, &"state".into(), &state.into_js_value());
+    let _ = js_sys::Reflect::set(&obj, &"screenPoint".into(), &point.into_js_value());
+    let _ = js_sys::Reflect::set(&obj, &"frameTimes".into(), &frames.into_js_value());
+    let _ = js_sys::Reflect::set(&obj, &"open".into(), &open.into_js_value());
+    let _ = js_sys::Reflect::set(window, &"armlab".into(), &obj);
+}
+
+fn install_hashchange(window: &web_sys::Window) {
+    let on_change = Closure::<dyn Fn()>::new(|| {
+        if let Some(hash) = web_sys::window().and_then(|w| w.location().hash().ok()) {
+            PENDING_HASH.with(|p| *p.borrow_mut() = Some(hash));
+            wake();
+        }
+    });
+    let _ = window.add_event_listener_with_callback("hashchange", on_change.as_ref().unchecked_ref());
+    on_change.forget();
+}
+
+/// Offers `text` as a download named `name`.
+pub fn download(name: &str, text: &str) -> Result<(), String> {
+    let fail = |e: JsValue| format!("{e:?}");
+    let window = web_sys::window().ok_or("no window")?;
+    let document = window.document().ok_or("no document")?;
+    let parts = js_sys::Array::of1(&JsValue::from_str(text));
+    let bag = web_sys::BlobPropertyBag::new();
+    bag.set_type("application/json");
+    let blob = web_sys::Blob::new_with_str_sequence_and_options(&parts, &bag).map_err(fail)?;
+    let url = web_sys::Url::create_object_url_with_blob(&blob).map_err(fail)?;
+    let a: web_sys::HtmlAnchorElement = document.create_element("a").map_err(fail)?.dyn_into().map_err(|_| "no anchor")?;
+    a.set_href(&url);
+    a.set_download(name);
+    a.click();
+    let _ = web_sys::Url::revoke_object_url(&url);
+    Ok(())
+}
+
+/// Opens the browser's file chooser; the chosen file's text arrives through
+/// [`take_uploaded_file`] on a later frame.
+pub fn open_file_chooser() {
+    let Some(document) = web_sys::window().and_then(|w| w.document()) else { return };
+    let Ok(input) = document.create_element("input") else { return };
+    let Ok(input) = input.dyn_into::<web_sys::HtmlInputElement>() else { return };
+    input.set_type("file");
+    input.set_accept(".json,application/json");
+    let reader_input = input.clone();
+    let on_change = Closure::<dyn Fn()>::new(move || {
+        let Some(file) = reader_input.files().and_then(|f| f.get(0)) else { return };
+        let promise = file.text();
+        wasm_bindgen_futures::spawn_local(async move {
+            if let Ok(text) = wasm_bindgen_futures::JsFuture::from(promise).await {
+                UPLOAD.with(|u| *u.borrow_mut() = text.as_string());
+                wake();
+            }
+        });
+    });
+    input.set_onchange(Some(on_change.as_ref().unchecked_ref()));
+    on_change.forget();
+    input.click();
+}
+
+/// Reads a file dropped on the page; its text arrives through [`take_uploaded_file`].
+pub fn read_dropped_file(file: egui::DroppedFileHandle) {
+    wasm_bindgen_futures::spawn_local(async move {
+        if let Ok(bytes) = file.bytes_async().await {
+            UPLOAD.with(|u| *u.borrow_mut() = Some(String::from_utf8_lossy(&bytes).into_owned()));
+            wake();
+        }
+    });
+}
+
+/// The text of a file the user picked, once.
+pub fn take_uploaded_file() -> Option<String> {
+    UPLOAD.with(|u| u.borrow_mut().take())
+}

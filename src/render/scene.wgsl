@@ -1,0 +1,84 @@
+// ArmLab's scene shader: lit, instanced meshes and unlit coloured lines.
+// Colours arrive linear; the target texture is sRGB, so the hardware encodes them.
+
+struct Globals {
+    view_proj: mat4x4<f32>,
+    // xyz: direction the key light travels; w unused.
+    light_dir: vec4<f32>,
+    // xyz: eye position.
+    eye: vec4<f32>,
+};
+
+@group(0) @binding(0) var<uniform> globals: Globals;
+
+struct MeshIn {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) m0: vec4<f32>,
+    @location(3) m1: vec4<f32>,
+    @location(4) m2: vec4<f32>,
+    @location(5) m3: vec4<f32>,
+    @location(6) n0: vec4<f32>,
+    @location(7) n1: vec4<f32>,
+    @location(8) n2: vec4<f32>,
+    @location(9) color: vec4<f32>,
+};
+
+struct MeshOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) normal: vec3<f32>,
+    @location(1) color: vec4<f32>,
+    @location(2) world: vec3<f32>,
+};
+
+@vertex
+fn vs_mesh(v: MeshIn) -> MeshOut {
+    let model = mat4x4<f32>(v.m0, v.m1, v.m2, v.m3);
+    let normal_matrix = mat3x3<f32>(v.n0.xyz, v.n1.xyz, v.n2.xyz);
+    let world = model * vec4<f32>(v.position, 1.0);
+    var out: MeshOut;
+    out.clip = globals.view_proj * world;
+    out.normal = normal_matrix * v.normal;
+    out.color = v.color;
+    out.world = world.xyz;
+    return out;
+}
+
+@fragment
+fn fs_mesh(v: MeshOut) -> @location(0) vec4<f32> {
+    var n = normalize(v.normal);
+    let to_eye = normalize(globals.eye.xyz - v.world);
+    // Two-sided: light the face that looks at the camera.
+    if (dot(n, to_eye) < 0.0) {
+        n = -n;
+    }
+    let key = max(dot(n, -globals.light_dir.xyz), 0.0);
+    let fill = max(dot(n, to_eye), 0.0);
+    let half_vec = normalize(-globals.light_dir.xyz + to_eye);
+    let spec = pow(max(dot(n, half_vec), 0.0), 32.0) * 0.25;
+    let shade = 0.28 + 0.55 * key + 0.22 * fill;
+    return vec4<f32>(v.color.rgb * shade + vec3<f32>(spec), v.color.a);
+}
+
+struct LineIn {
+    @location(0) position: vec3<f32>,
+    @location(1) color: vec4<f32>,
+};
+
+struct LineOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) color: vec4<f32>,
+};
+
+@vertex
+fn vs_line(v: LineIn) -> LineOut {
+    var out: LineOut;
+    out.clip = globals.view_proj * vec4<f32>(v.position, 1.0);
+    out.color = v.color;
+    return out;
+}
+
+@fragment
+fn fs_line(v: LineOut) -> @location(0) vec4<f32> {
+    return v.color;
+}

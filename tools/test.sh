@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# Runs every test (installing what is missing): fmt, clippy (native, core-only, wasm32),
+# the core's tests natively and as wasm in Node (same count), the UI tests (egui_kittest on
+# lavapipe), the JS API in Node, and the built page in headless Chromium.
+set -euo pipefail
+source "$(dirname "$0")/setup.sh"
+cd "$ROOT"
+START=$SECONDS
+ensure_wasm_target
+ensure_wasm_bindgen
+ensure_trunk
+ensure_npm
+ensure_apt mesa-vulkan-drivers chromium
+
+LOG="$(mktemp -d)"
+passed=0
+failed=0
+count() { # sums cargo's "test result: ... N passed; M failed" and node's "# pass N" / "# fail M"
+  local p f
+  p=$(grep -Eo 'test result: [a-zA-Z]+\. [0-9]+ passed|^# pass [0-9]+' "$1" | grep -Eo '[0-9]+' | awk '{s+=$1} END {print s+0}')
+  f=$(grep -Eo '[0-9]+ passed; [0-9]+ failed|^# fail [0-9]+' "$1" | grep -Eo '[0-9]+$|[0-9]+ failed' | grep -Eo '[0-9]+' | awk '{s+=$1} END {print s+0}')
+  echo "$p $f"
+}
+run() { # run NAME CMD...: runs, keeps the log, adds its counts
+  local name="$1"; shift
+  say "$name"
+  local log="$LOG/$name.log"
+  if "$@" 2>&1 | tee "$log"; then :; else
+    read -r p f < <(count "$log")
+    echo "FAILED: $name"
+    echo "$((passed + p)) passed, $((failed + f + 1)) failed"
+    exit 1
+  fi
+}
+add() { read -r p f < <(count "$LOG/$1.log"); passed=$((passed + p)); failed=$((failed + f)); }
+
+run fmt cargo fmt --check
+run clippy-native cargo clippy --all-targets -- -D warnings
+run clippy-core cargo clippy --no-default-features --all-targets -- -D warnings
+run clippy-wasm-app cargo clippy --target wasm32-unknown-unknown --lib --bins --tests -- -D warnings
+run clippy-wasm-core cargo clippy --target wasm32-unknown-unknown --no-default-features --features js --lib --tests -- -D warnings
+
+say "the core has no GUI or web dependency"
+if cargo tree --no-default-features -e normal --prefix none | grep -E '^(egui|eframe|wgpu|web-sys|wasm-bindgen|js-sys)[ -]'; then
+  echo "FAILED: the core build pulls in GUI or web crates (above)"; exit 1
+fi
+if grep -rnE '\b(egui|eframe|wgpu|web_sys|wasm_bindgen|js_sys)::' src/kinematics; then
+  echo "FAILED: src/kinematics imports GUI or web crates (above)"; exit 1
+fi
+
+run core-native cargo test --no-default-features --tests
+run core-doc cargo test --no-default-features --doc
+run core-wasm cargo test --no-default-features --tests --target wasm32-unknown-unknown
+read -r native _ < <(count "$LOG/core-native.log")
+read -r wasm _ < <(count "$LOG/core-wasm.log")
+say "core tests: $native passed natively, $wasm passed as wasm in Node"
+if [ "$native" -eq 0 ] || [ "$native" != "$wasm" ]; then
+  echo "FAILED: the core's tests must pass in the same number natively and as wasm"; exit 1
+fi
+add core-native; add core-doc; add core-wasm
+
+run ui cargo test --test ui
+add ui
+
+say "the JS API in Node"
+cargo build --lib --release --target wasm32-unknown-unknown --no-default-features --features js
+wasm-bindgen --target nodejs --out-dir target/armlab-node target/wasm32-unknown-unknown/release/armlab.wasm
+run js-api node --test web/api.test.mjs
+add js-api
+
+build_web
+run e2e node --test --test-concurrency=1 web/e2e.test.mjs
+add e2e
+
+say "all tests passed in $((SECONDS - START)) s"
+echo "$passed passed, $failed failed"
