@@ -178,3 +178,274 @@ pub fn jacobian(request: &str) -> Result<String, ApiError> {
     })
     .to_string())
 }
+
+fn ik_error(e: crate::kinematics::IkError) -> ApiError {
+    match e {
+        crate::kinematics::IkError::Robot(r) => ApiError::Robot(r),
+        other => ApiError::Request(other.to_string()),
+    }
+}
+
+fn number_list(value: &Value, what: &str) -> Result<Vec<f64>, ApiError> {
+    value
+        .as_array()
+        .and_then(|list| list.iter().map(Value::as_f64).collect::<Option<Vec<f64>>>())
+        .ok_or_else(|| ApiError::Request(format!("\"{what}\" must be a list of numbers")))
+}
+
+fn rows_matrix<const R: usize>(value: &Value, what: &str) -> Result<[[f64; 3]; R], ApiError> {
+    let bad = || ApiError::Request(format!("\"{what}\" must be {R} rows of numbers"));
+    let rows = value.as_array().ok_or_else(bad)?;
+    if rows.len() != R {
+        return Err(bad());
+    }
+    let mut out = [[0.0; 3]; R];
+    for (r, row) in rows.iter().enumerate() {
+        let row = number_list(row, what)?;
+        if row.len() < 3 {
+            return Err(bad());
+        }
+        out[r].copy_from_slice(&row[..3]);
+    }
+    Ok(out)
+}
+
+/// The target of an `ik` request: 4×4 rows, `{"position", "rotation"}` or `{"q"}`.
+fn ik_target(robot: &Robot, value: Option<&Value>) -> Result<IsometryMatrix3<f64>, ApiError> {
+    let value = value.ok_or_else(|| ApiError::Request("the field \"target\" is missing".into()))?;
+    if let Some(rows) = value.as_array() {
+        if rows.len() != 4 {
+            return Err(ApiError::Request(
+                "\"target\" must be 4 rows of 4 numbers".into(),
+            ));
+        }
+        let last = number_list(&rows[3], "target")?;
+        if last.len() != 4 || last != [0.0, 0.0, 0.0, 1.0] {
+            return Err(ApiError::Request(
+                "the last row of \"target\" must be [0, 0, 0, 1]".into(),
+            ));
+        }
+        let mut r = [[0.0; 3]; 3];
+        let mut t = [0.0; 3];
+        for k in 0..3 {
+            let row = number_list(&rows[k], "target")?;
+            if row.len() != 4 {
+                return Err(ApiError::Request(
+                    "\"target\" must be 4 rows of 4 numbers".into(),
+                ));
+            }
+            r[k].copy_from_slice(&row[..3]);
+            t[k] = row[3];
+        }
+        return Ok(crate::kinematics::ik::target_pose(
+            t.into(),
+            Matrix3::from_fn(|i, j| r[i][j]),
+        ));
+    }
+    if let Some(q) = value.get("q") {
+        let q = number_list(q, "target.q")?;
+        robot.check_q(&q)?;
+        return Ok(crate::kinematics::tool_pose(robot, &q));
+    }
+    let position = value
+        .get("position")
+        .ok_or_else(|| {
+            ApiError::Request(
+                "\"target\" must be 4×4 rows, {\"position\", \"rotation\"} or {\"q\"}".into(),
+            )
+        })
+        .and_then(|p| number_list(p, "target.position"))?;
+    if position.len() != 3 {
+        return Err(ApiError::Request(
+            "\"target.position\" must be 3 numbers".into(),
+        ));
+    }
+    let rotation = match value.get("rotation") {
+        None => Matrix3::identity(),
+        Some(rows) => {
+            let r = rows_matrix::<3>(rows, "target.rotation")?;
+            Matrix3::from_fn(|i, j| r[i][j])
+        }
+    };
+    Ok(crate::kinematics::ik::target_pose(
+        nalgebra::Vector3::new(position[0], position[1], position[2]),
+        rotation,
+    ))
+}
+
+fn ik_method(value: &Value) -> Result<crate::kinematics::IkMethod, ApiError> {
+    use crate::kinematics::IkMethod;
+    let alpha = match value.get("alpha") {
+        None | Some(Value::Null) => None,
+        Some(v) => Some(
+            v.as_f64()
+                .filter(|a| a.is_finite() && *a > 0.0)
+                .ok_or_else(|| ApiError::Request("\"alpha\" must be a positive number".into()))?,
+        ),
+    };
+    match value.get("method").map(|m| m.as_str()) {
+        None | Some(Some("dls")) => Ok(IkMethod::DampedLeastSquares),
+        Some(Some("pinv")) => Ok(IkMethod::PseudoInverse),
+        Some(Some("gradient")) => Ok(IkMethod::JacobianTranspose { alpha }),
+        Some(Some("closed-form")) => Ok(IkMethod::ClosedForm),
+        _ => Err(ApiError::Request(
+            "\"method\" must be \"dls\", \"pinv\", \"gradient\" or \"closed-form\"".into(),
+        )),
+    }
+}
+
+fn ik_settings(value: &Value, drag: bool) -> Result<crate::kinematics::IkSettings, ApiError> {
+    use crate::kinematics::{IkSettings, JacobianSource};
+    let mut s = if drag {
+        IkSettings::drag()
+    } else {
+        IkSettings::default()
+    };
+    s.jacobian = match value.get("jacobian").map(|v| v.as_str()) {
+        None | Some(Some("geometric")) => JacobianSource::Geometric,
+        Some(Some("numerical")) => JacobianSource::CentralDifference,
+        _ => {
+            return Err(ApiError::Request(
+                "\"jacobian\" must be \"geometric\" or \"numerical\"".into(),
+            ));
+        }
+    };
+    let Some(obj) = value.get("settings") else {
+        return Ok(s);
+    };
+    let obj = obj
+        .as_object()
+        .ok_or_else(|| ApiError::Request("\"settings\" must be an object".into()))?;
+    for (key, v) in obj {
+        let number = || {
+            v.as_f64()
+                .ok_or_else(|| ApiError::Request(format!("\"settings.{key}\" must be a number")))
+        };
+        let count = || {
+            v.as_u64()
+                .map(|n| n.min(10_000_000) as usize)
+                .ok_or_else(|| {
+                    ApiError::Request(format!("\"settings.{key}\" must be a whole number ≥ 0"))
+                })
+        };
+        match key.as_str() {
+            "position_tolerance" => s.position_tolerance = number()?,
+            "orientation_tolerance" => s.orientation_tolerance = number()?,
+            "max_iterations" => s.max_iterations = count()?,
+            "budget" => s.budget = count()?,
+            "restarts" => s.restarts = count()?,
+            "seed" => s.seed = count()? as u64,
+            "max_joint_change" => {
+                s.max_joint_change = if v.is_null() { None } else { Some(number()?) }
+            }
+            "trace" => {
+                s.record_trace = v.as_bool().ok_or_else(|| {
+                    ApiError::Request("\"settings.trace\" must be true or false".into())
+                })?
+            }
+            other => {
+                return Err(ApiError::Request(format!(
+                    "\"settings.{other}\" is not known; the known settings are: position_tolerance, orientation_tolerance, max_iterations, budget, restarts, seed, max_joint_change, trace"
+                )));
+            }
+        }
+    }
+    Ok(s)
+}
+
+/// Inverse kinematics. Request:
+///
+/// ```json
+/// { "robot": "ur10", "q": [0, 0, 0, 0, 0, 0],
+///   "target": [[1, 0, 0, 1000], [0, 0, -1, -256.1], [0, 1, 0, 400], [0, 0, 0, 1]],
+///   "task": "full", "method": "dls", "drag": false,
+///   "settings": { "position_tolerance": 1e-6, "trace": true } }
+/// ```
+///
+/// - `q`: the seed (the current joint vector when dragging); defaults to the home pose.
+/// - `target`: the tool pose as 4×4 rows, or `{"position": [x, y, z], "rotation": 3×3
+///   rows}` (rotation defaults to identity), or `{"q": [...]}` (the pose FK(q)); in the
+///   robot's length unit.
+/// - `task`: `"position"`, `"axis-x"`, `"axis-y"`, `"axis-z"` or `"full"` (default).
+/// - `method`: `"dls"` (default), `"pinv"`, `"gradient"` (with `"alpha"`: a fixed step in
+///   the robot's units; without: adaptive) or `"closed-form"`; `"jacobian"`:
+///   `"geometric"` (default) or `"numerical"` (central differences).
+/// - `drag`: one drag frame (`drag_step`: drag settings, moves at most
+///   `max_joint_change`, default 0.1 rad, per call).
+/// - `settings`: `position_tolerance` (metres), `orientation_tolerance` (rad),
+///   `max_iterations` (per attempt), `budget` (iterations per call), `restarts`, `seed`,
+///   `max_joint_change` (rad, or null), `trace` (record every iteration).
+///
+/// Response: `q`, `success`, `unreachable`, `singular`, `clipped`, `within_limits`,
+/// `position_error` (robot units), `orientation_error` (rad), `iterations`, `restarts`,
+/// `tool` (4×4 rows of FK(q)), `trace` (list of `{q, raw_q, error, position_error,
+/// orientation_error, step, damping, accepted, restart}`; empty unless asked for) and,
+/// for the closed form, `solutions` (every branch: `{q, label, within_limits, singular,
+/// exact}`) with `family`.
+pub fn ik(request: &str) -> Result<String, ApiError> {
+    use crate::kinematics::{IkMethod, IkSolver, closed_form_solutions, tool_pose};
+    let req = parse_request(request)?;
+    let task = task_of(&req.value)?;
+    let target = ik_target(&req.robot, req.value.get("target"))?;
+    let method = ik_method(&req.value)?;
+    let drag = match req.value.get("drag") {
+        None => false,
+        Some(v) => v
+            .as_bool()
+            .ok_or_else(|| ApiError::Request("\"drag\" must be true or false".into()))?,
+    };
+    let settings = ik_settings(&req.value, drag)?;
+    let mut solver = IkSolver::new();
+    let r = if drag {
+        solver.drag_step(&req.robot, &req.q, &target, task, method, &settings)
+    } else {
+        solver.solve(&req.robot, &target, task, &req.q, method, &settings)
+    }
+    .map_err(ik_error)?;
+    let trace: Vec<Value> = r
+        .trace
+        .iter()
+        .map(|s| {
+            json!({
+                "q": s.q, "raw_q": s.raw_q, "error": s.error,
+                "position_error": s.position_error, "orientation_error": s.orientation_error,
+                "step": s.step, "damping": s.damping, "accepted": s.accepted, "restart": s.restart,
+            })
+        })
+        .collect();
+    let mut out = json!({
+        "robot": req.robot.name,
+        "method": method.name(),
+        "q": r.q,
+        "success": r.success,
+        "unreachable": r.unreachable,
+        "singular": r.singular,
+        "clipped": r.clipped,
+        "within_limits": r.within_limits,
+        "position_error": r.position_error,
+        "orientation_error": r.orientation_error,
+        "iterations": r.iterations,
+        "restarts": r.restarts,
+        "tool": pose_rows(&tool_pose(&req.robot, &r.q)),
+        "trace": trace,
+    });
+    if method == IkMethod::ClosedForm {
+        let set = closed_form_solutions(&req.robot, &target, &req.q).map_err(ik_error)?;
+        if let Some(obj) = out.as_object_mut() {
+            obj.insert("family".into(), json!(set.family.name()));
+            obj.insert(
+                "solutions".into(),
+                json!(
+                    set.solutions
+                        .iter()
+                        .map(|s| json!({
+                            "q": s.q, "label": s.label, "within_limits": s.within_limits,
+                            "singular": s.singular, "exact": s.exact,
+                        }))
+                        .collect::<Vec<_>>()
+                ),
+            );
+        }
+    }
+    Ok(out.to_string())
+}

@@ -34,3 +34,27 @@ pub fn fk(request: &str) -> Result<String, JsError> {
 pub fn jacobian(request: &str) -> Result<String, JsError> {
     to_js(api::jacobian(request))
 }
+
+/// Inverse kinematics (see `api::ik` for the request and the response).
+/// Request: `{"robot": "ur10", "q": [...], "target": [[...4×4]], "task": "full",
+/// "method": "dls", "drag": false, "settings": {...}}`.
+#[wasm_bindgen]
+pub fn ik(request: &str) -> Result<String, JsError> {
+    to_js(api::ik(request))
+}
+
+#[wasm_bindgen]
+extern "C" {
+    /// `performance.now()` (milliseconds), the benchmark's clock.
+    #[wasm_bindgen(js_namespace = performance, js_name = now)]
+    fn performance_now() -> f64;
+}
+
+/// The IK benchmark (TRAC-IK protocol) timed with `performance.now()`; prints the same
+/// JSON as the native `ikbench` binary. Request: `{"samples": 10000, "budget": 1500,
+/// "seed": 20240601}` (all optional).
+#[wasm_bindgen]
+pub fn ik_benchmark(request: &str) -> Result<String, JsError> {
+    let now = || performance_now() * 1e-3;
+    crate::kinematics::ik::bench::run_json(request, &now).map_err(|e| JsError::new(&e))
+}

@@ -12,7 +12,7 @@ use armlab::kinematics::{
     closed_form_family, closed_form_solutions, drag_step, preset, solve, tool_pose,
 };
 use nalgebra::{IsometryMatrix3, Matrix3, Vector3};
-use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use std::f64::consts::{FRAC_PI_2, PI};
 
 const TASKS: [Task; 5] = [
     Task::Position,
@@ -51,18 +51,35 @@ fn damped_least_squares_round_trips_every_preset_and_task() {
                 let q = rng.joint_vector(&robot);
                 let target = tool_pose(&robot, &q);
                 let r = solver
-                    .solve(&robot, &target, task, &seed, IkMethod::DampedLeastSquares, &settings)
+                    .solve(
+                        &robot,
+                        &target,
+                        task,
+                        &seed,
+                        IkMethod::DampedLeastSquares,
+                        &settings,
+                    )
                     .unwrap();
                 assert!(all_finite(&r.q), "{id} {task:?}: NaN in {:?}", r.q);
-                assert!(r.within_limits, "{id} {task:?}: {:?} outside the limits", r.q);
+                assert!(
+                    r.within_limits,
+                    "{id} {task:?}: {:?} outside the limits",
+                    r.q
+                );
                 if !r.success {
                     failures += 1;
                     continue;
                 }
                 // Independent check by a separate FK call.
                 let (pe, oe) = pose_error(&robot, &r.q, &target, task);
-                assert!(pe <= tolerance_in_units(&robot, &settings) * 1.0001, "{id} {task:?}: {pe}");
-                assert!(oe <= settings.orientation_tolerance * 1.0001, "{id} {task:?}: {oe}");
+                assert!(
+                    pe <= tolerance_in_units(&robot, &settings) * 1.0001,
+                    "{id} {task:?}: {pe}"
+                );
+                assert!(
+                    oe <= settings.orientation_tolerance * 1.0001,
+                    "{id} {task:?}: {oe}"
+                );
             }
             assert!(
                 failures == 0,
@@ -101,7 +118,10 @@ fn ur10_closed_form_finds_every_branch_both_conventions() {
                         .fold(0.0, f64::max)
                 })
                 .fold(f64::INFINITY, f64::min);
-            assert!(found <= 1e-6, "{id}: q = {q:?} not among the solutions ({found})");
+            assert!(
+                found <= 1e-6,
+                "{id}: q = {q:?} not among the solutions ({found})"
+            );
             if set.solutions.len() == 8 {
                 eights += 1;
             }
@@ -127,7 +147,15 @@ fn metrover_reaches_600_0_520_position_only_from_zero() {
             jacobian,
             ..IkSettings::default()
         };
-        let r = solve(&robot, &target, Task::Position, &[0.0; 5], method, &settings).unwrap();
+        let r = solve(
+            &robot,
+            &target,
+            Task::Position,
+            &[0.0; 5],
+            method,
+            &settings,
+        )
+        .unwrap();
         assert!(r.success, "{method:?} {jacobian:?}: {r:?}");
         assert!(
             (0.0..=PI).contains(&r.q[1]),
@@ -160,7 +188,10 @@ fn planar_2r_newton_first_step_jumps_far_then_converges() {
     assert!(r.success, "{r:?}");
     let first = &r.trace[1].raw_q;
     eprintln!("first Newton step: {first:?}, iterations {}", r.iterations);
-    assert!((first[0] - (-6.0)).abs() < 1.0 && (first[1] - 20.0).abs() < 1.5, "{first:?}");
+    assert!(
+        (first[0] - (-6.0)).abs() < 1.0 && (first[1] - 20.0).abs() < 1.5,
+        "{first:?}"
+    );
     let p = tool_pose(&robot, &r.q).translation.vector;
     assert!((p - Vector3::new(1.5, 1.5, 0.0)).norm() <= 1e-6);
 }
@@ -199,7 +230,15 @@ fn drag_step_never_moves_a_joint_more_than_the_limit() {
     let mut q = vec![0.0; 6];
     let settings = IkSettings::drag();
     for _ in 0..100 {
-        let r = drag_step(&robot, &q, &far, Task::FullPose, IkMethod::DampedLeastSquares, &settings).unwrap();
+        let r = drag_step(
+            &robot,
+            &q,
+            &far,
+            Task::FullPose,
+            IkMethod::DampedLeastSquares,
+            &settings,
+        )
+        .unwrap();
         let moved = robot
             .joints
             .iter()
@@ -211,5 +250,513 @@ fn drag_step_never_moves_a_joint_more_than_the_limit() {
     }
     let (pe, _) = pose_error(&robot, &q, &far, Task::FullPose);
     assert!(pe < 1e-3, "{pe}");
-    let _ = (joint_distance(&robot, &q, &q), FRAC_PI_2, TAU);
+}
+
+/// Distinct joint vectors up to whole turns, as sorted wrapped keys.
+fn distinct_mod_turns(list: &[Vec<f64>], tol: f64) -> Vec<Vec<f64>> {
+    let mut out: Vec<Vec<f64>> = Vec::new();
+    for q in list {
+        let w: Vec<f64> = q
+            .iter()
+            .map(|v| armlab::kinematics::angles::wrap_to_pi(*v))
+            .collect();
+        let same = out.iter().any(|o| {
+            o.iter()
+                .zip(&w)
+                .all(|(a, b)| armlab::kinematics::angles::wrap_to_pi(a - b).abs() < tol)
+        });
+        if !same {
+            out.push(w);
+        }
+    }
+    out
+}
+
+#[test]
+fn ur10_branch_count_matches_an_independent_numeric_count() {
+    // Independent count: damped least squares from many random seeds, distinct answers
+    // up to whole turns. Three poses with all eight branches and three with fewer.
+    let robot = preset("ur10").unwrap();
+    let mut rng = common::rng(99);
+    let mut seeds_rng = common::rng(1234);
+    let (mut full, mut fewer) = (0, 0);
+    let settings = IkSettings {
+        restarts: 0,
+        max_iterations: 150,
+        budget: 150,
+        ..IkSettings::default()
+    };
+    let mut solver = IkSolver::new();
+    while full < 3 || fewer < 3 {
+        let q = rng.joint_vector(&robot);
+        let target = tool_pose(&robot, &q);
+        let set = closed_form_solutions(&robot, &target, &q).unwrap();
+        let n = set.solutions.len();
+        if (n == 8 && full >= 3) || (n < 8 && fewer >= 3) {
+            continue;
+        }
+        if n == 8 {
+            full += 1;
+        } else {
+            fewer += 1;
+        }
+        let mut found = Vec::new();
+        for _ in 0..64 {
+            let seed = seeds_rng.joint_vector(&robot);
+            let r = solver
+                .solve(
+                    &robot,
+                    &target,
+                    Task::FullPose,
+                    &seed,
+                    IkMethod::DampedLeastSquares,
+                    &settings,
+                )
+                .unwrap();
+            if r.success {
+                found.push(r.q);
+            }
+        }
+        let numeric = distinct_mod_turns(&found, 1e-3);
+        let closed: Vec<Vec<f64>> = set.solutions.iter().map(|s| s.q.clone()).collect();
+        let closed = distinct_mod_turns(&closed, 1e-3);
+        assert_eq!(closed.len(), n, "closed-form solutions are distinct");
+        assert_eq!(
+            numeric.len(),
+            n,
+            "q = {q:?}: numeric search found {} branches, closed form {n}",
+            numeric.len()
+        );
+        // Every numeric answer is one of the closed-form ones.
+        for a in &numeric {
+            assert!(
+                closed.iter().any(|b| a
+                    .iter()
+                    .zip(b)
+                    .all(|(x, y)| armlab::kinematics::angles::wrap_to_pi(x - y).abs() < 1e-4)),
+                "numeric answer {a:?} is not a closed-form branch"
+            );
+        }
+    }
+}
+
+#[test]
+fn rrr_closed_form_gives_four_solutions_that_verify() {
+    let robot = preset("rrr").unwrap();
+    assert_eq!(closed_form_family(&robot), Some(ClosedFormFamily::Rrr));
+    let mut rng = common::rng(5);
+    for _ in 0..200 {
+        let q = rng.joint_vector(&robot);
+        let target = tool_pose(&robot, &q);
+        let set = closed_form_solutions(&robot, &target, &q).unwrap();
+        assert_eq!(set.solutions.len(), 4, "q = {q:?}");
+        for s in &set.solutions {
+            let p = tool_pose(&robot, &s.q).translation.vector;
+            assert!(
+                (p - target.translation.vector).abs().max() <= 1e-9,
+                "{}",
+                s.label
+            );
+        }
+        // SPEC §1.4's own FK formula agrees.
+        let (l1, l2, l3) = (100.9, 222.1, 136.2);
+        for s in &set.solutions {
+            let (c1, s1) = (s.q[0].cos(), s.q[0].sin());
+            let r = l2 * s.q[1].cos() + l3 * (s.q[1] + s.q[2]).cos();
+            let z = l1 + l2 * s.q[1].sin() + l3 * (s.q[1] + s.q[2]).sin();
+            let p = Vector3::new(c1 * r, s1 * r, z);
+            assert!((p - target.translation.vector).norm() <= 1e-9);
+        }
+    }
+}
+
+#[test]
+fn planar_2r_closed_form_both_elbows_by_the_law_of_cosines() {
+    let robot = preset("planar-2r").unwrap();
+    assert_eq!(closed_form_family(&robot), Some(ClosedFormFamily::Planar2R));
+    let target = target_pose(Vector3::new(1.5, 1.5, 0.0), Matrix3::identity());
+    let set = closed_form_solutions(&robot, &target, &[0.0, 0.0]).unwrap();
+    assert_eq!(set.solutions.len(), 2);
+    let (x, y, l1, l2): (f64, f64, f64, f64) = (1.5, 1.5, 2.0, 1.0);
+    let c2 = (x * x + y * y - l1 * l1 - l2 * l2) / (2.0 * l1 * l2);
+    for (s, t2) in set.solutions.iter().zip([c2.acos(), -c2.acos()]) {
+        let t1 = y.atan2(x) - (l2 * t2.sin()).atan2(l1 + l2 * t2.cos());
+        assert!((s.q[1] - t2).abs() < 1e-12 && (s.q[0] - t1).abs() < 1e-12);
+        let p = tool_pose(&robot, &s.q).translation.vector;
+        assert!((p - target.translation.vector).norm() <= 1e-9);
+    }
+}
+
+#[test]
+fn closed_form_round_trips_through_the_solver_interface_every_task() {
+    let mut solver = IkSolver::new();
+    for id in ["planar-2r", "rrr", "ur10", "ur10-standard"] {
+        let robot = preset(id).unwrap();
+        let mut rng = common::rng(8);
+        for task in TASKS {
+            for _ in 0..20 {
+                let q = rng.joint_vector(&robot);
+                let seed = rng.joint_vector(&robot);
+                let target = tool_pose(&robot, &q);
+                let r = solver
+                    .solve(
+                        &robot,
+                        &target,
+                        task,
+                        &seed,
+                        IkMethod::ClosedForm,
+                        &IkSettings::default(),
+                    )
+                    .unwrap();
+                assert!(r.success, "{id} {task:?} q = {q:?}: {r:?}");
+                let (pe, oe) = pose_error(&robot, &r.q, &target, task);
+                assert!(pe <= 1e-6 / robot.length_unit.in_metres() && oe <= 1e-6);
+            }
+        }
+    }
+}
+
+#[test]
+fn closed_form_picks_the_branch_nearest_the_seed() {
+    let robot = preset("ur10").unwrap();
+    let mut rng = common::rng(21);
+    for _ in 0..50 {
+        let q = rng.joint_vector(&robot);
+        let target = tool_pose(&robot, &q);
+        // A seed near q: the answer is q itself (up to whole turns, kept near the seed).
+        let seed: Vec<f64> = q.iter().map(|v| v + rng.uniform(-0.05, 0.05)).collect();
+        let r = solve(
+            &robot,
+            &target,
+            Task::FullPose,
+            &seed,
+            IkMethod::ClosedForm,
+            &IkSettings::default(),
+        )
+        .unwrap();
+        let worst =
+            r.q.iter()
+                .zip(&q)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+        assert!(worst < 1e-6, "{worst}");
+        assert!(joint_distance(&robot, &seed, &r.q) < 6.0 * 0.05f64.powi(2) + 1e-9);
+    }
+}
+
+#[test]
+fn pseudo_inverse_and_gradient_round_trip_the_ur10() {
+    let robot = preset("ur10").unwrap();
+    let mut rng = common::rng(77);
+    for method in [
+        IkMethod::PseudoInverse,
+        IkMethod::JacobianTranspose { alpha: None },
+    ] {
+        for _ in 0..5 {
+            let q = rng.joint_vector(&robot);
+            let target = tool_pose(&robot, &q);
+            // Seeded nearby: these methods are for teaching, not for far starts.
+            let seed: Vec<f64> = q.iter().map(|v| v + rng.uniform(-0.2, 0.2)).collect();
+            let settings = IkSettings {
+                max_iterations: 20_000,
+                budget: 20_000,
+                restarts: 0,
+                ..IkSettings::default()
+            };
+            let r = solve(&robot, &target, Task::FullPose, &seed, method, &settings).unwrap();
+            assert!(r.success, "{method:?}: {r:?}");
+        }
+    }
+}
+
+#[test]
+fn solutions_outside_the_limits_are_marked_not_dropped() {
+    let mut robot = preset("rrr").unwrap();
+    robot.joints[0].limits.min = -FRAC_PI_2;
+    robot.joints[0].limits.max = FRAC_PI_2;
+    let q = [0.3, 0.4, 0.5];
+    let target = tool_pose(&robot, &q);
+    let set = closed_form_solutions(&robot, &target, &q).unwrap();
+    assert_eq!(set.solutions.len(), 4);
+    let outside = set.solutions.iter().filter(|s| !s.within_limits).count();
+    assert_eq!(
+        outside, 2,
+        "the two shoulder-back branches turn the base by 0.3 + π"
+    );
+    let r = solve(
+        &robot,
+        &target,
+        Task::Position,
+        &[-1.5, 0.0, 0.0],
+        IkMethod::ClosedForm,
+        &IkSettings::default(),
+    )
+    .unwrap();
+    assert!(r.success && r.within_limits, "{r:?}");
+}
+
+#[test]
+fn singular_configurations_give_flagged_finite_solutions() {
+    // UR10 wrist at θ5 = 0 (q = 0 is also stretched).
+    for id in ["ur10", "ur10-standard"] {
+        let robot = preset(id).unwrap();
+        for q in [[0.0; 6], [0.3, -1.0, 1.2, 0.4, 0.0, -0.7]] {
+            let target = tool_pose(&robot, &q);
+            let set = closed_form_solutions(&robot, &target, &q).unwrap();
+            assert!(!set.solutions.is_empty());
+            assert!(set.singular, "{id} {q:?}");
+            for s in &set.solutions {
+                assert!(all_finite(&s.q));
+                let d = pose_diff(&tool_pose(&robot, &s.q), &target, 1.0);
+                assert!(d <= 1e-9, "{id} {q:?}: {} off by {d}", s.label);
+            }
+            let r = solve(
+                &robot,
+                &target,
+                Task::FullPose,
+                &q,
+                IkMethod::ClosedForm,
+                &IkSettings::default(),
+            )
+            .unwrap();
+            assert!(r.success && r.singular);
+        }
+    }
+    // RRR tool on the base axis: L2 c2 + L3 c23 = 0.
+    let robot = preset("rrr").unwrap();
+    let t2: f64 = 1.2;
+    let t3 = (-222.1 * t2.cos() / 136.2).acos() - t2;
+    let q = [0.7, t2, t3];
+    let target = tool_pose(&robot, &q);
+    assert!(target.translation.vector.xy().norm() < 1e-9);
+    let set = closed_form_solutions(&robot, &target, &q).unwrap();
+    assert!(set.singular && !set.solutions.is_empty());
+    for s in &set.solutions {
+        assert!(all_finite(&s.q));
+        assert!(
+            (tool_pose(&robot, &s.q).translation.vector - target.translation.vector).norm() <= 1e-9
+        );
+    }
+    // 2R stretched and folded: one solution each, flagged.
+    let robot = preset("planar-2r").unwrap();
+    for q in [[0.4, 0.0], [0.4, PI]] {
+        let target = tool_pose(&robot, &q);
+        let set = closed_form_solutions(&robot, &target, &q).unwrap();
+        assert_eq!(set.solutions.len(), 1, "{q:?}");
+        assert!(set.singular && set.solutions[0].exact);
+        assert!(
+            (tool_pose(&robot, &set.solutions[0].q).translation.vector - target.translation.vector)
+                .norm()
+                <= 1e-9
+        );
+    }
+    // Numeric methods seeded exactly at a singularity.
+    let target = target_pose(Vector3::new(1.0, 1.5, 0.0), Matrix3::identity());
+    for method in [
+        IkMethod::DampedLeastSquares,
+        IkMethod::PseudoInverse,
+        IkMethod::JacobianTranspose { alpha: None },
+    ] {
+        let r = solve(
+            &robot,
+            &target,
+            Task::Position,
+            &[0.0, 0.0],
+            method,
+            &IkSettings::default(),
+        )
+        .unwrap();
+        assert!(
+            all_finite(&r.q) && r.position_error.is_finite(),
+            "{method:?}"
+        );
+    }
+}
+
+#[test]
+fn unreachable_targets_give_the_closest_pose_flagged_without_nan() {
+    // 2R: (5, 0) is beyond l1 + l2 = 3: the arm stretches toward it.
+    let robot = preset("planar-2r").unwrap();
+    let target = target_pose(Vector3::new(5.0, 0.0, 0.0), Matrix3::identity());
+    let set = closed_form_solutions(&robot, &target, &[0.1, 0.1]).unwrap();
+    assert!(set.unreachable && !set.solutions.is_empty());
+    for method in [
+        IkMethod::ClosedForm,
+        IkMethod::DampedLeastSquares,
+        IkMethod::PseudoInverse,
+        IkMethod::JacobianTranspose { alpha: Some(0.01) },
+    ] {
+        let r = solve(
+            &robot,
+            &target,
+            Task::Position,
+            &[0.1, 0.1],
+            method,
+            &IkSettings::default(),
+        )
+        .unwrap();
+        assert!(
+            all_finite(&r.q) && r.position_error.is_finite(),
+            "{method:?}: {r:?}"
+        );
+        assert!(!r.success);
+        if method == IkMethod::ClosedForm || method == IkMethod::DampedLeastSquares {
+            assert!(r.unreachable, "{method:?}");
+            assert!(
+                (r.position_error - 2.0).abs() < 1e-3,
+                "{method:?}: {}",
+                r.position_error
+            );
+        }
+    }
+    // Every preset, a target far outside its reach, every task.
+    for (id, robot) in common::all_presets() {
+        let far = target_pose(
+            Vector3::new(3.0, -2.0, 2.5) * robot.reach(),
+            Matrix3::identity(),
+        );
+        for task in TASKS {
+            let light = IkSettings {
+                budget: 300,
+                restarts: 3,
+                ..IkSettings::default()
+            };
+            let r = solve(
+                &robot,
+                &far,
+                task,
+                &robot.mid_limits(),
+                IkMethod::DampedLeastSquares,
+                &light,
+            )
+            .unwrap();
+            assert!(
+                all_finite(&r.q) && !r.success && r.unreachable,
+                "{id} {task:?}: {r:?}"
+            );
+            assert!(r.within_limits);
+            let d = drag_step(
+                &robot,
+                &robot.mid_limits(),
+                &far,
+                task,
+                IkMethod::DampedLeastSquares,
+                &IkSettings::drag(),
+            )
+            .unwrap();
+            assert!(all_finite(&d.q));
+        }
+    }
+    // UR10 closed form out of reach falls back to the closest pose.
+    let robot = preset("ur10").unwrap();
+    let far = target_pose(Vector3::new(3000.0, 0.0, 500.0), Matrix3::identity());
+    let r = solve(
+        &robot,
+        &far,
+        Task::FullPose,
+        &[0.0; 6],
+        IkMethod::ClosedForm,
+        &IkSettings::default(),
+    )
+    .unwrap();
+    assert!(r.unreachable && !r.success && all_finite(&r.q));
+}
+
+#[test]
+fn drag_follows_a_circle_on_one_branch_within_the_joint_limit() {
+    let robot = preset("ur10").unwrap();
+    let down = Matrix3::new(1.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, -1.0);
+    let point = |k: usize| {
+        let a = std::f64::consts::TAU * k as f64 / 120.0;
+        target_pose(
+            Vector3::new(700.0 + 200.0 * a.cos(), -200.0 + 200.0 * a.sin(), 400.0),
+            down,
+        )
+    };
+    let mut solver = IkSolver::new();
+    for method in [IkMethod::DampedLeastSquares, IkMethod::ClosedForm] {
+        let start = solver
+            .solve(
+                &robot,
+                &point(0),
+                Task::FullPose,
+                &[0.0; 6],
+                IkMethod::ClosedForm,
+                &IkSettings::default(),
+            )
+            .unwrap();
+        let mut q = start.q.clone();
+        for k in 1..=120 {
+            let r = solver
+                .drag_step(
+                    &robot,
+                    &q,
+                    &point(k),
+                    Task::FullPose,
+                    method,
+                    &IkSettings::drag(),
+                )
+                .unwrap();
+            assert!(r.success, "{method:?} step {k}: {r:?}");
+            let moved = robot
+                .joints
+                .iter()
+                .zip(q.iter().zip(&r.q))
+                .map(|(j, (a, b))| j.change(*a, *b).abs())
+                .fold(0.0, f64::max);
+            assert!(moved <= 0.1, "{method:?} step {k}: moved {moved}");
+            q = r.q;
+        }
+        // Back at the start on the same branch.
+        let back = q
+            .iter()
+            .zip(&start.q)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(back < 1e-4, "{method:?}: ended {back} rad from the start");
+    }
+}
+
+#[test]
+fn drag_toward_unreachable_target_stretches_without_jumping() {
+    let robot = preset("metrover").unwrap();
+    let far = target_pose(Vector3::new(2000.0, 500.0, 600.0), Matrix3::identity());
+    let mut q = vec![0.0, 0.5, 0.0, 0.0, 0.0];
+    let mut last = None;
+    for _ in 0..200 {
+        let r = drag_step(
+            &robot,
+            &q,
+            &far,
+            Task::Position,
+            IkMethod::DampedLeastSquares,
+            &IkSettings::drag(),
+        )
+        .unwrap();
+        let moved = robot
+            .joints
+            .iter()
+            .zip(q.iter().zip(&r.q))
+            .map(|(j, (a, b))| j.change(*a, *b).abs())
+            .fold(0.0, f64::max);
+        assert!(moved <= 0.1);
+        assert!((0.0..=PI).contains(&r.q[1]));
+        q = r.q.clone();
+        last = Some(r);
+    }
+    let r = last.unwrap();
+    assert!(r.unreachable && !r.success, "{r:?}");
+    // The closest pose: no random joint vector within the limits comes closer.
+    let to_target = (far.translation.vector - tool_pose(&robot, &q).translation.vector).norm();
+    let mut rng = common::rng(31);
+    let sampled = (0..20_000)
+        .map(|_| {
+            let s = rng.joint_vector(&robot);
+            (far.translation.vector - tool_pose(&robot, &s).translation.vector).norm()
+        })
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        to_target <= sampled + 1e-6,
+        "dragged to {to_target} mm from the target; a random pose gets {sampled}"
+    );
 }

@@ -135,13 +135,13 @@ fn canonical(robot: &Robot) -> Option<Canonical> {
         Convention::Modified => {
             let first = robot.joints.first()?.dh;
             pre = robot.world_from_base * rot_x_trans_x(first.alpha, first.a);
-            for i in 0..n {
+            for (i, (row, joint)) in rows.iter_mut().zip(&robot.joints).enumerate() {
                 let (a, alpha) = match robot.joints.get(i + 1) {
                     Some(next) => (next.dh.a, next.dh.alpha),
                     None => (0.0, 0.0),
                 };
-                rows[i] = Row {
-                    d: robot.joints[i].dh.d,
+                *row = Row {
+                    d: joint.dh.d,
                     a,
                     alpha,
                 };
@@ -257,7 +257,14 @@ fn planar_2r(x: f64, y: f64, a1: f64, a2: f64, seed_a: f64, out: &mut Vec<Planar
 /// z_1 = σ_1(sin θ, −cos θ, 0): `σ_1(x sin θ − y cos θ) = D`. Returns
 /// ([θ, θ'], exact, singular); on the base axis with D = 0 the angle is free (the seed's
 /// and the seed's + π).
-fn shoulder(x: f64, y: f64, sigma1: f64, d_sum: f64, seed: f64, scale: f64) -> ([f64; 2], bool, bool) {
+fn shoulder(
+    x: f64,
+    y: f64,
+    sigma1: f64,
+    d_sum: f64,
+    seed: f64,
+    scale: f64,
+) -> ([f64; 2], bool, bool) {
     let rho = x.hypot(y);
     if rho <= 1e-12 * scale && d_sum.abs() <= 1e-12 * scale {
         return ([seed, seed + PI], true, true);
@@ -325,7 +332,9 @@ pub fn closed_form_solutions(
     let r = &c.rows;
     match family {
         ClosedFormFamily::Planar2R => {
-            let p = c.pre.inverse_transform_point(&target.translation.vector.into());
+            let p = c
+                .pre
+                .inverse_transform_point(&target.translation.vector.into());
             planar_2r(p.x, p.y, r[0].a, r[1].a, seed_theta[0], &mut planar);
             let in_plane = (p.z - r[0].d - r[1].d).abs() <= 1e-9 * scale;
             for (k, &(t1, t2, exact, singular)) in planar.iter().enumerate() {
@@ -338,7 +347,9 @@ pub fn closed_form_solutions(
             }
         }
         ClosedFormFamily::Rrr => {
-            let p = c.pre.inverse_transform_point(&target.translation.vector.into());
+            let p = c
+                .pre
+                .inverse_transform_point(&target.translation.vector.into());
             let sigma1 = r[0].alpha.sin().signum();
             let w = Vector3::new(p.x, p.y, p.z - r[0].d);
             let d_sum = r[1].d + r[2].d;

@@ -32,8 +32,7 @@ use super::jacobian::Task;
 use super::robot::{JointKind, Robot};
 
 pub use closed_form::{
-    ClosedFormFamily, ClosedFormSet, ClosedFormSolution, closed_form_family,
-    closed_form_solutions,
+    ClosedFormFamily, ClosedFormSet, ClosedFormSolution, closed_form_family, closed_form_solutions,
 };
 use numeric::{TaskTarget, Workspace, evaluate};
 
@@ -276,7 +275,9 @@ fn check_target(target: &IsometryMatrix3<f64>) -> Result<(), IkError> {
     let t = target.translation.vector;
     let r = target.rotation.matrix();
     if !t.iter().chain(r.iter()).all(|v| v.is_finite()) {
-        return Err(IkError::Target("it holds a value that is not finite".into()));
+        return Err(IkError::Target(
+            "it holds a value that is not finite".into(),
+        ));
     }
     let err = (r.transpose() * r - Matrix3::identity()).abs().max();
     if err > 1e-6 || r.determinant() < 0.0 {
@@ -354,10 +355,10 @@ impl IkSolver {
         check_target(target)?;
         settings.check()?;
         let mut result = match method {
-            IkMethod::ClosedForm => {
-                self.closed_form(robot, target, task, q_current, settings)?
-            }
-            _ => self.ws.run(robot, target, task, q_current, method, settings),
+            IkMethod::ClosedForm => self.closed_form(robot, target, task, q_current, settings)?,
+            _ => self
+                .ws
+                .run(robot, target, task, q_current, method, settings),
         };
         self.clip(robot, target, task, q_current, limit, settings, &mut result);
         Ok(result)
@@ -372,26 +373,40 @@ impl IkSolver {
         seed: &[f64],
         settings: &IkSettings,
     ) -> Result<IkResult, IkError> {
-        let family = closed_form_family(robot)
-            .ok_or_else(|| IkError::NoClosedForm(robot.name.clone()))?;
+        let family =
+            closed_form_family(robot).ok_or_else(|| IkError::NoClosedForm(robot.name.clone()))?;
         let cf_target = closed_form::target_for_task(robot, family, target, task, seed);
         let set = closed_form_solutions(robot, &cf_target, seed)?;
-        let best = set
-            .solutions
-            .iter()
-            .filter(|s| s.exact)
-            .min_by(|a, b| {
-                (!a.within_limits, joint_distance(robot, seed, &a.q))
-                    .partial_cmp(&(!b.within_limits, joint_distance(robot, seed, &b.q)))
-                    .unwrap_or(std::cmp::Ordering::Equal)
-            });
         let tt = TaskTarget::new(target, task);
         let tol_p = settings.position_tolerance / robot.length_unit.in_metres();
+        // Exact branches, inside the limits first, nearest the seed first; the first
+        // that meets the task wins (2R and RRR solve positions: for a 5D or full-pose
+        // task not every branch has the right orientation).
+        let mut order: Vec<(bool, f64, usize)> = set
+            .solutions
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| s.exact)
+            .map(|(k, s)| (!s.within_limits, joint_distance(robot, seed, &s.q), k))
+            .collect();
+        order.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+        let mut best: Option<(f64, usize, f64, f64)> = None;
+        for &(_, _, k) in &order {
+            let ev = evaluate(&tt, &tool_pose(robot, &set.solutions[k].q), 1.0);
+            let ok = ev.position_error <= tol_p
+                && ev.orientation_error <= settings.orientation_tolerance;
+            let score = if ok { -1.0 } else { ev.cost };
+            if best.is_none_or(|(b, ..)| score < b) {
+                best = Some((score, k, ev.position_error, ev.orientation_error));
+            }
+            if ok {
+                break;
+            }
+        }
         match best {
-            Some(sol) => {
-                let ev = evaluate(&tt, &tool_pose(robot, &sol.q), 1.0);
-                let success = ev.position_error <= tol_p
-                    && ev.orientation_error <= settings.orientation_tolerance;
+            Some((score, k, position_error, orientation_error)) => {
+                let sol = &set.solutions[k];
+                let success = score < 0.0;
                 Ok(IkResult {
                     within_limits: sol.within_limits,
                     q: sol.q.clone(),
@@ -399,27 +414,23 @@ impl IkSolver {
                     unreachable: !success,
                     singular: sol.singular,
                     clipped: false,
-                    position_error: ev.position_error,
-                    orientation_error: ev.orientation_error,
+                    position_error,
+                    orientation_error,
                     iterations: 0,
                     restarts: 0,
                     trace: Vec::new(),
                 })
             }
             None => {
-                // No exact branch: the closest pose, found by damped least squares from
-                // the seed (no restarts: stay near the current configuration).
-                let fallback = IkSettings {
-                    restarts: 0,
-                    ..settings.clone()
-                };
+                // No exact branch (out of reach, or a 6R arm whose held orientation cannot
+                // be reached here): damped least squares on the real task from the seed.
                 let mut r = self.ws.run(
                     robot,
                     target,
                     task,
                     seed,
                     IkMethod::DampedLeastSquares,
-                    &fallback,
+                    settings,
                 );
                 r.unreachable = !r.success;
                 r.singular = set.singular;

@@ -8,7 +8,8 @@ use crate::kinematics::fk::{ForwardKinematics, tool_pose};
 use crate::kinematics::jacobian::{NUMERIC_EPSILON, Task, geometric_jacobian_into};
 use crate::kinematics::orientation::rotation_log;
 use crate::kinematics::rng::SplitMix64;
-use crate::kinematics::robot::Robot;
+use crate::kinematics::robot::{JointKind, Robot};
+use std::f64::consts::PI;
 
 /// The target in the form the error function needs.
 #[derive(Debug, Clone, Copy)]
@@ -64,7 +65,11 @@ pub(crate) fn rotation_vector(r: &Matrix3<f64>) -> Vector3<f64> {
 /// The rotation vector turning unit axis `a` onto unit axis `b` (perpendicular to `a`,
 /// of length the angle), and the angle; `fallback` is a unit vector perpendicular to `a`
 /// used when they are opposite.
-fn axis_rotation(a: &Vector3<f64>, b: &Vector3<f64>, fallback: &Vector3<f64>) -> (Vector3<f64>, f64) {
+fn axis_rotation(
+    a: &Vector3<f64>,
+    b: &Vector3<f64>,
+    fallback: &Vector3<f64>,
+) -> (Vector3<f64>, f64) {
     let c = a.cross(b);
     let s = c.norm();
     let angle = s.atan2(a.dot(b));
@@ -105,7 +110,11 @@ pub(crate) fn evaluate(tt: &TaskTarget, pose: &IsometryMatrix3<f64>, inv_len: f6
     let cost = 0.5 * e.norm_squared();
     Eval {
         e,
-        cost: if cost.is_finite() { cost } else { f64::INFINITY },
+        cost: if cost.is_finite() {
+            cost
+        } else {
+            f64::INFINITY
+        },
         position_error,
         orientation_error,
     }
@@ -252,16 +261,26 @@ impl Workspace {
         // (converged, cost, stationary, position error, orientation error)
         let mut best: Option<(bool, f64, bool, f64, f64)> = None;
         loop {
-            let cap = settings.max_iterations.min(settings.budget.saturating_sub(total));
+            let cap = settings
+                .max_iterations
+                .min(settings.budget.saturating_sub(total));
             let (out, ev) = self.attempt(&ctx, cap, record.as_deref_mut());
             total += out.iterations;
             let better = match best {
                 None => true,
-                Some((conv, cost, ..)) => (out.converged && !conv) || (out.converged == conv && ev.cost < cost),
+                Some((conv, cost, ..)) => {
+                    (out.converged && !conv) || (out.converged == conv && ev.cost < cost)
+                }
             };
             if better {
                 self.best.copy_from_slice(&self.q);
-                best = Some((out.converged, ev.cost, out.stationary, ev.position_error, ev.orientation_error));
+                best = Some((
+                    out.converged,
+                    ev.cost,
+                    out.stationary,
+                    ev.position_error,
+                    ev.orientation_error,
+                ));
             }
             if out.converged || total >= settings.budget || restarts >= settings.restarts {
                 break;
@@ -291,7 +310,8 @@ impl Workspace {
         IkResult {
             q: self.best.clone(),
             success: converged,
-            unreachable: !converged && stationary,
+            // Every attempt failed: at a minimum of the error, or restarts used up.
+            unreachable: !converged && (stationary || restarts > 0),
             singular: false,
             clipped: false,
             within_limits: within_limits(robot, &self.best),
@@ -351,8 +371,9 @@ impl Workspace {
             let minus = tool_pose(robot, &self.scratch);
             self.scratch[i] = q0;
             let v = (plus.translation.vector - minus.translation.vector) / (2.0 * eps);
-            let w = rotation_vector(&(plus.rotation.matrix() * minus.rotation.matrix().transpose()))
-                / (2.0 * eps);
+            let w =
+                rotation_vector(&(plus.rotation.matrix() * minus.rotation.matrix().transpose()))
+                    / (2.0 * eps);
             let mut col = self.j.column_mut(i);
             col.fixed_rows_mut::<3>(0).copy_from(&v);
             col.fixed_rows_mut::<3>(3).copy_from(&w);
@@ -371,15 +392,32 @@ impl Workspace {
 
     /// `q_try = keep(q + dq)` (and the raw sum in `raw`).
     fn take_step(&mut self, robot: &Robot) {
-        for i in 0..self.q.len() {
-            self.raw[i] = self.q[i] + self.dq[i];
-            self.q_try[i] = robot.joints[i].keep(self.raw[i], self.q[i]);
+        for (i, joint) in robot.joints.iter().enumerate() {
+            let (current, raw) = (self.q[i], self.q[i] + self.dq[i]);
+            self.raw[i] = raw;
+            // Fast path with the same answer as `Joint::keep`: a revolute joint that does
+            // not wrap, moving by less than half a turn to a value inside its limits,
+            // keeps that value (it is the equivalent nearest the current one).
+            self.q_try[i] = if joint.kind == JointKind::Revolute
+                && !joint.wraps()
+                && (raw - current).abs() < PI
+                && joint.limits.contains(raw, 0.0)
+            {
+                raw
+            } else {
+                joint.keep(raw, current)
+            };
         }
     }
 
     /// One attempt from the current `q` with at most `cap` iterations. Leaves the
     /// attempt's answer in `q` and returns its outcome and error.
-    fn attempt(&mut self, ctx: &Ctx, cap: usize, mut trace: Option<&mut Vec<IkStep>>) -> (Outcome, Eval) {
+    fn attempt(
+        &mut self,
+        ctx: &Ctx,
+        cap: usize,
+        mut trace: Option<&mut Vec<IkStep>>,
+    ) -> (Outcome, Eval) {
         let robot = ctx.robot;
         self.fk.update(robot, &self.q);
         let mut ev = evaluate(&ctx.tt, &self.fk.base_from_tool, ctx.inv_len);
@@ -444,7 +482,10 @@ impl Workspace {
             self.take_step(robot);
             self.fk.update(robot, &self.q_try);
             let ev_try = evaluate(&ctx.tt, &self.fk.base_from_tool, ctx.inv_len);
-            let damped = matches!(ctx.method, IkMethod::DampedLeastSquares | IkMethod::ClosedForm);
+            let damped = matches!(
+                ctx.method,
+                IkMethod::DampedLeastSquares | IkMethod::ClosedForm
+            );
             let accepted = !damped || ev_try.cost < ev.cost;
             if accepted {
                 if !ev_try.cost.is_finite() {
@@ -475,6 +516,8 @@ impl Workspace {
             }
             if damped && out.iterations.is_multiple_of(SLOW_WINDOW) {
                 if ev.cost > 0.5 * checkpoint {
+                    // Less than 1 % lower over the window: a minimum, not just slow.
+                    out.stationary = ev.cost > 0.99 * checkpoint;
                     break;
                 }
                 checkpoint = ev.cost;
@@ -483,7 +526,14 @@ impl Workspace {
         (out, ev)
     }
 
-    fn record(&self, trace: &mut Option<&mut Vec<IkStep>>, ev: &Eval, step: f64, damping: f64, accepted: bool) {
+    fn record(
+        &self,
+        trace: &mut Option<&mut Vec<IkStep>>,
+        ev: &Eval,
+        step: f64,
+        damping: f64,
+        accepted: bool,
+    ) {
         if let Some(t) = trace.as_deref_mut() {
             t.push(IkStep {
                 q: self.q.clone(),

@@ -1,0 +1,25 @@
+//! The IK benchmark (TRAC-IK protocol) natively: prints the report as JSON.
+//!
+//! `cargo run --release --no-default-features --bin ikbench [samples] [budget]`
+
+use std::time::Instant;
+
+use armlab::kinematics::ik::bench::{BenchConfig, run};
+
+fn main() {
+    let mut config = BenchConfig::default();
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if let Some(samples) = args.first().and_then(|s| s.parse().ok()) {
+        config.samples = samples;
+    }
+    if let Some(budget) = args.get(1).and_then(|s| s.parse().ok()) {
+        config.budget = budget;
+    }
+    let start = Instant::now();
+    let now = move || start.elapsed().as_secs_f64();
+    let report = run(&config, &now);
+    match serde_json::to_string_pretty(&report) {
+        Ok(text) => println!("{text}"),
+        Err(e) => eprintln!("cannot print the report: {e}"),
+    }
+}
