@@ -1,5 +1,9 @@
 //! The JSON API's `ik` (natively and as wasm).
 
+// On wasm32 the tests are `wasm_bindgen_test`s, which clippy does not see as tests, so
+// clippy.toml's allow-unwrap-in-tests does not reach them.
+#![cfg_attr(target_arch = "wasm32", allow(clippy::unwrap_used))]
+
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
 

@@ -17,7 +17,18 @@ fn main() {
     }
     let start = Instant::now();
     let now = move || start.elapsed().as_secs_f64();
-    let report = run(&config, &now);
+    let mut report = run(&config, &now);
+    if let Some(obj) = report.as_object_mut() {
+        obj.insert(
+            "runtime".into(),
+            format!(
+                "native {} ({}), clock std::time::Instant",
+                std::env::consts::ARCH,
+                std::env::consts::OS
+            )
+            .into(),
+        );
+    }
     match serde_json::to_string_pretty(&report) {
         Ok(text) => println!("{text}"),
         Err(e) => eprintln!("cannot print the report: {e}"),

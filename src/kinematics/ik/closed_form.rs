@@ -212,6 +212,10 @@ fn represent(joint: &Joint, theta: f64, seed: f64) -> (f64, bool) {
         return (wrap_to_pi(value), true);
     }
     let near = seed + wrap_to_pi(value - seed);
+    if joint.limits.contains(near, 0.0) {
+        // The equivalent nearest the seed lies inside: it is the answer.
+        return (near, true);
+    }
     let kept = nearest_equivalent_within(near, seed, &joint.limits);
     if wrap_to_pi(kept - near).abs() < 1e-9 {
         (kept, true)
@@ -384,11 +388,13 @@ pub fn closed_form_solutions(
             inside &= ok;
             q.push(v);
         }
-        let duplicate = solutions.iter().any(|s| {
-            s.q.iter()
-                .zip(&q)
-                .all(|(a, b)| wrap_to_pi(a - b).abs() < 1e-9)
-        });
+        // Branches coincide only at singularities.
+        let duplicate = raw.singular
+            && solutions.iter().any(|s| {
+                s.q.iter()
+                    .zip(&q)
+                    .all(|(a, b)| wrap_to_pi(a - b).abs() < 1e-9)
+            });
         if !duplicate {
             solutions.push(ClosedFormSolution {
                 q,
