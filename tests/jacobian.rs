@@ -128,7 +128,7 @@ fn rrr_singular_on_base_axis_and_with_straight_elbow() {
             robot.reach(),
         );
         assert_eq!(m.near_singular, singular, "q = {q:?}: {m:?}");
-        assert_eq!(m.determinant.is_some(), true, "3×3 task is square");
+        assert!(m.determinant.is_some(), "3×3 task is square");
     }
 }
 

@@ -18,6 +18,9 @@ fn robot_text(top: &str, joint: &str) -> String {
     )
 }
 
+/// A malformed file: what is wrong, the text, and the error it must give.
+type Case = (&'static str, String, fn(&RobotError) -> bool);
+
 const GOOD_JOINT: &str =
     r#"{ "type": "revolute", "theta_deg": 0, "d": 10, "a": 20, "alpha_deg": 90 }"#;
 
@@ -83,7 +86,7 @@ fn base_and_tool_transforms_apply() {
 #[test]
 fn malformed_files_each_give_their_own_typed_error() {
     let many_joints = vec![GOOD_JOINT; 65].join(",");
-    let cases: Vec<(&str, String, fn(&RobotError) -> bool)> = vec![
+    let cases: Vec<Case> = vec![
         ("not JSON", "{ name: ".to_string(), |e| {
             matches!(e, RobotError::Syntax { line: 1, .. })
         }),

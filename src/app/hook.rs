@@ -19,7 +19,11 @@ pub fn now_ms() -> f64 {
     {
         use std::sync::OnceLock;
         static START: OnceLock<std::time::Instant> = OnceLock::new();
-        START.get_or_init(std::time::Instant::now).elapsed().as_secs_f64() * 1e3
+        START
+            .get_or_init(std::time::Instant::now)
+            .elapsed()
+            .as_secs_f64()
+            * 1e3
     }
 }
 
@@ -70,6 +74,8 @@ pub fn state_json(app: &ArmLabApp) -> String {
         "editor_error": app.editor.first_error(),
         "hash": app.hash(),
         "dragging": app.viewport.dragging(),
+        "frame": app.frame,
+        "rendered": app.viewport.rendered,
     })
     .to_string()
 }

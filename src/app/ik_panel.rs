@@ -128,7 +128,9 @@ pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui) {
         }
         if ui
             .button("Solve")
-            .on_hover_text("Run the method to convergence from the current pose and record every iteration")
+            .on_hover_text(
+                "Run the method to convergence from the current pose and record every iteration",
+            )
             .clicked()
         {
             full_solve(app);
@@ -138,7 +140,10 @@ pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui) {
     let (text, color) = if app.ik.reached {
         ("reached".to_string(), style::REACHED)
     } else if app.ik.unreachable {
-        ("out of reach (closest pose shown)".to_string(), style::UNREACHABLE)
+        (
+            "out of reach (closest pose shown)".to_string(),
+            style::UNREACHABLE,
+        )
     } else {
         ("not at the target".to_string(), style::PENDING)
     };
@@ -191,7 +196,9 @@ pub fn full_solve(app: &mut ArmLabApp) {
 }
 
 fn replay_ui(app: &mut ArmLabApp, ui: &mut egui::Ui) {
-    let Some(run) = app.replay.run.clone() else { return };
+    let Some(run) = app.replay.run.clone() else {
+        return;
+    };
     if run.trace.is_empty() {
         return;
     }
@@ -199,7 +206,13 @@ fn replay_ui(app: &mut ArmLabApp, ui: &mut egui::Ui) {
     ui.label(format!(
         "Last solve: {} iterations, {}",
         run.iterations,
-        if run.success { "converged" } else if run.unreachable { "target out of reach" } else { "stopped" }
+        if run.success {
+            "converged"
+        } else if run.unreachable {
+            "target out of reach"
+        } else {
+            "stopped"
+        }
     ));
     let last = run.trace.len() - 1;
     let mut step = app.replay.step.min(last);
@@ -226,11 +239,27 @@ fn replay_ui(app: &mut ArmLabApp, ui: &mut egui::Ui) {
 
 /// The error per iteration on a log scale.
 fn error_plot(ui: &mut egui::Ui, run: &IkResult, current: usize) {
-    let (rect, _) = ui.allocate_exact_size(egui::vec2(ui.available_width().min(300.0), 90.0), egui::Sense::hover());
+    let (rect, _) = ui.allocate_exact_size(
+        egui::vec2(ui.available_width().min(300.0), 90.0),
+        egui::Sense::hover(),
+    );
     let painter = ui.painter_at(rect);
-    painter.rect_stroke(rect, 2.0, ui.visuals().widgets.noninteractive.bg_stroke, egui::StrokeKind::Inside);
-    let errs: Vec<f64> = run.trace.iter().map(|s| s.error.max(1e-16).log10()).collect();
-    let (lo, hi) = errs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(*v), b.max(*v)));
+    painter.rect_stroke(
+        rect,
+        2.0,
+        ui.visuals().widgets.noninteractive.bg_stroke,
+        egui::StrokeKind::Inside,
+    );
+    let errs: Vec<f64> = run
+        .trace
+        .iter()
+        .map(|s| s.error.max(1e-16).log10())
+        .collect();
+    let (lo, hi) = errs
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(*v), b.max(*v))
+        });
     let span = (hi - lo).max(1e-9);
     let n = errs.len().max(2) - 1;
     let to_screen = |i: usize, v: f64| {
@@ -239,10 +268,23 @@ fn error_plot(ui: &mut egui::Ui, run: &IkResult, current: usize) {
             rect.bottom() - rect.height() * ((v - lo) / span) as f32,
         )
     };
-    let points: Vec<egui::Pos2> = errs.iter().enumerate().map(|(i, v)| to_screen(i, *v)).collect();
-    painter.add(egui::Shape::line(points, egui::Stroke::new(1.5, style::PENDING)));
+    let points: Vec<egui::Pos2> = errs
+        .iter()
+        .enumerate()
+        .map(|(i, v)| to_screen(i, *v))
+        .collect();
+    painter.add(egui::Shape::line(
+        points,
+        egui::Stroke::new(1.5, style::PENDING),
+    ));
     if let Some(v) = errs.get(current) {
         painter.circle_filled(to_screen(current, *v), 3.5, style::HIGHLIGHT);
     }
-    painter.text(rect.left_top() + egui::vec2(4.0, 2.0), egui::Align2::LEFT_TOP, format!("log10 ‖e‖: {hi:.1} … {lo:.1}"), egui::FontId::proportional(11.0), ui.visuals().text_color());
+    painter.text(
+        rect.left_top() + egui::vec2(4.0, 2.0),
+        egui::Align2::LEFT_TOP,
+        format!("log10 ‖e‖: {hi:.1} … {lo:.1}"),
+        egui::FontId::proportional(11.0),
+        ui.visuals().text_color(),
+    );
 }

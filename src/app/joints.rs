@@ -9,11 +9,19 @@ use super::ArmLabApp;
 pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui) {
     ui.horizontal(|ui| {
         ui.strong("Joints");
-        if ui.button("Zero").on_hover_text("All joints to 0 (or the nearest limit)").clicked() {
+        if ui
+            .button("Zero")
+            .on_hover_text("All joints to 0 (or the nearest limit)")
+            .clicked()
+        {
             let zero = vec![0.0; app.session.robot.dof()];
             app.set_q(zero);
         }
-        if ui.button("Home").on_hover_text("The robot's home pose").clicked() {
+        if ui
+            .button("Home")
+            .on_hover_text("The robot's home pose")
+            .clicked()
+        {
             let home = app.session.robot.home();
             app.set_q(home);
         }
@@ -60,6 +68,16 @@ pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui) {
                     ),
                 };
                 let response = response.labelled_by(label.id);
+                // The rail's ends, for the browser tests.
+                let r = response.rect;
+                let rail = ui.spacing().slider_width;
+                app.viewport
+                    .points
+                    .push((format!("slider-{}-min", i + 1), [r.left(), r.center().y]));
+                app.viewport.points.push((
+                    format!("slider-{}-max", i + 1),
+                    [r.left() + rail, r.center().y],
+                ));
                 changed |= response.changed();
                 ui.end_row();
             }

@@ -15,7 +15,14 @@ pub fn to_plain(m: &DMatrix<f64>, decimals: usize) -> String {
     (0..m.nrows())
         .map(|r| {
             (0..m.ncols())
-                .map(|c| format!("{:>w$.p$}", clean(m[(r, c)], decimals), w = decimals + 7, p = decimals))
+                .map(|c| {
+                    format!(
+                        "{:>w$.p$}",
+                        clean(m[(r, c)], decimals),
+                        w = decimals + 7,
+                        p = decimals
+                    )
+                })
                 .collect::<Vec<_>>()
                 .join(" ")
         })
@@ -33,7 +40,10 @@ pub fn to_latex(m: &DMatrix<f64>, decimals: usize) -> String {
                 .join(" & ")
         })
         .collect();
-    format!("\\begin{{bmatrix}}\n{}\n\\end{{bmatrix}}", rows.join(" \\\\\n"))
+    format!(
+        "\\begin{{bmatrix}}\n{}\n\\end{{bmatrix}}",
+        rows.join(" \\\\\n")
+    )
 }
 
 /// A NumPy array expression.
@@ -79,7 +89,11 @@ fn matrix_block(
                     ("LaTeX", to_latex(m, decimals)),
                     ("Text", to_plain(m, decimals)),
                 ] {
-                    if ui.small_button(label).on_hover_text(format!("Copy as {label}")).clicked() {
+                    if ui
+                        .small_button(label)
+                        .on_hover_text(format!("Copy as {label}"))
+                        .clicked()
+                    {
                         ui.ctx().copy_text(text);
                     }
                 }
@@ -129,7 +143,12 @@ pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui) {
         decimals,
         false,
     );
-    orientation_block(ui, &Orientation::from_rotation(app.fk.tool_rotation()), app.settings.degrees, decimals);
+    orientation_block(
+        ui,
+        &Orientation::from_rotation(app.fk.tool_rotation()),
+        app.settings.degrees,
+        decimals,
+    );
 
     egui::CollapsingHeader::new("Jacobian")
         .default_open(true)
@@ -153,7 +172,12 @@ pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui) {
                 let a = homogeneous(&app.fk.link_transforms[i]);
                 if matrix_block(
                     ui,
-                    &format!("A_{}  ({}, {variable}{} variable)", i + 1, joint.name, i + 1),
+                    &format!(
+                        "A_{}  ({}, {variable}{} variable)",
+                        i + 1,
+                        joint.name,
+                        i + 1
+                    ),
                     "Frame i in frame i−1",
                     &a,
                     decimals,
@@ -202,12 +226,20 @@ fn jacobian_block(app: &ArmLabApp, ui: &mut egui::Ui, decimals: usize) {
     if diff <= tol {
         ui.label(text);
     } else {
-        ui.colored_label(style::ERROR, format!("{text}: above the tolerance {tol:.1e}"));
+        ui.colored_label(
+            style::ERROR,
+            format!("{text}: above the tolerance {tol:.1e}"),
+        );
     }
     let m = jacobian_measures(j, app.session.task, app.fk.tool_rotation(), robot.reach());
-    let sv: Vec<String> = m.singular_values.iter().map(|s| format!("{s:.4}")).collect();
+    let sv: Vec<String> = m
+        .singular_values
+        .iter()
+        .map(|s| format!("{s:.4}"))
+        .collect();
     egui::Grid::new("measures").num_columns(2).show(ui, |ui| {
-        ui.label("task rows").on_hover_text("The rows the IK task uses");
+        ui.label("task rows")
+            .on_hover_text("The rows the IK task uses");
         ui.label(format!("{}", app.session.task.rows()));
         ui.end_row();
         ui.label("singular values").on_hover_text(format!(
@@ -217,7 +249,8 @@ fn jacobian_block(app: &ArmLabApp, ui: &mut egui::Ui, decimals: usize) {
         ));
         ui.monospace(sv.join("  "));
         ui.end_row();
-        ui.label("manipulability").on_hover_text("√det(J Jᵀ): the product of the singular values");
+        ui.label("manipulability")
+            .on_hover_text("√det(J Jᵀ): the product of the singular values");
         ui.monospace(format!("{:.5}", m.manipulability));
         ui.end_row();
         if let Some(det) = m.determinant {
@@ -226,11 +259,17 @@ fn jacobian_block(app: &ArmLabApp, ui: &mut egui::Ui, decimals: usize) {
             ui.end_row();
         }
         ui.label("condition number");
-        ui.monospace(m.condition_number.map_or("∞".to_string(), |c| format!("{c:.2}")));
+        ui.monospace(
+            m.condition_number
+                .map_or("∞".to_string(), |c| format!("{c:.2}")),
+        );
         ui.end_row();
     });
     if m.near_singular {
-        ui.colored_label(style::UNREACHABLE, "At or near a singularity: some task direction needs very large joint speeds.");
+        ui.colored_label(
+            style::UNREACHABLE,
+            "At or near a singularity: some task direction needs very large joint speeds.",
+        );
     }
 }
 
@@ -245,30 +284,54 @@ fn orientation_block(ui: &mut egui::Ui, o: &Orientation, degrees: bool, decimals
     egui::CollapsingHeader::new("Tool orientation")
         .default_open(true)
         .show(ui, |ui| {
-            egui::Grid::new("orientation").num_columns(2).show(ui, |ui| {
-                let e = o.zyx_euler;
-                ui.label("Z-Y-X Euler (α, β, γ)");
-                ui.monospace(format!("{}  {}  {}{}", ang(e.alpha), ang(e.beta), ang(e.gamma), if e.degenerate { "  (β = ±90°: only α∓γ is defined)" } else { "" }));
-                ui.end_row();
-                let f = o.xyz_fixed;
-                ui.label("X-Y-Z fixed (γ, β, α)");
-                ui.monospace(format!("{}  {}  {}", ang(f.gamma), ang(f.beta), ang(f.alpha)));
-                ui.end_row();
-                let a = o.angle_axis;
-                ui.label("angle-axis (θ, k̂)");
-                ui.monospace(format!(
-                    "{}  ({:.4}, {:.4}, {:.4}){}",
-                    ang(a.angle),
-                    a.axis.x,
-                    a.axis.y,
-                    a.axis.z,
-                    if a.degenerate { "  (θ = 0: any axis)" } else { "" }
-                ));
-                ui.end_row();
-                let q = o.euler_parameters;
-                ui.label("Euler parameters (ε1..ε4)");
-                ui.monospace(format!("{:.5}  {:.5}  {:.5}  {:.5}", q.e1, q.e2, q.e3, q.e4));
-                ui.end_row();
-            });
+            egui::Grid::new("orientation")
+                .num_columns(2)
+                .show(ui, |ui| {
+                    let e = o.zyx_euler;
+                    ui.label("Z-Y-X Euler (α, β, γ)");
+                    ui.monospace(format!(
+                        "{}  {}  {}{}",
+                        ang(e.alpha),
+                        ang(e.beta),
+                        ang(e.gamma),
+                        if e.degenerate {
+                            "  (β = ±90°: only α∓γ is defined)"
+                        } else {
+                            ""
+                        }
+                    ));
+                    ui.end_row();
+                    let f = o.xyz_fixed;
+                    ui.label("X-Y-Z fixed (γ, β, α)");
+                    ui.monospace(format!(
+                        "{}  {}  {}",
+                        ang(f.gamma),
+                        ang(f.beta),
+                        ang(f.alpha)
+                    ));
+                    ui.end_row();
+                    let a = o.angle_axis;
+                    ui.label("angle-axis (θ, k̂)");
+                    ui.monospace(format!(
+                        "{}  ({:.4}, {:.4}, {:.4}){}",
+                        ang(a.angle),
+                        a.axis.x,
+                        a.axis.y,
+                        a.axis.z,
+                        if a.degenerate {
+                            "  (θ = 0: any axis)"
+                        } else {
+                            ""
+                        }
+                    ));
+                    ui.end_row();
+                    let q = o.euler_parameters;
+                    ui.label("Euler parameters (ε1..ε4)");
+                    ui.monospace(format!(
+                        "{:.5}  {:.5}  {:.5}  {:.5}",
+                        q.e1, q.e2, q.e3, q.e4
+                    ));
+                    ui.end_row();
+                });
         });
 }

@@ -18,8 +18,8 @@ pub mod web;
 use nalgebra::{IsometryMatrix3, Matrix6xX};
 
 use crate::kinematics::{ForwardKinematics, Robot, ZyxEuler, geometric_jacobian_into};
-use crate::render::camera::OrbitCamera;
 use crate::render::SceneRenderer;
+use crate::render::camera::OrbitCamera;
 use session::{RobotSource, Session};
 
 /// Display preferences.
@@ -87,6 +87,8 @@ pub struct ArmLabApp {
     pub viewport: viewport::ViewportState,
     /// Main-thread milliseconds of recent frames (egui + scene + IK).
     pub frame_ms: std::collections::VecDeque<f64>,
+    /// Frames drawn so far.
+    pub frame: u64,
     /// The IK solver with its reusable workspaces.
     pub solver: crate::kinematics::ik::IkSolver,
     /// The last full solve, for replay.
@@ -121,6 +123,7 @@ impl ArmLabApp {
             hovered_link: None,
             viewport: viewport::ViewportState::default(),
             frame_ms: std::collections::VecDeque::new(),
+            frame: 0,
             solver: crate::kinematics::ik::IkSolver::new(),
             replay: ik_panel::Replay::default(),
             renderer: None,
@@ -259,8 +262,14 @@ impl ArmLabApp {
     }
 
     /// Draws the whole UI: top bar, joint and IK panel, matrices, viewport.
-    pub fn show(&mut self, ui: &mut egui::Ui, render_state: Option<&eframe::egui_wgpu::RenderState>) {
+    pub fn show(
+        &mut self,
+        ui: &mut egui::Ui,
+        render_state: Option<&eframe::egui_wgpu::RenderState>,
+    ) {
         let start = hook::now_ms();
+        self.frame += 1;
+        self.viewport.points.clear();
         style::install(ui.ctx(), self.settings.presentation);
         egui::Panel::top("armlab_top").show(ui, |ui| self.top_bar(ui));
         egui::Panel::left("armlab_left")
@@ -385,4 +394,3 @@ pub fn target_to_array(pose: &IsometryMatrix3<f64>) -> [f64; 6] {
     let p = pose.translation.vector;
     [p.x, p.y, p.z, e.alpha, e.beta, e.gamma]
 }
-

@@ -85,20 +85,37 @@ impl DhEditor {
             for (c, text) in row.cells.iter().enumerate() {
                 let trimmed = text.trim();
                 v[c] = trimmed.parse::<f64>().map_err(|_| {
-                    let what = if trimmed.is_empty() { "is empty".to_string() } else { format!("\"{trimmed}\" is not a number") };
+                    let what = if trimmed.is_empty() {
+                        "is empty".to_string()
+                    } else {
+                        format!("\"{trimmed}\" is not a number")
+                    };
                     (i, c, format!("Joint {}, {}: {what}.", i + 1, COLUMNS[c]))
                 })?;
             }
             let old = base.joints.get(i);
             let limits = match row.kind {
-                JointKind::Revolute => JointLimits { min: v[4].to_radians(), max: v[5].to_radians() },
-                JointKind::Prismatic => JointLimits { min: v[4], max: v[5] },
+                JointKind::Revolute => JointLimits {
+                    min: v[4].to_radians(),
+                    max: v[5].to_radians(),
+                },
+                JointKind::Prismatic => JointLimits {
+                    min: v[4],
+                    max: v[5],
+                },
             };
-            let home = old.filter(|o| o.kind == row.kind).map_or(limits.clamp(0.0), |o| limits.clamp(o.home));
+            let home = old
+                .filter(|o| o.kind == row.kind)
+                .map_or(limits.clamp(0.0), |o| limits.clamp(o.home));
             joints.push(Joint {
                 name: old.map_or_else(|| format!("joint {}", i + 1), |o| o.name.clone()),
                 kind: row.kind,
-                dh: DhRow { theta: v[0].to_radians(), d: v[1], a: v[2], alpha: v[3].to_radians() },
+                dh: DhRow {
+                    theta: v[0].to_radians(),
+                    d: v[1],
+                    a: v[2],
+                    alpha: v[3].to_radians(),
+                },
                 limits,
                 max_speed: old.and_then(|o| o.max_speed),
                 home,
@@ -128,8 +145,16 @@ fn locate(e: &crate::kinematics::RobotError) -> (usize, usize) {
         _ => 5,
     };
     match e {
-        RobotError::NotFinite { place: Place::Joint(n), field, .. }
-        | RobotError::TooLarge { place: Place::Joint(n), field, .. } => (n - 1, column(field)),
+        RobotError::NotFinite {
+            place: Place::Joint(n),
+            field,
+            ..
+        }
+        | RobotError::TooLarge {
+            place: Place::Joint(n),
+            field,
+            ..
+        } => (n - 1, column(field)),
         RobotError::LimitsReversed { joint, .. } => (joint - 1, 4),
         _ => (0, 0),
     }
@@ -143,11 +168,17 @@ pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui) {
     };
     let mut chosen = None;
     egui::ComboBox::new("preset_chooser", "Robot")
-        .selected_text(if current == "custom" { format!("{} (edited)", app.session.robot.name) } else { app.session.robot.name.clone() })
+        .selected_text(if current == "custom" {
+            format!("{} (edited)", app.session.robot.name)
+        } else {
+            app.session.robot.name.clone()
+        })
         .width(230.0)
         .show_ui(ui, |ui| {
             for (id, _) in PRESETS {
-                let name = preset(id).map(|r| r.name).unwrap_or_else(|_| id.to_string());
+                let name = preset(id)
+                    .map(|r| r.name)
+                    .unwrap_or_else(|_| id.to_string());
                 if ui.selectable_label(current == *id, name).clicked() {
                     chosen = Some(id.to_string());
                 }
@@ -169,14 +200,19 @@ pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui) {
     if !app.session.robot.description.is_empty() {
         ui.label(egui::RichText::new(&app.session.robot.description).small());
     }
-    egui::CollapsingHeader::new("DH table (editable)")
+    let header = egui::CollapsingHeader::new("DH table (editable)")
         .id_salt("dh_editor")
         .default_open(false)
         .show(ui, |ui| dh_table(app, ui));
+    let c = header.header_response.rect.center();
+    app.viewport.points.push(("dh-header".into(), [c.x, c.y]));
     ui.horizontal(|ui| {
         if ui.button("Save robot file").clicked() {
             let text = robot_to_json(&app.session.robot);
-            let name = format!("{}.json", app.session.robot.name.to_lowercase().replace(' ', "-"));
+            let name = format!(
+                "{}.json",
+                app.session.robot.name.to_lowercase().replace(' ', "-")
+            );
             match save_file(&name, &text) {
                 Ok(where_) => app.message = Some(format!("Saved the robot as {where_}.")),
                 Err(e) => app.message = Some(format!("Could not save the robot file: {e}.")),
@@ -226,68 +262,94 @@ fn dh_table(app: &mut ArmLabApp, ui: &mut egui::Ui) {
     ui.horizontal(|ui| {
         ui.label("Convention:");
         let mut conv = editor.convention.unwrap_or(app.session.robot.convention);
-        changed |= ui.radio_value(&mut conv, Convention::Standard, "standard (Spong)").changed();
-        changed |= ui.radio_value(&mut conv, Convention::Modified, "modified (Craig)").changed();
+        changed |= ui
+            .radio_value(&mut conv, Convention::Standard, "standard (Spong)")
+            .changed();
+        changed |= ui
+            .radio_value(&mut conv, Convention::Modified, "modified (Craig)")
+            .changed();
         editor.convention = Some(conv);
     });
     let unit = app.session.robot.length_unit.symbol();
-    ui.label(egui::RichText::new(format!("Lengths in {unit}; revolute limits in degrees, prismatic in {unit}.")).small());
+    ui.label(
+        egui::RichText::new(format!(
+            "Lengths in {unit}; revolute limits in degrees, prismatic in {unit}."
+        ))
+        .small(),
+    );
     let mut remove = None;
-    egui::Grid::new("dh_grid").striped(true).spacing([4.0, 2.0]).show(ui, |ui| {
-        ui.label("#");
-        ui.label("type");
-        for c in COLUMNS {
-            ui.label(c);
-        }
-        ui.label("");
-        ui.end_row();
-        for (i, row) in editor.rows.iter_mut().enumerate() {
-            let number = ui.label(format!("{}", i + 1));
-            let kind_before = row.kind;
-            egui::ComboBox::from_id_salt(("kind", i))
-                .selected_text(if row.kind == JointKind::Revolute { "R" } else { "P" })
-                .width(36.0)
-                .show_ui(ui, |ui| {
-                    ui.selectable_value(&mut row.kind, JointKind::Revolute, "R  revolute");
-                    ui.selectable_value(&mut row.kind, JointKind::Prismatic, "P  prismatic");
-                })
-                .response
-                .labelled_by(number.id);
-            if row.kind != kind_before {
-                changed = true;
-                // Limits change meaning: give the new type sensible ones.
-                let (lo, hi) = match row.kind {
-                    JointKind::Revolute => ("-180", "180"),
-                    JointKind::Prismatic => ("0", "100"),
-                };
-                row.cells[4] = lo.into();
-                row.cells[5] = hi.into();
+    egui::Grid::new("dh_grid")
+        .striped(true)
+        .spacing([4.0, 2.0])
+        .show(ui, |ui| {
+            ui.label("#");
+            ui.label("type");
+            for c in COLUMNS {
+                ui.label(c);
             }
-            for (c, cell) in row.cells.iter_mut().enumerate() {
-                let bad = matches!(&app.editor.error, Some((r, col, _)) if *r == i && *col == c);
-                let mut edit = egui::TextEdit::singleline(cell)
-                    .desired_width(52.0)
-                    .id_salt(("dh", i, c))
-                    .hint_text(COLUMNS[c]);
-                if bad {
-                    edit = edit.text_color(style::ERROR);
-                }
-                changed |= ui.add(edit).changed();
-            }
-            if ui.small_button("×").on_hover_text("Remove this joint").clicked() {
-                remove = Some(i);
-            }
+            ui.label("");
             ui.end_row();
-            if let Some((r, _, message)) = &app.editor.error {
-                if *r == i {
+            for (i, row) in editor.rows.iter_mut().enumerate() {
+                let number = ui.label(format!("{}", i + 1));
+                let kind_before = row.kind;
+                egui::ComboBox::from_id_salt(("kind", i))
+                    .selected_text(if row.kind == JointKind::Revolute {
+                        "R"
+                    } else {
+                        "P"
+                    })
+                    .width(36.0)
+                    .show_ui(ui, |ui| {
+                        ui.selectable_value(&mut row.kind, JointKind::Revolute, "R  revolute");
+                        ui.selectable_value(&mut row.kind, JointKind::Prismatic, "P  prismatic");
+                    })
+                    .response
+                    .labelled_by(number.id);
+                if row.kind != kind_before {
+                    changed = true;
+                    // Limits change meaning: give the new type sensible ones.
+                    let (lo, hi) = match row.kind {
+                        JointKind::Revolute => ("-180", "180"),
+                        JointKind::Prismatic => ("0", "100"),
+                    };
+                    row.cells[4] = lo.into();
+                    row.cells[5] = hi.into();
+                }
+                for (c, cell) in row.cells.iter_mut().enumerate() {
+                    let bad =
+                        matches!(&app.editor.error, Some((r, col, _)) if *r == i && *col == c);
+                    let mut edit = egui::TextEdit::singleline(cell)
+                        .desired_width(52.0)
+                        .id_salt(("dh", i, c))
+                        .hint_text(COLUMNS[c]);
+                    if bad {
+                        edit = edit.text_color(style::ERROR);
+                    }
+                    let cell_response = ui.add(edit);
+                    changed |= cell_response.changed();
+                    let mid = cell_response.rect.center();
+                    app.viewport
+                        .points
+                        .push((format!("dh-{}-{}", i + 1, c + 1), [mid.x, mid.y]));
+                }
+                if ui
+                    .small_button("×")
+                    .on_hover_text("Remove this joint")
+                    .clicked()
+                {
+                    remove = Some(i);
+                }
+                ui.end_row();
+                if let Some((r, _, message)) = &app.editor.error
+                    && *r == i
+                {
                     ui.label("");
                     ui.label("");
                     ui.colored_label(style::ERROR, message);
                     ui.end_row();
                 }
             }
-        }
-    });
+        });
     if let Some(i) = remove {
         editor.rows.remove(i);
         changed = true;
@@ -316,7 +378,10 @@ fn dh_table(app: &mut ArmLabApp, ui: &mut egui::Ui) {
         }
     }
     if editor_is_empty(&app.editor) {
-        ui.colored_label(style::ERROR, "The robot has no joints: a chain needs at least one.");
+        ui.colored_label(
+            style::ERROR,
+            "The robot has no joints: a chain needs at least one.",
+        );
     }
 }
 

@@ -41,7 +41,13 @@ pub struct MarkerLook {
 }
 
 /// A unit-shape instance stretched from `a` to `b` with this cross-section.
-fn segment(shape: Shape, a: &Point3<f64>, b: &Point3<f64>, width: f64, color: [u8; 4]) -> Option<Instance> {
+fn segment(
+    shape: Shape,
+    a: &Point3<f64>,
+    b: &Point3<f64>,
+    width: f64,
+    color: [u8; 4],
+) -> Option<Instance> {
     let v = b - a;
     let len = v.norm();
     if len < 1e-9 {
@@ -49,7 +55,13 @@ fn segment(shape: Shape, a: &Point3<f64>, b: &Point3<f64>, width: f64, color: [u
     }
     let rot = rotation_to(&(v / len));
     let mid = a + v * 0.5;
-    Some(instance(shape, &mid, &rot, Vector3::new(width, width, len), color))
+    Some(instance(
+        shape,
+        &mid,
+        &rot,
+        Vector3::new(width, width, len),
+        color,
+    ))
 }
 
 /// The rotation taking z to `dir`.
@@ -60,8 +72,16 @@ fn rotation_to(dir: &Vector3<f64>) -> Rotation3<f64> {
     })
 }
 
-fn instance(shape: Shape, centre: &Point3<f64>, rot: &Rotation3<f64>, scale: Vector3<f64>, color: [u8; 4]) -> Instance {
-    let m = Matrix4::new_translation(&centre.coords) * rot.to_homogeneous() * Matrix4::new_nonuniform_scaling(&scale);
+fn instance(
+    shape: Shape,
+    centre: &Point3<f64>,
+    rot: &Rotation3<f64>,
+    scale: Vector3<f64>,
+    color: [u8; 4],
+) -> Instance {
+    let m = Matrix4::new_translation(&centre.coords)
+        * rot.to_homogeneous()
+        * Matrix4::new_nonuniform_scaling(&scale);
     Instance {
         shape,
         model: m.cast::<f32>(),
@@ -75,22 +95,53 @@ pub fn nice_step(approx: f64) -> f64 {
     let k = approx.max(1e-9).log10().floor();
     let base = 10f64.powf(k);
     let m = approx / base;
-    let f = if m < 1.5 { 1.0 } else if m < 3.5 { 2.0 } else if m < 7.5 { 5.0 } else { 10.0 };
+    let f = if m < 1.5 {
+        1.0
+    } else if m < 3.5 {
+        2.0
+    } else if m < 7.5 {
+        5.0
+    } else {
+        10.0
+    };
     f * base
 }
 
-/// The robot, frames and grid, plus the target marker.
-pub fn build(
-    robot: &Robot,
-    fk: &ForwardKinematics,
-    camera: &OrbitCamera,
-    viewport_px: [f64; 2],
-    show_frames: bool,
-    highlighted_link: Option<usize>,
-    target: &nalgebra::IsometryMatrix3<f64>,
-    marker: &MarkerLook,
-    background: [u8; 3],
-) -> (Scene, f64) {
+/// Everything a scene is built from.
+pub struct SceneInput<'a> {
+    /// The robot.
+    pub robot: &'a Robot,
+    /// Its frames at the current q.
+    pub fk: &'a ForwardKinematics,
+    /// The camera.
+    pub camera: &'a OrbitCamera,
+    /// Viewport size in points (for constant-size handles).
+    pub viewport_px: [f64; 2],
+    /// Draw every DH frame.
+    pub show_frames: bool,
+    /// The link to highlight (1-based; 0 = the base frame).
+    pub highlighted_link: Option<usize>,
+    /// The IK target pose.
+    pub target: &'a nalgebra::IsometryMatrix3<f64>,
+    /// The marker's look.
+    pub marker: &'a MarkerLook,
+    /// sRGB background.
+    pub background: [u8; 3],
+}
+
+/// The robot, frames and grid, plus the target marker; also returns the grid spacing.
+pub fn build(input: &SceneInput<'_>) -> (Scene, f64) {
+    let SceneInput {
+        robot,
+        fk,
+        camera,
+        viewport_px,
+        show_frames,
+        highlighted_link,
+        target,
+        marker,
+        background,
+    } = *input;
     let reach = robot.reach();
     let mut instances = Vec::with_capacity(64);
     let link_w = reach * 0.035;
@@ -101,13 +152,23 @@ pub fn build(
     let base = &robot.world_from_base;
     let base_size = Vector3::new(reach * 0.22, reach * 0.22, reach * 0.06);
     let centre = base * Point3::new(0.0, 0.0, -base_size.z * 0.5);
-    instances.push(instance(Shape::Box, &centre, &base.rotation, base_size, BASE));
+    instances.push(instance(
+        Shape::Box,
+        &centre,
+        &base.rotation,
+        base_size,
+        BASE,
+    ));
 
     // Links along the DH offsets between consecutive frame origins.
     let mut prev = *base;
     for (i, joint) in robot.joints.iter().enumerate() {
         let frame = fk.base_from_frames[i];
-        let color = if highlighted_link == Some(i + 1) { HIGHLIGHT } else { LINK };
+        let color = if highlighted_link == Some(i + 1) {
+            HIGHLIGHT
+        } else {
+            LINK
+        };
         let o_prev = Point3::from(prev.translation.vector);
         let o = Point3::from(frame.translation.vector);
         // The corner: standard DH goes d along z_{i−1} then a along x_i; modified DH goes a
@@ -130,12 +191,32 @@ pub fn build(
         let rot = rotation_to(&axis);
         match joint.kind {
             JointKind::Revolute => {
-                let c = if highlighted_link == Some(i + 1) { HIGHLIGHT } else { JOINT };
-                instances.push(instance(Shape::Cylinder, &at, &rot, Vector3::new(joint_d, joint_d, joint_len), c));
+                let c = if highlighted_link == Some(i + 1) {
+                    HIGHLIGHT
+                } else {
+                    JOINT
+                };
+                instances.push(instance(
+                    Shape::Cylinder,
+                    &at,
+                    &rot,
+                    Vector3::new(joint_d, joint_d, joint_len),
+                    c,
+                ));
             }
             JointKind::Prismatic => {
-                let c = if highlighted_link == Some(i + 1) { HIGHLIGHT } else { PRISMATIC };
-                instances.push(instance(Shape::Box, &at, &rot, Vector3::new(joint_d * 0.8, joint_d * 0.8, joint_len), c));
+                let c = if highlighted_link == Some(i + 1) {
+                    HIGHLIGHT
+                } else {
+                    PRISMATIC
+                };
+                instances.push(instance(
+                    Shape::Box,
+                    &at,
+                    &rot,
+                    Vector3::new(joint_d * 0.8, joint_d * 0.8, joint_len),
+                    c,
+                ));
             }
         }
         prev = frame;
@@ -145,7 +226,13 @@ pub fn build(
     let last = prev;
     let o_last = Point3::from(last.translation.vector);
     let o_tool = Point3::from(tool.translation.vector);
-    instances.extend(segment(Shape::Cylinder, &o_last, &o_tool, link_w * 0.8, LINK));
+    instances.extend(segment(
+        Shape::Cylinder,
+        &o_last,
+        &o_tool,
+        link_w * 0.8,
+        LINK,
+    ));
     let finger_len = reach * 0.05;
     let z = tool.rotation.matrix().column(2).into_owned();
     let y = tool.rotation.matrix().column(1).into_owned();
@@ -170,11 +257,21 @@ pub fn build(
         frames.extend(fk.base_from_frames.iter().copied());
         frames.push(tool);
         for (k, f) in frames.iter().enumerate() {
-            let width = if highlighted_link == Some(k) { len * 0.08 } else { len * 0.045 };
+            let width = if highlighted_link == Some(k) {
+                len * 0.08
+            } else {
+                len * 0.045
+            };
             let o = Point3::from(f.translation.vector);
             for (c, color) in AXIS.iter().enumerate() {
                 let dir = f.rotation.matrix().column(c).into_owned();
-                instances.extend(segment(Shape::Cylinder, &o, &(o + dir * len), width, *color));
+                instances.extend(segment(
+                    Shape::Cylinder,
+                    &o,
+                    &(o + dir * len),
+                    width,
+                    *color,
+                ));
             }
         }
     }
@@ -186,15 +283,39 @@ pub fn build(
     let extent = half as f64 * step;
     for k in -half..=half {
         let v = k as f64 * step;
-        let color = if k == 0 { [120, 124, 132, 255] } else { [70, 74, 82, 255] };
-        lines.push(Line { ends: [[v as f32, -extent as f32, 0.0], [v as f32, extent as f32, 0.0]], color });
-        lines.push(Line { ends: [[-extent as f32, v as f32, 0.0], [extent as f32, v as f32, 0.0]], color });
+        let color = if k == 0 {
+            [120, 124, 132, 255]
+        } else {
+            [70, 74, 82, 255]
+        };
+        lines.push(Line {
+            ends: [
+                [v as f32, -extent as f32, 0.0],
+                [v as f32, extent as f32, 0.0],
+            ],
+            color,
+        });
+        lines.push(Line {
+            ends: [
+                [-extent as f32, v as f32, 0.0],
+                [extent as f32, v as f32, 0.0],
+            ],
+            color,
+        });
     }
 
     // Target marker: constant size on screen.
-    let px = camera.world_per_pixel(viewport_px[1]) * (camera.eye() - Point3::from(target.translation.vector)).norm() / camera.distance;
+    let px = camera.world_per_pixel(viewport_px[1])
+        * (camera.eye() - Point3::from(target.translation.vector)).norm()
+        / camera.distance;
     let centre = Point3::from(target.translation.vector);
-    let mut ball = instance(Shape::Sphere, &centre, &Rotation3::identity(), Vector3::repeat(2.0 * handle_px::BALL * px), marker.color);
+    let mut ball = instance(
+        Shape::Sphere,
+        &centre,
+        &Rotation3::identity(),
+        Vector3::repeat(2.0 * handle_px::BALL * px),
+        marker.color,
+    );
     ball.on_top = true;
     instances.push(ball);
     use super::viewport::Handle;
@@ -204,11 +325,23 @@ pub fn build(
         let tip = centre + dir * (handle_px::ARROW * px);
         let cone_len = 16.0 * px;
         let shaft_end = tip - dir * cone_len;
-        if let Some(mut s) = segment(Shape::Cylinder, &(centre + dir * (handle_px::BALL * px)), &shaft_end, if active { 6.0 * px } else { 4.0 * px }, color) {
+        if let Some(mut s) = segment(
+            Shape::Cylinder,
+            &(centre + dir * (handle_px::BALL * px)),
+            &shaft_end,
+            if active { 6.0 * px } else { 4.0 * px },
+            color,
+        ) {
             s.on_top = true;
             instances.push(s);
         }
-        let mut cone = instance(Shape::Cone, &shaft_end, &rotation_to(dir), Vector3::new(12.0 * px, 12.0 * px, cone_len), color);
+        let mut cone = instance(
+            Shape::Cone,
+            &shaft_end,
+            &rotation_to(dir),
+            Vector3::new(12.0 * px, 12.0 * px, cone_len),
+            color,
+        );
         cone.on_top = true;
         instances.push(cone);
         if marker.rings {
@@ -223,7 +356,13 @@ pub fn build(
                 })
                 .collect();
             for pair in pts.windows(2) {
-                if let Some(mut s) = segment(Shape::Cylinder, &pair[0], &pair[1], if active { 5.0 * px } else { 3.0 * px }, color) {
+                if let Some(mut s) = segment(
+                    Shape::Cylinder,
+                    &pair[0],
+                    &pair[1],
+                    if active { 5.0 * px } else { 3.0 * px },
+                    color,
+                ) {
                     s.on_top = true;
                     instances.push(s);
                 }
@@ -235,7 +374,8 @@ pub fn build(
     let eye = camera.eye();
     let forward = (camera.focus - eye).normalize();
     // Key light from above, over the viewer's shoulder.
-    let light = (forward + Vector3::new(0.0, 0.0, -1.2) + forward.cross(&Vector3::z()) * 0.4).normalize();
+    let light =
+        (forward + Vector3::new(0.0, 0.0, -1.2) + forward.cross(&Vector3::z()) * 0.4).normalize();
     (
         Scene {
             view_proj: camera.view_projection(aspect).cast::<f32>(),
@@ -252,7 +392,11 @@ pub fn build(
 /// Two unit vectors perpendicular to `dir` and to each other.
 pub fn perpendiculars(dir: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
     let d = Unit::new_normalize(*dir);
-    let helper = if d.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() };
+    let helper = if d.x.abs() < 0.9 {
+        Vector3::x()
+    } else {
+        Vector3::y()
+    };
     let u = d.cross(&helper).normalize();
     let w = d.cross(&u);
     (u, w)

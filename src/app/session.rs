@@ -10,7 +10,9 @@
 //! - `method`: `dls`, `pinv`, `gradient` or `closed`.
 
 use crate::api::parse_task;
-use crate::kinematics::{Robot, RobotError, Task, ToolAxis, preset, robot_from_json, robot_to_json};
+use crate::kinematics::{
+    Robot, RobotError, Task, ToolAxis, preset, robot_from_json, robot_to_json,
+};
 
 /// Which IK method the drag uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -217,7 +219,11 @@ fn join_numbers(values: &[f64]) -> String {
         .map(|v| {
             let s = format!("{v:.6}");
             let s = s.trim_end_matches('0').trim_end_matches('.');
-            if s == "-0" { "0".to_string() } else { s.to_string() }
+            if s == "-0" {
+                "0".to_string()
+            } else {
+                s.to_string()
+            }
         })
         .collect::<Vec<_>>()
         .join(",")
@@ -227,7 +233,9 @@ fn parse_numbers(text: &str, what: &str) -> Result<Vec<f64>, String> {
     text.split(',')
         .map(|s| match s.trim().parse::<f64>() {
             Ok(v) if v.is_finite() => Ok(v),
-            _ => Err(format!("the link's {what} has \"{s}\", which is not a number")),
+            _ => Err(format!(
+                "the link's {what} has \"{s}\", which is not a number"
+            )),
         })
         .collect()
 }

@@ -28,10 +28,16 @@ pub fn install_fonts(ctx: &egui::Context) {
     let mut fonts = egui::FontDefinitions::empty();
     fonts.font_data.insert(
         "armlab-sans".to_owned(),
-        std::sync::Arc::new(egui::FontData::from_static(include_bytes!("../../assets/fonts/ArmLabSans.ttf"))),
+        std::sync::Arc::new(egui::FontData::from_static(include_bytes!(
+            "../../assets/fonts/ArmLabSans.ttf"
+        ))),
     );
     for family in [egui::FontFamily::Proportional, egui::FontFamily::Monospace] {
-        fonts.families.entry(family).or_default().push("armlab-sans".to_owned());
+        fonts
+            .families
+            .entry(family)
+            .or_default()
+            .push("armlab-sans".to_owned());
     }
     ctx.set_fonts(fonts);
 }

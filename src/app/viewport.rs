@@ -4,7 +4,7 @@
 //! drag runs the IK warm-started at the current q.
 
 use eframe::egui_wgpu::RenderState;
-use egui::{Color32, Pos2, Rect, Sense, Stroke};
+use egui::{Color32, Pos2, Rect, Sense};
 use nalgebra::{Point3, Rotation3, Unit, Vector3};
 
 use crate::kinematics::Task;
@@ -85,14 +85,28 @@ struct Geometry {
 }
 
 impl Geometry {
-    fn project(&self, camera: &crate::render::camera::OrbitCamera, p: &Point3<f64>) -> Option<Pos2> {
+    fn project(
+        &self,
+        camera: &crate::render::camera::OrbitCamera,
+        p: &Point3<f64>,
+    ) -> Option<Pos2> {
         camera
             .project(p, self.size)
             .map(|s| Pos2::new(self.origin.x + s[0] as f32, self.origin.y + s[1] as f32))
     }
 
-    fn ray(&self, camera: &crate::render::camera::OrbitCamera, pos: Pos2) -> (Point3<f64>, Vector3<f64>) {
-        camera.ray([(pos.x - self.origin.x) as f64, (pos.y - self.origin.y) as f64], self.size)
+    fn ray(
+        &self,
+        camera: &crate::render::camera::OrbitCamera,
+        pos: Pos2,
+    ) -> (Point3<f64>, Vector3<f64>) {
+        camera.ray(
+            [
+                (pos.x - self.origin.x) as f64,
+                (pos.y - self.origin.y) as f64,
+            ],
+            self.size,
+        )
     }
 }
 
@@ -113,7 +127,13 @@ fn ring_points(centre: &Point3<f64>, dir: &Vector3<f64>, radius: f64) -> Vec<Poi
 }
 
 /// Which handle is under `pos`, if any (ball first, then arrows, then rings).
-fn pick(app: &ArmLabApp, g: &Geometry, pos: Pos2, axes: &[Vector3<f64>; 3], rings: bool) -> Option<Handle> {
+fn pick(
+    app: &ArmLabApp,
+    g: &Geometry,
+    pos: Pos2,
+    axes: &[Vector3<f64>; 3],
+    rings: bool,
+) -> Option<Handle> {
     let cam = &app.camera;
     let centre = Point3::from(app.target.translation.vector);
     let c = g.project(cam, &centre)?;
@@ -150,7 +170,12 @@ fn pick(app: &ArmLabApp, g: &Geometry, pos: Pos2, axes: &[Vector3<f64>; 3], ring
 }
 
 /// Closest point on the line (p0, dir) to the ray (o, r).
-fn closest_on_line(p0: &Point3<f64>, dir: &Vector3<f64>, o: &Point3<f64>, r: &Vector3<f64>) -> Option<Point3<f64>> {
+fn closest_on_line(
+    p0: &Point3<f64>,
+    dir: &Vector3<f64>,
+    o: &Point3<f64>,
+    r: &Vector3<f64>,
+) -> Option<Point3<f64>> {
     let w = p0 - o;
     let (a, b, c) = (dir.dot(dir), dir.dot(r), r.dot(r));
     let (d, e) = (dir.dot(&w), r.dot(&w));
@@ -162,7 +187,12 @@ fn closest_on_line(p0: &Point3<f64>, dir: &Vector3<f64>, o: &Point3<f64>, r: &Ve
     Some(p0 + dir * s)
 }
 
-fn plane_hit(point: &Point3<f64>, normal: &Vector3<f64>, o: &Point3<f64>, r: &Vector3<f64>) -> Option<Point3<f64>> {
+fn plane_hit(
+    point: &Point3<f64>,
+    normal: &Vector3<f64>,
+    o: &Point3<f64>,
+    r: &Vector3<f64>,
+) -> Option<Point3<f64>> {
     let denom = normal.dot(r);
     if denom.abs() < 1e-9 {
         return None;
@@ -172,19 +202,36 @@ fn plane_hit(point: &Point3<f64>, normal: &Vector3<f64>, o: &Point3<f64>, r: &Ve
 }
 
 /// Shows the viewport and handles its input.
-pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui, render_state: Option<&RenderState>, renderer: Option<&mut SceneRenderer>) {
+pub fn show(
+    app: &mut ArmLabApp,
+    ui: &mut egui::Ui,
+    render_state: Option<&RenderState>,
+    renderer: Option<&mut SceneRenderer>,
+) {
     let rect = ui.available_rect_before_wrap();
     let response = ui.allocate_rect(rect, Sense::click_and_drag());
     app.viewport.rect = Some(rect);
     let size = [rect.width().max(1.0) as f64, rect.height().max(1.0) as f64];
     let centre = Point3::from(app.target.translation.vector);
-    let px = app.camera.world_per_pixel(size[1]) * (app.camera.eye() - centre).norm() / app.camera.distance;
-    let g = Geometry { size, origin: rect.min, px };
+    let px = app.camera.world_per_pixel(size[1]) * (app.camera.eye() - centre).norm()
+        / app.camera.distance;
+    let g = Geometry {
+        size,
+        origin: rect.min,
+        px,
+    };
     let axes = marker_axes(app);
     let rings = app.session.task != Task::Position;
 
     // --- Input -------------------------------------------------------------------------
-    let (shift, scroll, zoom, multi) = ui.input(|i| (i.modifiers.shift, i.smooth_scroll_delta, i.zoom_delta(), i.multi_touch()));
+    let (shift, scroll, zoom, multi) = ui.input(|i| {
+        (
+            i.modifiers.shift,
+            i.smooth_scroll_delta,
+            i.zoom_delta(),
+            i.multi_touch(),
+        )
+    });
     if response.hovered() {
         if scroll.y != 0.0 {
             app.camera.zoom((scroll.y as f64 * 0.0015).exp());
@@ -197,7 +244,9 @@ pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui, render_state: Option<&Render
     if response.drag_started() {
         let press = ui.input(|i| i.pointer.press_origin()).or(pointer);
         let primary = response.dragged_by(egui::PointerButton::Primary);
-        let handle = press.filter(|_| primary && !shift).and_then(|p| pick(app, &g, p, &axes, rings));
+        let handle = press
+            .filter(|_| primary && !shift)
+            .and_then(|p| pick(app, &g, p, &axes, rings));
         app.viewport.drag = Some(match (handle, press) {
             (Some(handle), Some(p)) => {
                 let (o, r) = g.ray(&app.camera, p);
@@ -206,7 +255,12 @@ pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui, render_state: Option<&Render
                     Handle::Axis(i) => closest_on_line(&centre, &axes[i], &o, &r).unwrap_or(centre),
                     _ => plane_hit(&centre, &forward, &o, &r).unwrap_or(centre),
                 };
-                Drag::Marker { handle, start_target: app.target, start_pointer: p, start_hit }
+                Drag::Marker {
+                    handle,
+                    start_target: app.target,
+                    start_pointer: p,
+                    start_hit,
+                }
             }
             _ if primary && !shift => Drag::Orbit,
             _ => Drag::Pan,
@@ -215,13 +269,16 @@ pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui, render_state: Option<&Render
     if response.dragged() {
         let delta = response.drag_delta();
         match app.viewport.drag.clone() {
-            Some(Drag::Orbit) => {
-                if multi.is_none() {
-                    app.camera.orbit(delta.x as f64, delta.y as f64);
-                }
+            Some(Drag::Orbit) if multi.is_none() => {
+                app.camera.orbit(delta.x as f64, delta.y as f64);
             }
             Some(Drag::Pan) => app.camera.pan(delta.x as f64, delta.y as f64, size[1]),
-            Some(Drag::Marker { handle, start_target, start_pointer, start_hit }) => {
+            Some(Drag::Marker {
+                handle,
+                start_target,
+                start_pointer,
+                start_hit,
+            }) => {
                 if let Some(p) = pointer {
                     let (o, r) = g.ray(&app.camera, p);
                     let start_centre = Point3::from(start_target.translation.vector);
@@ -243,9 +300,16 @@ pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui, render_state: Option<&Render
                                 let a0 = (start_pointer - c).angle();
                                 let a1 = (p - c).angle();
                                 let to_eye = (app.camera.eye() - start_centre).normalize();
-                                let facing = if axes[i].dot(&to_eye) >= 0.0 { 1.0 } else { -1.0 };
+                                let facing = if axes[i].dot(&to_eye) >= 0.0 {
+                                    1.0
+                                } else {
+                                    -1.0
+                                };
                                 let angle = -(a1 - a0) as f64 * facing;
-                                let rot = Rotation3::from_axis_angle(&Unit::new_normalize(axes[i]), angle);
+                                let rot = Rotation3::from_axis_angle(
+                                    &Unit::new_normalize(axes[i]),
+                                    angle,
+                                );
                                 target.rotation = rot * start_target.rotation;
                             }
                         }
@@ -253,7 +317,7 @@ pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui, render_state: Option<&Render
                     app.set_target(target);
                 }
             }
-            None => {}
+            Some(Drag::Orbit) | None => {}
         }
     }
     if let Some(mt) = multi {
@@ -274,11 +338,16 @@ pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui, render_state: Option<&Render
     }
     app.viewport.hover = match &app.viewport.drag {
         Some(Drag::Marker { handle, .. }) => Some(*handle),
-        _ => response.hover_pos().and_then(|p| pick(app, &g, p, &axes, rings)),
+        _ => response
+            .hover_pos()
+            .and_then(|p| pick(app, &g, p, &axes, rings)),
     };
     // Hovering a link in 3D highlights its matrix.
     if !app.viewport.link_hover_from_panel {
-        app.hovered_link = match (app.viewport.drag.is_none() && app.viewport.hover.is_none(), response.hover_pos()) {
+        app.hovered_link = match (
+            app.viewport.drag.is_none() && app.viewport.hover.is_none(),
+            response.hover_pos(),
+        ) {
             (true, Some(p)) => hovered_link(app, &g, p),
             _ => None,
         };
@@ -304,56 +373,89 @@ pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui, render_state: Option<&Render
     app.viewport.rendered = false;
     if let (Some(rs), Some(r)) = (render_state, renderer) {
         let ppp = ui.ctx().pixels_per_point();
-        let px_size = [(rect.width() * ppp).round() as u32, (rect.height() * ppp).round() as u32];
-        let (scene, step) = scene::build(
-            &app.session.robot,
-            &app.fk,
-            &app.camera,
-            size,
-            app.settings.show_frames,
-            app.hovered_link,
-            &app.target,
-            &look,
-            [bg.r(), bg.g(), bg.b()],
-        );
+        let px_size = [
+            (rect.width() * ppp).round() as u32,
+            (rect.height() * ppp).round() as u32,
+        ];
+        let (scene, step) = scene::build(&scene::SceneInput {
+            robot: &app.session.robot,
+            fk: &app.fk,
+            camera: &app.camera,
+            viewport_px: size,
+            show_frames: app.settings.show_frames,
+            highlighted_link: app.hovered_link,
+            target: &app.target,
+            marker: &look,
+            background: [bg.r(), bg.g(), bg.b()],
+        });
         app.viewport.grid_step = step;
         let texture = r.render(rs, px_size, &scene);
-        painter.image(texture, rect, Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0)), Color32::WHITE);
+        painter.image(
+            texture,
+            rect,
+            Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0)),
+            Color32::WHITE,
+        );
         app.viewport.rendered = true;
     } else {
         painter.rect_filled(rect, 0.0, bg);
-        painter.text(rect.center(), egui::Align2::CENTER_CENTER, "The 3D view needs WebGPU, WebGL2 or Vulkan.", egui::FontId::proportional(16.0), style::ERROR);
+        painter.text(
+            rect.center(),
+            egui::Align2::CENTER_CENTER,
+            "The 3D view needs WebGPU, WebGL2 or Vulkan.",
+            egui::FontId::proportional(16.0),
+            style::ERROR,
+        );
     }
 
     // Labels over the picture.
     let unit = app.session.robot.length_unit.symbol();
     let small = egui::FontId::proportional(if presentation { 15.0 } else { 12.0 });
-    let text_color = if presentation { Color32::WHITE } else { Color32::from_gray(200) };
+    let text_color = if presentation {
+        Color32::WHITE
+    } else {
+        Color32::from_gray(200)
+    };
     painter.text(
         rect.left_bottom() + egui::vec2(10.0, -10.0),
         egui::Align2::LEFT_BOTTOM,
-        format!("grid {} {unit}   ·   drag: orbit   right-drag: pan   wheel: zoom", trim_number(app.viewport.grid_step)),
+        format!(
+            "grid {} {unit}   ·   drag: orbit   right-drag: pan   wheel: zoom",
+            trim_number(app.viewport.grid_step)
+        ),
         small.clone(),
         text_color,
     );
     let status = if app.ik.reached {
         ("target reached", style::REACHED)
     } else if app.ik.unreachable {
-        ("target out of reach: the arm stretches toward it", style::UNREACHABLE)
+        (
+            "target out of reach: the arm stretches toward it",
+            style::UNREACHABLE,
+        )
     } else {
         ("drag the target ball, its arrows or rings", style::PENDING)
     };
-    painter.text(rect.left_top() + egui::vec2(10.0, 10.0), egui::Align2::LEFT_TOP, status.0, small.clone(), status.1);
-    if let Some(link) = app.hovered_link {
-        if let Some(joint) = app.session.robot.joints.get(link.wrapping_sub(1)) {
-            painter.text(
-                rect.right_top() + egui::vec2(-10.0, 10.0),
-                egui::Align2::RIGHT_TOP,
-                format!("joint {link}: {} — A_{link} and T_0{link} highlighted", joint.name),
-                small,
-                style::HIGHLIGHT,
-            );
-        }
+    painter.text(
+        rect.left_top() + egui::vec2(10.0, 10.0),
+        egui::Align2::LEFT_TOP,
+        status.0,
+        small.clone(),
+        status.1,
+    );
+    if let Some(link) = app.hovered_link
+        && let Some(joint) = app.session.robot.joints.get(link.wrapping_sub(1))
+    {
+        painter.text(
+            rect.right_top() + egui::vec2(-10.0, 10.0),
+            egui::Align2::RIGHT_TOP,
+            format!(
+                "joint {link}: {} — A_{link} and T_0{link} highlighted",
+                joint.name
+            ),
+            small,
+            style::HIGHLIGHT,
+        );
     }
 
     // Screen points for the browser tests.
@@ -380,11 +482,10 @@ pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui, render_state: Option<&Render
     if let Some(b) = g.project(&app.camera, &base) {
         points.push(("base".to_string(), [b.x, b.y]));
     }
-    app.viewport.points = points;
+    app.viewport.points.extend(points);
     if response.hovered() && app.viewport.hover.is_some() {
         ui.ctx().set_cursor_icon(egui::CursorIcon::Grab);
     }
-    let _ = Stroke::NONE;
 }
 
 fn hovered_link(app: &ArmLabApp, g: &Geometry, p: Pos2) -> Option<usize> {

@@ -21,6 +21,8 @@ thread_local! {
     static PENDING_HASH: RefCell<Option<String>> = const { RefCell::new(None) };
     /// The egui context, to wake the app when something arrives from the page.
     static CTX: RefCell<Option<egui::Context>> = const { RefCell::new(None) };
+    /// `performance.now()` at the first drawn frame.
+    static FIRST_FRAME: RefCell<Option<f64>> = const { RefCell::new(None) };
 }
 
 fn wake() {
@@ -39,7 +41,9 @@ fn set_message(text: &str, error: bool) {
         el.set_text_content(Some(text));
         el.set_class_name(if error { "error" } else { "" });
         if let Some(el) = el.dyn_ref::<web_sys::HtmlElement>() {
-            let _ = el.style().set_property("display", if text.is_empty() { "none" } else { "flex" });
+            let _ = el
+                .style()
+                .set_property("display", if text.is_empty() { "none" } else { "flex" });
         }
     }
 }
@@ -49,7 +53,9 @@ fn set_message(text: &str, error: bool) {
 pub fn start() {
     eframe::WebLogger::init(log::LevelFilter::Warn).ok();
     wasm_bindgen_futures::spawn_local(async {
-        let Some(window) = web_sys::window() else { return };
+        let Some(window) = web_sys::window() else {
+            return;
+        };
         let Some(canvas) = window
             .document()
             .and_then(|d| d.get_element_by_id("armlab_canvas"))
@@ -66,11 +72,19 @@ pub fn start() {
             .and_then(|s| s.get_item(STORAGE_KEY).ok().flatten())
             .unwrap_or_default();
         // A link wins; without one, the last session returns.
-        let opening = if hash.trim_start_matches('#').is_empty() { stored } else { hash };
+        let opening = if hash.trim_start_matches('#').is_empty() {
+            stored
+        } else {
+            hash
+        };
         let options = eframe::WebOptions::default();
         let runner = eframe::WebRunner::new();
         let result = runner
-            .start(canvas, options, Box::new(move |cc| Ok(Box::new(ArmLabApp::new(cc, &opening)))))
+            .start(
+                canvas,
+                options,
+                Box::new(move |cc| Ok(Box::new(ArmLabApp::new(cc, &opening)))),
+            )
             .await;
         match result {
             Ok(()) => {
@@ -95,7 +109,9 @@ pub fn start() {
 
 /// Writes the hash into the address bar (without a history entry) and localStorage.
 pub fn store_hash(hash: &str) {
-    let Some(window) = web_sys::window() else { return };
+    let Some(window) = web_sys::window() else {
+        return;
+    };
     if let Ok(history) = window.history() {
         let _ = history.replace_state_with_url(&JsValue::NULL, "", Some(&format!("#{hash}")));
     }
@@ -119,6 +135,11 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
     let css_per_point = ctx.pixels_per_point() / ctx.native_pixels_per_point().unwrap_or(1.0);
     let state = app.state_json();
     HOOK.with(|h| *h.borrow_mut() = (state, app.viewport.points.clone(), css_per_point));
+    FIRST_FRAME.with(|f| {
+        if f.borrow().is_none() && app.viewport.rendered {
+            *f.borrow_mut() = Some(super::hook::now_ms());
+        }
+    });
     if let Some(ms) = app.frame_ms.back().copied() {
         FRAMES.with(|f| {
             let mut f = f.borrow_mut();
@@ -147,7 +168,9 @@ fn install_hook(window: &web_sys::Window) {
             }
         })
     });
-    let frames = Closure::<dyn Fn() -> Vec<f64>>::new(|| FRAMES.with(|f| std::mem::take(&mut *f.borrow_mut())));
+    let frames = Closure::<dyn Fn() -> Vec<f64>>::new(|| {
+        FRAMES.with(|f| std::mem::take(&mut *f.borrow_mut()))
+    });
     let open = Closure::<dyn Fn(String)>::new(|hash: String| {
         PENDING_HASH.with(|p| *p.borrow_mut() = Some(hash));
         wake();
@@ -156,6 +179,10 @@ fn install_hook(window: &web_sys::Window) {
     let _ = js_sys::Reflect::set(&obj, &"screenPoint".into(), &point.into_js_value());
     let _ = js_sys::Reflect::set(&obj, &"frameTimes".into(), &frames.into_js_value());
     let _ = js_sys::Reflect::set(&obj, &"open".into(), &open.into_js_value());
+    let first = Closure::<dyn Fn() -> JsValue>::new(|| {
+        FIRST_FRAME.with(|f| f.borrow().map_or(JsValue::NULL, JsValue::from))
+    });
+    let _ = js_sys::Reflect::set(&obj, &"firstFrameAt".into(), &first.into_js_value());
     let _ = js_sys::Reflect::set(window, &"armlab".into(), &obj);
 }
 
@@ -166,7 +193,8 @@ fn install_hashchange(window: &web_sys::Window) {
             wake();
         }
     });
-    let _ = window.add_event_listener_with_callback("hashchange", on_change.as_ref().unchecked_ref());
+    let _ =
+        window.add_event_listener_with_callback("hashchange", on_change.as_ref().unchecked_ref());
     on_change.forget();
 }
 
@@ -180,7 +208,11 @@ pub fn download(name: &str, text: &str) -> Result<(), String> {
     bag.set_type("application/json");
     let blob = web_sys::Blob::new_with_str_sequence_and_options(&parts, &bag).map_err(fail)?;
     let url = web_sys::Url::create_object_url_with_blob(&blob).map_err(fail)?;
-    let a: web_sys::HtmlAnchorElement = document.create_element("a").map_err(fail)?.dyn_into().map_err(|_| "no anchor")?;
+    let a: web_sys::HtmlAnchorElement = document
+        .create_element("a")
+        .map_err(fail)?
+        .dyn_into()
+        .map_err(|_| "no anchor")?;
     a.set_href(&url);
     a.set_download(name);
     a.click();
@@ -191,14 +223,22 @@ pub fn download(name: &str, text: &str) -> Result<(), String> {
 /// Opens the browser's file chooser; the chosen file's text arrives through
 /// [`take_uploaded_file`] on a later frame.
 pub fn open_file_chooser() {
-    let Some(document) = web_sys::window().and_then(|w| w.document()) else { return };
-    let Ok(input) = document.create_element("input") else { return };
-    let Ok(input) = input.dyn_into::<web_sys::HtmlInputElement>() else { return };
+    let Some(document) = web_sys::window().and_then(|w| w.document()) else {
+        return;
+    };
+    let Ok(input) = document.create_element("input") else {
+        return;
+    };
+    let Ok(input) = input.dyn_into::<web_sys::HtmlInputElement>() else {
+        return;
+    };
     input.set_type("file");
     input.set_accept(".json,application/json");
     let reader_input = input.clone();
     let on_change = Closure::<dyn Fn()>::new(move || {
-        let Some(file) = reader_input.files().and_then(|f| f.get(0)) else { return };
+        let Some(file) = reader_input.files().and_then(|f| f.get(0)) else {
+            return;
+        };
         let promise = file.text();
         wasm_bindgen_futures::spawn_local(async move {
             if let Ok(text) = wasm_bindgen_futures::JsFuture::from(promise).await {

@@ -1,0 +1,304 @@
+// End-to-end tests of the built page (dist/, from `trunk build --release`) in Debian's
+// headless Chromium, driven by playwright-core. Chromium here has no WebGPU, so eframe
+// runs on WebGL2: the page must work and look right on that path.
+//
+// Prints one JSON line of measurements (not asserted): time to the first drawn frame,
+// main-thread milliseconds per frame while dragging the UR10 target, the wasm size.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import http from 'node:http';
+import fs from 'node:fs';
+import path from 'node:path';
+import zlib from 'node:zlib';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const dist = path.resolve(here, '..', 'dist');
+const shots = path.resolve(here, 'screenshots');
+const snapshot = path.resolve(here, '..', 'tests', 'snapshots', 'ur10.png');
+const VIEW = { width: 1400, height: 860 };
+// The UI tests' snapshot shows this state at this size (tests/ui.rs).
+const SNAPSHOT_HASH = '#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2';
+const measurements = {};
+
+let server;
+let base;
+let browser;
+
+const types = { '.html': 'text/html', '.js': 'text/javascript', '.wasm': 'application/wasm', '.css': 'text/css', '.json': 'application/json', '.png': 'image/png' };
+
+before(async () => {
+  assert.ok(fs.existsSync(path.join(dist, 'index.html')), 'dist/ holds the built page (trunk build --release)');
+  fs.mkdirSync(shots, { recursive: true });
+  server = http.createServer((req, res) => {
+    const url = new URL(req.url, 'http://localhost');
+    let file = path.join(dist, decodeURIComponent(url.pathname));
+    if (!file.startsWith(dist)) { res.writeHead(403); res.end(); return; }
+    if (file.endsWith('/')) file = path.join(file, 'index.html');
+    fs.readFile(file, (err, data) => {
+      if (err) { res.writeHead(404); res.end('not found'); return; }
+      res.writeHead(200, { 'content-type': types[path.extname(file)] ?? 'application/octet-stream' });
+      res.end(data);
+    });
+  });
+  await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
+  base = `http://127.0.0.1:${server.address().port}/`;
+  browser = await chromium.launch({
+    executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
+    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking',
+      '--disable-component-update', '--disable-sync', '--no-first-run', '--disable-quic'],
+  });
+});
+
+after(async () => {
+  const wasm = fs.readdirSync(dist).find((f) => f.endsWith('.wasm'));
+  if (wasm) {
+    const bytes = fs.readFileSync(path.join(dist, wasm));
+    measurements.wasm_bytes = bytes.length;
+    measurements.wasm_gzip_bytes = zlib.gzipSync(bytes, { level: 9 }).length;
+  }
+  console.log(`ARMLAB_E2E_MEASUREMENTS ${JSON.stringify(measurements)}`);
+  fs.writeFileSync(path.join(shots, 'measurements.json'), JSON.stringify(measurements, null, 2));
+  await browser?.close();
+  server?.close();
+});
+
+/** A fresh page (own storage) with console errors collected. */
+async function open(hash = '', { context } = {}) {
+  const ctx = context ?? await browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
+  const page = await ctx.newPage();
+  const errors = [];
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('pageerror', (e) => errors.push(String(e)));
+  const started = Date.now();
+  await page.goto(base + hash, { waitUntil: 'domcontentloaded' });
+  const loading = await page.textContent('#armlab_message');
+  await ready(page);
+  return { page, ctx, errors, loading, started };
+}
+
+async function ready(page) {
+  await page.waitForFunction(() => window.armlab && JSON.parse(window.armlab.state()).rendered, null, { timeout: 60000 });
+  await settle(page);
+}
+
+/** Waits until the app has drawn a few more frames. */
+async function settle(page, frames = 3) {
+  const start = (await state(page)).frame;
+  await page.mouse.move(VIEW.width - 2, VIEW.height - 2);
+  await page.waitForFunction((f) => JSON.parse(window.armlab.state()).frame >= f, start + frames, { timeout: 20000 }).catch(async () => {
+    // egui draws on input: nudge it.
+    await page.mouse.move(VIEW.width - 3, VIEW.height - 3);
+  });
+}
+
+const state = async (page) => JSON.parse(await page.evaluate(() => window.armlab.state()));
+const point = async (page, name) => {
+  const p = await page.evaluate((n) => window.armlab.screenPoint(n), name);
+  assert.ok(p, `screenPoint("${name}") is on screen`);
+  return p;
+};
+
+/** Pixels of a PNG (as RGBA rows) decoded by the browser itself. */
+async function pixels(page, png) {
+  return page.evaluate(async (b64) => {
+    const img = new Image();
+    img.src = `data:image/png;base64,${b64}`;
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.width; c.height = img.height;
+    const g = c.getContext('2d');
+    g.drawImage(img, 0, 0);
+    return { width: img.width, height: img.height, data: Array.from(g.getImageData(0, 0, img.width, img.height).data) };
+  }, png.toString('base64'));
+}
+const at = (img, x, y) => { const i = (Math.round(y) * img.width + Math.round(x)) * 4; return img.data.slice(i, i + 3); };
+const close = (a, b, tol) => a.every((v, i) => Math.abs(v - b[i]) <= tol);
+
+test('loads without console errors, shows its loading text, then draws the arm in 3D', async () => {
+  const { page, ctx, errors, loading, started } = await open(SNAPSHOT_HASH);
+  assert.match(loading, /Loading ArmLab/);
+  const first = await page.evaluate(() => window.armlab.firstFrameAt());
+  measurements.first_frame_ms = Math.round(first);
+  measurements.ready_wall_ms = Date.now() - started;
+  assert.equal(await page.isVisible('#armlab_message'), false, 'the loading text is gone');
+  const s = await state(page);
+  assert.equal(s.robot, 'UR10');
+  const shotA = await page.screenshot({ path: path.join(shots, 'ur10.png') });
+
+  // Another pose: the 3D mesh must change where the arm is, not only the panels.
+  await page.evaluate(() => window.armlab.open('#robot=ur10&q=1.6,-0.6,0.4,-1.6,-1.4,0.2'));
+  await settle(page, 4);
+  const shotB = await page.screenshot({ path: path.join(shots, 'ur10-other-pose.png') });
+  const a = await pixels(page, shotA);
+  const b = await pixels(page, shotB);
+  let changed = 0;
+  // Count changed pixels inside the viewport only (between the side panels).
+  for (let y = 60; y < 840; y += 2) {
+    for (let x = 340; x < 920; x += 2) {
+      if (!close(at(a, x, y), at(b, x, y), 24)) changed++;
+    }
+  }
+  assert.ok(changed > 2000, `the 3D view changed with the pose (${changed} sampled pixels)`);
+  assert.deepEqual(errors, []);
+  await ctx.close();
+});
+
+test('WebGL2 colours match the native (lavapipe) snapshot', async () => {
+  const { page, ctx } = await open(SNAPSHOT_HASH);
+  const web = await pixels(page, await page.screenshot());
+  const native = await pixels(page, fs.readFileSync(snapshot));
+  assert.equal(native.width, web.width);
+  const target = await point(page, 'target');
+  // The target ball (green: reached), lit from the same light: same colour within 12/255.
+  const ballWeb = at(web, target.x, target.y);
+  const ballNative = at(native, target.x, target.y);
+  assert.ok(close(ballWeb, ballNative, 12), `ball ${ballWeb} vs native ${ballNative}`);
+  assert.ok(ballWeb[1] > ballWeb[0] + 40, `the ball is green: ${ballWeb}`);
+  // Background of the viewport (a corner above the grid's horizon, no text there).
+  const bgWeb = at(web, 900, 70);
+  const bgNative = at(native, 900, 70);
+  assert.ok(close(bgWeb, bgNative, 6), `background ${bgWeb} vs native ${bgNative}`);
+  assert.ok(close(bgWeb, [30, 33, 38], 6), `background is the opaque theme colour: ${bgWeb}`);
+  await ctx.close();
+});
+
+test('a link opens exactly its robot, pose and target', async () => {
+  const hash = '#robot=puma560&q=0.1,0.2,-0.3,0.4,0.5,-0.6&target=0.5,-0.1,0.6,0.2,0.1,0.3&task=position&method=pinv';
+  const { page, ctx } = await open(hash);
+  const s = await state(page);
+  assert.equal(s.robot, 'Puma 560');
+  assert.equal(s.preset, 'puma560');
+  assert.deepEqual(s.q.map((v) => +v.toFixed(6)), [0.1, 0.2, -0.3, 0.4, 0.5, -0.6]);
+  assert.deepEqual(s.target.position.map((v) => +v.toFixed(6)), [0.5, -0.1, 0.6]);
+  assert.equal(s.task, 'position');
+  assert.equal(s.method, 'pinv');
+  await ctx.close();
+});
+
+test('dragging the target with the mouse moves the arm; far out of reach it stretches without jumping', async () => {
+  const { page, ctx } = await open('#robot=ur10&q=0,-1,1.2,-1.5,-1.2,0.3&task=position');
+  const q0 = (await state(page)).q;
+  const t = await point(page, 'target');
+  const b = await point(page, 'base');
+  // Record every app frame's q during the drags.
+  await page.evaluate(() => {
+    window.__frames = [];
+    const tick = () => { const s = JSON.parse(window.armlab.state()); window.__frames.push([s.frame, s.q]); requestAnimationFrame(tick); };
+    requestAnimationFrame(tick);
+  });
+  const dropAt = { x: t.x + (b.x - t.x) * 0.25, y: t.y + (b.y - t.y) * 0.25 };
+  await page.mouse.move(t.x, t.y);
+  await page.mouse.down();
+  const times0 = await page.evaluate(() => window.armlab.frameTimes());
+  await page.mouse.move(dropAt.x, dropAt.y, { steps: 40 });
+  for (let i = 0; i < 30; i++) await page.mouse.move(dropAt.x + (i % 2), dropAt.y);
+  const frameMs = await page.evaluate(() => window.armlab.frameTimes());
+  void times0;
+  await page.mouse.up();
+  await settle(page);
+  let s = await state(page);
+  assert.ok(s.q.some((v, i) => Math.abs(v - q0[i]) > 1e-3), 'the joints moved');
+  const err = Math.hypot(...s.tool.map((v, i) => v - s.target.position[i]));
+  assert.ok(err < 0.5, `the tool ends at the dropped target (${err.toFixed(4)} mm)`);
+  assert.equal(s.reached, true);
+  const marker = await point(page, 'target');
+  assert.ok(Math.hypot(marker.x - dropAt.x, marker.y - dropAt.y) < 3, 'the marker is where it was dropped');
+  const sorted = [...frameMs].sort((x, y) => x - y);
+  measurements.drag_frames = sorted.length;
+  measurements.drag_frame_ms_median = +sorted[Math.floor(sorted.length / 2)].toFixed(3);
+  measurements.drag_frame_ms_p95 = +sorted[Math.floor(sorted.length * 0.95)].toFixed(3);
+
+  // Now far away, out of reach: flagged, and no joint jumps between frames.
+  const t2 = await point(page, 'target');
+  await page.mouse.move(t2.x, t2.y);
+  await page.mouse.down();
+  await page.mouse.move(40 + 340, 80, { steps: 30 });
+  for (let i = 0; i < 40; i++) await page.mouse.move(380 + (i % 2), 80);
+  await page.mouse.up();
+  await settle(page);
+  s = await state(page);
+  assert.equal(s.unreachable, true, 'the marker says out of reach');
+  const frames = await page.evaluate(() => window.__frames);
+  let worst = 0;
+  for (let k = 1; k < frames.length; k++) {
+    const [f0, qa] = frames[k - 1];
+    const [f1, qb] = frames[k];
+    if (f1 <= f0) continue;
+    for (let i = 0; i < qa.length; i++) {
+      let d = Math.abs(qb[i] - qa[i]) % (2 * Math.PI);
+      d = Math.min(d, 2 * Math.PI - d);
+      worst = Math.max(worst, d / (f1 - f0));
+    }
+  }
+  measurements.largest_joint_change_per_frame_rad = +worst.toFixed(4);
+  assert.ok(worst <= 0.1 + 1e-9, `largest joint change per frame ${worst} rad`);
+  await page.screenshot({ path: path.join(shots, 'unreachable.png') });
+  await ctx.close();
+});
+
+test('a joint slider moved with the mouse changes that joint and T_0n', async () => {
+  const { page, ctx } = await open('#robot=ur10&q=0,-1,1.2,-1.5,-1.2,0.3');
+  const before = await state(page);
+  const lo = await point(page, 'slider-2-min');
+  const hi = await point(page, 'slider-2-max');
+  await page.mouse.click(lo.x + (hi.x - lo.x) * 0.8, lo.y);
+  await settle(page);
+  const after = await state(page);
+  assert.ok(after.q[1] > 2.0, `θ2 moved toward +360° (${after.q[1]})`);
+  after.q.forEach((v, i) => { if (i !== 1) assert.equal(v, before.q[i]); });
+  assert.ok(Math.hypot(...after.tool.map((v, i) => v - before.tool[i])) > 10, 'T_0n changed');
+  await ctx.close();
+});
+
+test('a bad DH cell typed with the keyboard shows a message and the robot stays', async () => {
+  const { page, ctx } = await open('#robot=rrr');
+  const before = await state(page);
+  const header = await point(page, 'dh-header');
+  await page.mouse.click(header.x, header.y);
+  await settle(page);
+  const cell = await point(page, 'dh-2-3');
+  await page.mouse.click(cell.x, cell.y);
+  await settle(page);
+  await page.keyboard.press('Control+A');
+  await page.keyboard.type('12x');
+  await settle(page);
+  const s = await state(page);
+  assert.equal(s.editor_error, 'Joint 2, a: "12x" is not a number.');
+  assert.deepEqual(s.q, before.q);
+  assert.deepEqual(s.tool, before.tool, 'the last valid robot stays drawn');
+  await page.screenshot({ path: path.join(shots, 'bad-dh-cell.png') });
+  await ctx.close();
+});
+
+test('a garbage link shows a message and the default robot', async () => {
+  const { page, ctx, errors } = await open('#robot=ur10&q=1,2,banana&&%%');
+  const s = await state(page);
+  assert.equal(s.robot, 'UR10');
+  assert.match(s.message, /This link could not be opened/);
+  assert.deepEqual(errors, []);
+  await ctx.close();
+});
+
+test('a reload restores the last session', async () => {
+  const context = await browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
+  const { page } = await open('#robot=scara&q=0.3,-0.5,0.1,0.7&task=position', { context });
+  const lo = await point(page, 'slider-1-min');
+  const hi = await point(page, 'slider-1-max');
+  await page.mouse.click(lo.x + (hi.x - lo.x) * 0.3, lo.y);
+  await settle(page);
+  const before = await state(page);
+  await page.reload({ waitUntil: 'domcontentloaded' });
+  await ready(page);
+  const reloaded = await state(page);
+  assert.equal(reloaded.robot, before.robot);
+  assert.deepEqual(reloaded.q.map((v) => +v.toFixed(5)), before.q.map((v) => +v.toFixed(5)));
+  // Without any hash, the stored session returns too.
+  await page.goto(base, { waitUntil: 'domcontentloaded' });
+  await ready(page);
+  const fresh = await state(page);
+  assert.equal(fresh.robot, before.robot);
+  assert.deepEqual(fresh.q.map((v) => +v.toFixed(5)), before.q.map((v) => +v.toFixed(5)));
+  await context.close();
+});
