@@ -30,7 +30,10 @@ fn moving_a_slider_changes_q_and_the_tool_pose_numbers() {
     let before_q = h.state().session.q.clone();
     let before_x = tool_x(&h);
     let shown = format!("{:.3}", before_x);
-    assert!(h.query_all_by_label(&shown).count() >= 1, "T_0n shows x = {shown}");
+    assert!(
+        h.query_all_by_label(&shown).count() >= 1,
+        "T_0n shows x = {shown}"
+    );
     // Focus the θ1 slider and press the right arrow a few times.
     h.get_by_role_and_label(Role::Slider, "θ1").focus();
     h.run_steps(1);
@@ -39,12 +42,20 @@ fn moving_a_slider_changes_q_and_the_tool_pose_numbers() {
         h.run_steps(1);
     }
     let after_q = h.state().session.q.clone();
-    assert!(after_q[0] > before_q[0] + 1e-3, "θ1 grew: {} → {}", before_q[0], after_q[0]);
+    assert!(
+        after_q[0] > before_q[0] + 1e-3,
+        "θ1 grew: {} → {}",
+        before_q[0],
+        after_q[0]
+    );
     assert_eq!(&after_q[1..], &before_q[1..], "only θ1 moved");
     let after_x = tool_x(&h);
     assert!((after_x - before_x).abs() > 1e-3);
     let shown_after = format!("{:.3}", after_x);
-    assert!(h.query_all_by_label(&shown_after).count() >= 1, "T_0n now shows x = {shown_after}");
+    assert!(
+        h.query_all_by_label(&shown_after).count() >= 1,
+        "T_0n now shows x = {shown_after}"
+    );
 }
 
 #[test]
@@ -72,7 +83,11 @@ fn a_bad_dh_cell_shows_the_message_and_keeps_the_robot() {
     let q_before = h.state().session.q.clone();
     // The cells are text inputs in table order: θ, d, a, α, min, max per joint.
     let cells: Vec<_> = h.query_all_by_role(Role::TextInput).collect();
-    assert!(cells.len() >= 18, "three joints × six cells, found {}", cells.len());
+    assert!(
+        cells.len() >= 18,
+        "three joints × six cells, found {}",
+        cells.len()
+    );
     // Joint 2's "a" cell (222.1).
     cells[6 + 2].focus();
     drop(cells);
@@ -81,10 +96,15 @@ fn a_bad_dh_cell_shows_the_message_and_keeps_the_robot() {
     h.event(egui::Event::Text("12x".into()));
     h.run_steps(3);
     assert!(
-        h.query_by_label("Joint 2, a: \"12x\" is not a number.").is_some(),
+        h.query_by_label("Joint 2, a: \"12x\" is not a number.")
+            .is_some(),
         "the message sits beside the cell"
     );
-    assert_eq!(h.state().session.robot, robot_before, "the last valid robot stays");
+    assert_eq!(
+        h.state().session.robot,
+        robot_before,
+        "the last valid robot stays"
+    );
     assert_eq!(h.state().session.q, q_before);
 
     // A number the core rejects (reversed limits) gives the core's sentence.
@@ -95,14 +115,22 @@ fn a_bad_dh_cell_shows_the_message_and_keeps_the_robot() {
     h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
     h.event(egui::Event::Text("300".into()));
     h.run_steps(3);
-    assert_eq!(h.state().editor.first_error(), None, "a valid cell applies live");
+    assert_eq!(
+        h.state().editor.first_error(),
+        None,
+        "a valid cell applies live"
+    );
     assert!((h.state().session.robot.joints[1].dh.a - 300.0).abs() < 1e-12);
 }
 
 #[test]
 fn dragging_the_target_moves_the_arm_toward_it() {
     let mut h = harness("#robot=ur10&q=0,-1,1.2,-1.5,-1.2,0.3&task=position");
-    let start = h.state().viewport.point("target").expect("target on screen");
+    let start = h
+        .state()
+        .viewport
+        .point("target")
+        .expect("target on screen");
     let tool_before = h.state().fk.tool_position();
     let from = egui::pos2(start[0], start[1]);
     h.event(egui::Event::PointerMoved(from));
@@ -136,8 +164,17 @@ fn dragging_the_target_moves_the_arm_toward_it() {
     let app = h.state();
     let target = app.target.translation.vector;
     let tool = app.fk.tool_position();
-    assert!((target - tool_before).norm() > 30.0, "the target moved ({:?})", target - tool_before);
-    assert!((tool - target).norm() < 1e-2, "the tool followed: {:?} vs {:?}", tool, target);
+    assert!(
+        (target - tool_before).norm() > 30.0,
+        "the target moved ({:?})",
+        target - tool_before
+    );
+    assert!(
+        (tool - target).norm() < 1e-2,
+        "the tool followed: {:?} vs {:?}",
+        tool,
+        target
+    );
     assert!(app.ik.reached);
     assert!(!app.viewport.dragging());
 }
@@ -147,14 +184,23 @@ fn a_garbage_link_gives_a_message_and_the_default_robot() {
     let h = harness("#robot=ur10&q=1,2,banana");
     assert_eq!(h.state().session.robot.name, "UR10");
     let message = h.state().message.clone().expect("a message");
-    assert!(message.contains("\"banana\", which is not a number"), "{message}");
-    assert!(h.query_by_label_contains("This link could not be opened").is_some());
+    assert!(
+        message.contains("\"banana\", which is not a number"),
+        "{message}"
+    );
+    assert!(
+        h.query_by_label_contains("This link could not be opened")
+            .is_some()
+    );
 }
 
 #[test]
 fn ur10_snapshot_on_the_software_vulkan_adapter() {
     let mut h = harness("#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2");
     h.run_steps(2);
-    assert!(h.state().viewport.rendered, "the wgpu scene renderer drew the viewport");
+    assert!(
+        h.state().viewport.rendered,
+        "the wgpu scene renderer drew the viewport"
+    );
     h.snapshot("ur10");
 }

@@ -101,7 +101,8 @@ impl Mesh {
             m.push([0.5 * t.cos(), 0.5 * t.sin(), 0.0], [0.0, 0.0, -1.0]);
         }
         for i in 0..segments {
-            m.indices.extend_from_slice(&[centre, first + (i + 1) % segments, first + i]);
+            m.indices
+                .extend_from_slice(&[centre, first + (i + 1) % segments, first + i]);
         }
         // Side normals tilt up by the slope: radius ½ over height 1.
         let k = 1.0 / (1.0f32 + 0.25).sqrt();
@@ -111,8 +112,14 @@ impl Mesh {
             let t0 = TAU * i as f32 / segments as f32;
             let t1 = TAU * (i + 1) as f32 / segments as f32;
             let n = [t.cos() * k, t.sin() * k, 0.5 * k];
-            m.push([0.5 * t0.cos(), 0.5 * t0.sin(), 0.0], [t0.cos() * k, t0.sin() * k, 0.5 * k]);
-            m.push([0.5 * t1.cos(), 0.5 * t1.sin(), 0.0], [t1.cos() * k, t1.sin() * k, 0.5 * k]);
+            m.push(
+                [0.5 * t0.cos(), 0.5 * t0.sin(), 0.0],
+                [t0.cos() * k, t0.sin() * k, 0.5 * k],
+            );
+            m.push(
+                [0.5 * t1.cos(), 0.5 * t1.sin(), 0.0],
+                [t1.cos() * k, t1.sin() * k, 0.5 * k],
+            );
             m.push([0.0, 0.0, 1.0], n);
         }
         for i in 0..segments {

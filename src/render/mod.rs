@@ -148,8 +148,14 @@ impl SceneRenderer {
     /// Creates the pipelines and meshes on the app's wgpu device.
     pub fn new(render_state: &RenderState) -> Self {
         let device = &render_state.device;
-        let features = render_state.adapter.get_texture_format_features(COLOR_FORMAT);
-        let sample_count = if features.flags.sample_count_supported(4) { 4 } else { 1 };
+        let features = render_state
+            .adapter
+            .get_texture_format_features(COLOR_FORMAT);
+        let sample_count = if features.flags.sample_count_supported(4) {
+            4
+        } else {
+            1
+        };
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("armlab scene"),
             source: wgpu::ShaderSource::Wgsl(include_str!("scene.wgsl").into()),
@@ -262,9 +268,22 @@ impl SceneRenderer {
             attributes: &line_attrs,
         })];
         let tri = wgpu::PrimitiveTopology::TriangleList;
-        let mesh_pipeline = make("armlab meshes", "vs_mesh", "fs_mesh", &mesh_buffers, tri, true);
-        let mesh_on_top_pipeline =
-            make("armlab handles", "vs_mesh", "fs_mesh", &mesh_buffers, tri, false);
+        let mesh_pipeline = make(
+            "armlab meshes",
+            "vs_mesh",
+            "fs_mesh",
+            &mesh_buffers,
+            tri,
+            true,
+        );
+        let mesh_on_top_pipeline = make(
+            "armlab handles",
+            "vs_mesh",
+            "fs_mesh",
+            &mesh_buffers,
+            tri,
+            false,
+        );
         let line_pipeline = make(
             "armlab lines",
             "vs_line",
@@ -300,7 +319,10 @@ impl SceneRenderer {
         let instance_capacity = 256;
         let line_capacity = 1024;
         SceneRenderer {
-            instance_buffer: vertex_buffer(device, instance_capacity * std::mem::size_of::<InstanceRaw>()),
+            instance_buffer: vertex_buffer(
+                device,
+                instance_capacity * std::mem::size_of::<InstanceRaw>(),
+            ),
             line_buffer: vertex_buffer(device, line_capacity * std::mem::size_of::<LineVertex>()),
             mesh_pipeline,
             mesh_on_top_pipeline,
@@ -384,7 +406,12 @@ impl SceneRenderer {
     }
 
     /// Draws `scene` at `size` pixels and returns the egui texture that holds the picture.
-    pub fn render(&mut self, render_state: &RenderState, size: [u32; 2], scene: &Scene) -> egui::TextureId {
+    pub fn render(
+        &mut self,
+        render_state: &RenderState,
+        size: [u32; 2],
+        scene: &Scene,
+    ) -> egui::TextureId {
         let texture_id = self.ensure_targets(render_state, size);
         let device = &render_state.device;
         let queue = &render_state.queue;
@@ -395,7 +422,11 @@ impl SceneRenderer {
         for on_top in [false, true] {
             for (mesh_index, shape) in SHAPES.iter().enumerate() {
                 let start = self.raw_instances.len() as u32;
-                for inst in scene.instances.iter().filter(|i| i.shape == *shape && i.on_top == on_top) {
+                for inst in scene
+                    .instances
+                    .iter()
+                    .filter(|i| i.shape == *shape && i.on_top == on_top)
+                {
                     self.raw_instances.push(raw_instance(inst));
                 }
                 let end = self.raw_instances.len() as u32;
@@ -406,28 +437,46 @@ impl SceneRenderer {
         }
         if self.raw_instances.len() > self.instance_capacity {
             self.instance_capacity = self.raw_instances.len().next_power_of_two();
-            self.instance_buffer = vertex_buffer(device, self.instance_capacity * std::mem::size_of::<InstanceRaw>());
+            self.instance_buffer = vertex_buffer(
+                device,
+                self.instance_capacity * std::mem::size_of::<InstanceRaw>(),
+            );
         }
         if !self.raw_instances.is_empty() {
-            queue.write_buffer(&self.instance_buffer, 0, bytemuck::cast_slice(&self.raw_instances));
+            queue.write_buffer(
+                &self.instance_buffer,
+                0,
+                bytemuck::cast_slice(&self.raw_instances),
+            );
         }
         self.raw_lines.clear();
         for line in &scene.lines {
             let color = linear_color(line.color);
             for end in line.ends {
-                self.raw_lines.push(LineVertex { position: end, color });
+                self.raw_lines.push(LineVertex {
+                    position: end,
+                    color,
+                });
             }
         }
         if self.raw_lines.len() > self.line_capacity {
             self.line_capacity = self.raw_lines.len().next_power_of_two();
-            self.line_buffer = vertex_buffer(device, self.line_capacity * std::mem::size_of::<LineVertex>());
+            self.line_buffer = vertex_buffer(
+                device,
+                self.line_capacity * std::mem::size_of::<LineVertex>(),
+            );
         }
         if !self.raw_lines.is_empty() {
             queue.write_buffer(&self.line_buffer, 0, bytemuck::cast_slice(&self.raw_lines));
         }
         let globals = Globals {
             view_proj: scene.view_proj.into(),
-            light_dir: [scene.light_dir[0], scene.light_dir[1], scene.light_dir[2], 0.0],
+            light_dir: [
+                scene.light_dir[0],
+                scene.light_dir[1],
+                scene.light_dir[2],
+                0.0,
+            ],
             eye: [scene.eye[0], scene.eye[1], scene.eye[2], 1.0],
         };
         queue.write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
@@ -481,7 +530,11 @@ impl SceneRenderer {
             }
             pass.set_vertex_buffer(1, self.instance_buffer.slice(..));
             for (on_top, mesh_index, range) in ranges {
-                pass.set_pipeline(if on_top { &self.mesh_on_top_pipeline } else { &self.mesh_pipeline });
+                pass.set_pipeline(if on_top {
+                    &self.mesh_on_top_pipeline
+                } else {
+                    &self.mesh_pipeline
+                });
                 let mesh = &self.meshes[mesh_index];
                 pass.set_vertex_buffer(0, mesh.vertices.slice(..));
                 pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
