@@ -51,7 +51,7 @@ extern "C" {
 }
 
 /// The IK benchmark (TRAC-IK protocol) timed with `performance.now()`; prints the same
-/// JSON as the native `ikbench` binary. Request: `{"samples": 10000, "budget": 1500,
+/// JSON as the native `ikbench` binary. Request: `{"samples": 10000, "budget": 1000,
 /// "seed": 20240601}` (all optional).
 #[wasm_bindgen]
 pub fn ik_benchmark(request: &str) -> Result<String, JsError> {

@@ -39,7 +39,7 @@ impl Default for BenchConfig {
         BenchConfig {
             samples: 10_000,
             seed: 20_240_601,
-            budget: 1500,
+            budget: 1000,
             solver_tolerance: 5e-6,
         }
     }
@@ -357,7 +357,6 @@ fn building_blocks(robot_id: &str, config: &BenchConfig, now: &dyn Fn() -> f64) 
 pub fn run(config: &BenchConfig, now: &dyn Fn() -> f64) -> Value {
     let down = Matrix3::new(1.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, -1.0);
     let rows: Vec<Value> = [
-        building_blocks("ur10", config, now),
         cold_row("ur10", config, now),
         cold_row("ur10-standard", config, now),
         cold_row("panda", config, now),
@@ -387,6 +386,7 @@ pub fn run(config: &BenchConfig, now: &dyn Fn() -> f64) -> Value {
             config,
             now,
         ),
+        building_blocks("ur10", config, now),
     ]
     .into_iter()
     .flatten()

@@ -27,7 +27,6 @@ use nalgebra::{IsometryMatrix3, Rotation3, Translation3, Vector3};
 
 use super::IkError;
 use crate::kinematics::angles::{nearest_equivalent_within, wrap_to_pi};
-use crate::kinematics::fk::standard_dh_transform;
 use crate::kinematics::jacobian::Task;
 use crate::kinematics::robot::{Convention, Joint, JointKind, Robot};
 
@@ -93,8 +92,29 @@ struct Row {
 }
 
 impl Row {
-    fn transform(&self, theta: f64) -> IsometryMatrix3<f64> {
-        standard_dh_transform(theta, self.d, self.a, self.alpha)
+    /// `sin α`, `cos α` once, for [`Row::transform_with`].
+    fn alpha_sin_cos(&self) -> (f64, f64) {
+        self.alpha.sin_cos()
+    }
+
+    /// The standard DH transform `Rot_z(θ)·Trans_z(d)·Trans_x(a)·Rot_x(α)` of this row,
+    /// with `sin α`, `cos α` given.
+    fn transform_with(&self, theta: f64, (sa, ca): (f64, f64)) -> IsometryMatrix3<f64> {
+        let (st, ct) = theta.sin_cos();
+        IsometryMatrix3::from_parts(
+            Translation3::new(self.a * ct, self.a * st, self.d),
+            Rotation3::from_matrix_unchecked(nalgebra::Matrix3::new(
+                ct,
+                -st * ca,
+                st * sa,
+                st,
+                ct * ca,
+                -ct * sa,
+                0.0,
+                sa,
+                ca,
+            )),
+        )
     }
 }
 
@@ -166,8 +186,19 @@ fn quarter_turn(alpha: f64) -> bool {
 
 /// Which closed form the robot has, if any.
 pub fn closed_form_family(robot: &Robot) -> Option<ClosedFormFamily> {
+    detect(robot).map(|(family, ..)| family)
+}
+
+/// The family, the canonical chain and the reach.
+fn detect(robot: &Robot) -> Option<(ClosedFormFamily, Canonical, f64)> {
     let c = canonical(robot)?;
-    let tiny = 1e-12 * robot.reach();
+    let reach = robot.reach();
+    let family = family_of(&c, reach)?;
+    Some((family, c, reach))
+}
+
+fn family_of(c: &Canonical, reach: f64) -> Option<ClosedFormFamily> {
+    let tiny = 1e-12 * reach;
     let r = &c.rows;
     let tool_at_frame = c.post.translation.vector.norm() <= tiny;
     match c.n {
@@ -322,10 +353,8 @@ pub fn closed_form_solutions(
     seed: &[f64],
 ) -> Result<ClosedFormSet, IkError> {
     robot.check_q(seed)?;
-    let family =
-        closed_form_family(robot).ok_or_else(|| IkError::NoClosedForm(robot.name.clone()))?;
-    let c = canonical(robot).ok_or_else(|| IkError::NoClosedForm(robot.name.clone()))?;
-    let scale = robot.reach();
+    let (family, c, scale) =
+        detect(robot).ok_or_else(|| IkError::NoClosedForm(robot.name.clone()))?;
     // DH angles of the seed (offsets included), for free joints.
     let mut seed_theta = [0.0; 6];
     for (i, j) in robot.joints.iter().enumerate() {
@@ -431,6 +460,7 @@ fn ur_family(
         alpha: 0.0,
         ..r[5]
     };
+    let (sc1, sc5) = (r[0].alpha_sin_cos(), r[4].alpha_sin_cos());
     let t = c.pre.inverse() * target * post.inverse();
     let p = t.translation.vector;
     let rot = t.rotation.matrix();
@@ -452,7 +482,7 @@ fn ur_family(
         let s5 = sx.hypot(sy);
         let wrist_singular = s5 < 1e-9;
         let t5_plus = s5.atan2(-sigma45 * cz);
-        let a1_inv = r[0].transform(t1).inverse();
+        let a1_inv = r[0].transform_with(t1, sc1).inverse();
         for (wi, t5) in [t5_plus, -t5_plus].into_iter().enumerate() {
             if wi == 1 && s5 == 0.0 {
                 break;
@@ -464,7 +494,7 @@ fn ur_family(
             } else {
                 seed_theta[5]
             };
-            let a56 = r[4].transform(t5) * row6.transform(t6);
+            let a56 = r[4].transform_with(t5, sc5) * row6.transform_with(t6, (0.0, 1.0));
             let t14 = a1_inv * t * a56.inverse();
             let x = t14.translation.vector.x;
             let y = t14.translation.vector.y;

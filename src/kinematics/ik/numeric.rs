@@ -8,7 +8,7 @@ use crate::kinematics::fk::{ForwardKinematics, tool_pose};
 use crate::kinematics::jacobian::{NUMERIC_EPSILON, Task, geometric_jacobian_into};
 use crate::kinematics::orientation::rotation_log;
 use crate::kinematics::rng::SplitMix64;
-use crate::kinematics::robot::{JointKind, Robot};
+use crate::kinematics::robot::{Joint, JointKind, Robot};
 use std::f64::consts::PI;
 
 /// The target in the form the error function needs.
@@ -237,8 +237,9 @@ impl Workspace {
         };
         let mut trace = Vec::new();
         let mut rng = SplitMix64::new(settings.seed);
-        self.q.copy_from_slice(seed);
-        robot.keep_q(&mut self.q, seed);
+        for ((v, s), joint) in self.q.iter_mut().zip(seed).zip(&robot.joints) {
+            *v = keep(joint, *s, *s);
+        }
         if settings.record_trace {
             self.fk.update(robot, &self.q);
             let ev = evaluate(&ctx.tt, &self.fk.base_from_tool, inv_len);
@@ -395,18 +396,7 @@ impl Workspace {
         for (i, joint) in robot.joints.iter().enumerate() {
             let (current, raw) = (self.q[i], self.q[i] + self.dq[i]);
             self.raw[i] = raw;
-            // Fast path with the same answer as `Joint::keep`: a revolute joint that does
-            // not wrap, moving by less than half a turn to a value inside its limits,
-            // keeps that value (it is the equivalent nearest the current one).
-            self.q_try[i] = if joint.kind == JointKind::Revolute
-                && !joint.wraps()
-                && (raw - current).abs() < PI
-                && joint.limits.contains(raw, 0.0)
-            {
-                raw
-            } else {
-                joint.keep(raw, current)
-            };
+            self.q_try[i] = keep(joint, raw, current);
         }
     }
 
@@ -547,6 +537,22 @@ impl Workspace {
                 restart: false,
             });
         }
+    }
+}
+
+/// [`Joint::keep`] with a fast path giving the same answer: a revolute joint that does not
+/// wrap, moving by less than half a turn to a value inside its limits, keeps that value
+/// (it is the 2π-equivalent nearest the current one).
+#[inline]
+fn keep(joint: &Joint, raw: f64, current: f64) -> f64 {
+    if joint.kind == JointKind::Revolute
+        && !joint.wraps()
+        && (raw - current).abs() < PI
+        && joint.limits.contains(raw, 0.0)
+    {
+        raw
+    } else {
+        joint.keep(raw, current)
     }
 }
 
