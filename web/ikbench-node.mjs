@@ -3,7 +3,7 @@
 // the native `cargo run --release --no-default-features --bin ikbench`.
 //
 // Build, then run from the repository root:
-//   cargo build --lib --release --target wasm32-unknown-unknown --no-default-features --features js
+//   cargo rustc --lib --crate-type cdylib --release --target wasm32-unknown-unknown --no-default-features --features js
 //   wasm-bindgen --target nodejs --out-dir target/armlab-node target/wasm32-unknown-unknown/release/armlab.wasm
 //   node web/ikbench-node.mjs [samples] [budget]
 // ARMLAB_NODE_PKG points at another build's armlab.js.

@@ -139,7 +139,7 @@ const DLS_MU_UP: f64 = 10.0;
 /// An accepted step lowering the cost by less than this fraction means a minimum.
 const DLS_STATIONARY: f64 = 1e-9;
 /// An attempt that does not halve its cost every this many iterations is restarted.
-const SLOW_WINDOW: usize = 12;
+const SLOW_WINDOW: usize = 8;
 
 /// The workspace of the numeric methods, sized to the robot on first use.
 #[derive(Debug, Clone)]
@@ -283,7 +283,11 @@ impl Workspace {
                     ev.orientation_error,
                 ));
             }
-            if out.converged || total >= settings.budget || restarts >= settings.restarts {
+            if out.converged
+                || total >= settings.budget
+                || restarts >= settings.restarts
+                || cap == 0
+            {
                 break;
             }
             restarts += 1;
