@@ -1,4 +1,6 @@
 //! Joint-angle bookkeeping (SPEC §2).
+// On wasm the tests are wasm_bindgen_tests, which clippy does not treat as tests.
+#![cfg_attr(target_arch = "wasm32", allow(clippy::unwrap_used, clippy::expect_used))]
 
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
@@ -63,4 +65,24 @@ fn joints_keep_angles_as_spec_says() {
     let stanford = preset("stanford").unwrap();
     assert_eq!(stanford.joints[2].keep(5.0, 0.5), 1.27);
     assert_eq!(stanford.joints[2].change(0.4, 0.9), 0.5);
+}
+
+#[test]
+fn fast_sin_cos_agrees_with_the_library() {
+    use armlab::kinematics::angles::sin_cos;
+    let mut rng = common::rng(8);
+    let mut worst: f64 = 0.0;
+    let mut xs: Vec<f64> = (0..20000).map(|_| rng.uniform(-50.0, 50.0)).collect();
+    xs.extend((0..2000).map(|_| rng.uniform(-1e5, 1e5)));
+    xs.extend([0.0, -0.0, PI, -PI, PI / 2.0, PI / 4.0, 3.0 * PI / 4.0, 1e-300, 2e6, f64::NAN]);
+    for x in xs {
+        let (s, c) = sin_cos(x);
+        let (s0, c0) = x.sin_cos();
+        if x.is_nan() {
+            assert!(s.is_nan() && c.is_nan());
+            continue;
+        }
+        worst = worst.max((s - s0).abs()).max((c - c0).abs());
+    }
+    assert!(worst <= 4.5e-16, "largest difference {worst:e}");
 }

@@ -1,5 +1,7 @@
 //! Robot files: every preset loads, saving and loading round-trips, and every kind of
 //! bad input gives its own typed error with a sentence naming the joint and the field.
+// On wasm the tests are wasm_bindgen_tests, which clippy does not treat as tests.
+#![cfg_attr(target_arch = "wasm32", allow(clippy::unwrap_used, clippy::expect_used))]
 
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;

@@ -63,7 +63,7 @@ run ui cargo test --test ui
 add ui
 
 say "the JS API in Node"
-cargo build --lib --release --target wasm32-unknown-unknown --no-default-features --features js
+cargo rustc --lib --crate-type cdylib --release --target wasm32-unknown-unknown --no-default-features --features js
 wasm-bindgen --target nodejs --out-dir target/armlab-node target/wasm32-unknown-unknown/release/armlab.wasm
 run js-api node --test web/api.test.mjs
 add js-api

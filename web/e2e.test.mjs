@@ -83,14 +83,15 @@ async function ready(page) {
   await settle(page);
 }
 
-/** Waits until the app has drawn a few more frames. */
+/** Waits until the app has drawn a few more frames (egui draws on input: nudge it). */
 async function settle(page, frames = 3) {
   const start = (await state(page)).frame;
-  await page.mouse.move(VIEW.width - 2, VIEW.height - 2);
-  await page.waitForFunction((f) => JSON.parse(window.armlab.state()).frame >= f, start + frames, { timeout: 20000 }).catch(async () => {
-    // egui draws on input: nudge it.
-    await page.mouse.move(VIEW.width - 3, VIEW.height - 3);
-  });
+  for (let i = 0; i < 400; i++) {
+    await page.mouse.move(VIEW.width - 2 - (i % 2), VIEW.height - 2);
+    if ((await state(page)).frame >= start + frames) return;
+    await page.waitForTimeout(20);
+  }
+  throw new Error('the app stopped drawing frames');
 }
 
 const state = async (page) => JSON.parse(await page.evaluate(() => window.armlab.state()));
@@ -262,10 +263,11 @@ test('a bad DH cell typed with the keyboard shows a message and the robot stays'
   await page.mouse.click(cell.x, cell.y);
   await settle(page);
   await page.keyboard.press('Control+A');
-  await page.keyboard.type('12x');
+  // Every keystroke applies live, so type something that is wrong from its first letter.
+  await page.keyboard.type('abc');
   await settle(page);
   const s = await state(page);
-  assert.equal(s.editor_error, 'Joint 2, a: "12x" is not a number.');
+  assert.equal(s.editor_error, 'Joint 2, a: "abc" is not a number.');
   assert.deepEqual(s.q, before.q);
   assert.deepEqual(s.tool, before.tool, 'the last valid robot stays drawn');
   await page.screenshot({ path: path.join(shots, 'bad-dh-cell.png') });

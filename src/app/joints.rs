@@ -15,7 +15,7 @@ pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui) {
             .clicked()
         {
             let zero = vec![0.0; app.session.robot.dof()];
-            app.set_q(zero);
+            app.set_q_exact(zero);
         }
         if ui
             .button("Home")
@@ -23,7 +23,7 @@ pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui) {
             .clicked()
         {
             let home = app.session.robot.home();
-            app.set_q(home);
+            app.set_q_exact(home);
         }
     });
     let degrees = app.settings.degrees;
@@ -83,6 +83,6 @@ pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui) {
             }
         });
     if changed {
-        app.set_q(q);
+        app.set_q_exact(q);
     }
 }

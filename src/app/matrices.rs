@@ -212,8 +212,8 @@ fn jacobian_block(app: &ArmLabApp, ui: &mut egui::Ui, decimals: usize) {
     let jm = DMatrix::from_fn(6, j.ncols(), |r, c| j[(r, c)]);
     matrix_block(
         ui,
-        "J (6×n, base frame; rows vx vy vz ωx ωy ωz)",
-        "Geometric Jacobian: revolute J_v = z × (o_n − o), J_ω = z; prismatic J_v = z",
+        "J  (6×n, base frame)",
+        "Geometric Jacobian, rows vx vy vz ωx ωy ωz: revolute J_v = z × (o_n − o), J_ω = z; prismatic J_v = z",
         &jm,
         decimals,
         false,

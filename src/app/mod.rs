@@ -196,6 +196,18 @@ impl ArmLabApp {
         self.update_reached();
     }
 
+    /// Sets the joint vector as typed or slid: each value clamped to its joint's limits,
+    /// not re-mapped to another turn (a slider at 216° stays at 216°).
+    pub fn set_q_exact(&mut self, mut q: Vec<f64>) {
+        q.resize(self.session.robot.dof(), 0.0);
+        for (v, joint) in q.iter_mut().zip(&self.session.robot.joints) {
+            *v = joint.limits.clamp(*v);
+        }
+        self.session.q = q;
+        self.refresh();
+        self.update_reached();
+    }
+
     /// Recomputes forward kinematics and the Jacobian at the current q.
     pub fn refresh(&mut self) {
         self.fk.update(&self.session.robot, &self.session.q);

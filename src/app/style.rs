@@ -63,6 +63,9 @@ pub fn install(ctx: &egui::Context, presentation: bool) {
         visuals.widgets.inactive.fg_stroke.color = Color32::WHITE;
         visuals.selection.bg_fill = Color32::from_rgb(0, 110, 220);
     }
-    ctx.set_visuals(visuals);
+    // One theme everywhere: the browser's light/dark preference must not change the
+    // colours the lecture sees (nor the browser tests' comparison with native).
+    ctx.set_theme(egui::Theme::Dark);
+    ctx.set_visuals_of(egui::Theme::Dark, visuals);
     ctx.set_zoom_factor(if presentation { 1.4 } else { 1.0 });
 }

@@ -3,6 +3,7 @@
 
 use nalgebra::{IsometryMatrix3, Matrix3, Matrix4, Rotation3, Translation3, Vector3};
 
+use super::angles::sin_cos;
 use super::error::RobotError;
 use super::robot::{Convention, DhRow, JointKind, Robot};
 
@@ -17,8 +18,8 @@ use super::robot::{Convention, DhRow, JointKind, Robot};
 /// ```
 #[inline]
 pub fn standard_dh_transform(theta: f64, d: f64, a: f64, alpha: f64) -> IsometryMatrix3<f64> {
-    let (st, ct) = theta.sin_cos();
-    let (sa, ca) = alpha.sin_cos();
+    let (st, ct) = sin_cos(theta);
+    let (sa, ca) = sin_cos(alpha);
     standard_from_sincos(st, ct, sa, ca, d, a)
 }
 
@@ -33,8 +34,8 @@ pub fn standard_dh_transform(theta: f64, d: f64, a: f64, alpha: f64) -> Isometry
 /// ```
 #[inline]
 pub fn modified_dh_transform(alpha: f64, a: f64, theta: f64, d: f64) -> IsometryMatrix3<f64> {
-    let (st, ct) = theta.sin_cos();
-    let (sa, ca) = alpha.sin_cos();
+    let (st, ct) = sin_cos(theta);
+    let (sa, ca) = sin_cos(alpha);
     modified_from_sincos(st, ct, sa, ca, d, a)
 }
 
@@ -88,14 +89,64 @@ pub fn link_transform(
     row: &DhRow,
     q: f64,
 ) -> IsometryMatrix3<f64> {
-    let (theta, d) = match kind {
-        JointKind::Revolute => (row.theta + q, row.d),
-        JointKind::Prismatic => (row.theta, row.d + q),
-    };
+    let (theta, d) = theta_d(kind, row, q);
     match convention {
         Convention::Standard => standard_dh_transform(theta, d, row.a, row.alpha),
         Convention::Modified => modified_dh_transform(row.alpha, row.a, theta, d),
     }
+}
+
+/// One step along the chain: the frame after joint i from the frame before it, written
+/// out on the rotation's columns (≈ 30 multiplications instead of a 4×4 product).
+/// Returns the new rotation and origin, and the joint's axis and a point on it.
+///
+/// Standard DH, `R_i = R·Rz(θ)·Rx(α)`, `o_i = o + a·x_i + d·z_{i−1}`, axis `z_{i−1}` at `o`.
+/// Modified DH, `R_i = R·Rx(α)·Rz(θ)`, `o_i = o + a·x_{i−1} + d·z_i`, axis `z_i` at `o_i`.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn advance(
+    convention: Convention,
+    r: &Matrix3<f64>,
+    o: &Vector3<f64>,
+    (st, ct): (f64, f64),
+    (sa, ca): (f64, f64),
+    a: f64,
+    d: f64,
+) -> (Matrix3<f64>, Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+    let c0 = r.column(0).into_owned();
+    let c1 = r.column(1).into_owned();
+    let c2 = r.column(2).into_owned();
+    match convention {
+        Convention::Standard => {
+            let x = c0 * ct + c1 * st;
+            let y0 = c1 * ct - c0 * st;
+            let y = y0 * ca + c2 * sa;
+            let z = c2 * ca - y0 * sa;
+            let o_new = o + x * a + c2 * d;
+            (Matrix3::from_columns(&[x, y, z]), o_new, c2, *o)
+        }
+        Convention::Modified => {
+            let y1 = c1 * ca + c2 * sa;
+            let z = c2 * ca - c1 * sa;
+            let x = c0 * ct + y1 * st;
+            let y = y1 * ct - c0 * st;
+            let o_new = o + c0 * a + z * d;
+            (Matrix3::from_columns(&[x, y, z]), o_new, z, o_new)
+        }
+    }
+}
+
+/// θ and d of a row with joint value `q` added to the variable one.
+#[inline(always)]
+fn theta_d(kind: JointKind, row: &DhRow, q: f64) -> (f64, f64) {
+    match kind {
+        JointKind::Revolute => (row.theta + q, row.d),
+        JointKind::Prismatic => (row.theta, row.d + q),
+    }
+}
+
+fn iso(r: Matrix3<f64>, o: Vector3<f64>) -> IsometryMatrix3<f64> {
+    IsometryMatrix3::from_parts(Translation3::from(o), Rotation3::from_matrix_unchecked(r))
 }
 
 /// The result of forward kinematics at one joint vector. Reused between frames:
@@ -115,6 +166,10 @@ pub struct ForwardKinematics {
     pub joint_origins: Vec<Vector3<f64>>,
     /// Each joint's kind, copied so the Jacobian needs no robot.
     pub joint_kinds: Vec<JointKind>,
+    /// (sin α, cos α) per row, and the α they were computed for (a self-checking cache:
+    /// α is constant while q changes every frame).
+    alpha_sin_cos: Vec<(f64, f64)>,
+    alpha_of_cache: Vec<u64>,
 }
 
 impl ForwardKinematics {
@@ -131,30 +186,42 @@ impl ForwardKinematics {
     /// are ignored and missing ones count as zero.
     pub fn update(&mut self, robot: &Robot, q: &[f64]) {
         let n = robot.dof();
-        self.link_transforms.clear();
-        self.base_from_frames.clear();
-        self.joint_axes.clear();
-        self.joint_origins.clear();
-        self.joint_kinds.clear();
-        let mut base_from_prev = robot.world_from_base;
-        for (i, joint) in robot.joints.iter().enumerate() {
-            let qi = q.get(i).copied().unwrap_or(0.0);
-            let prev_from_frame = link_transform(robot.convention, joint.kind, &joint.dh, qi);
-            let base_from_frame = base_from_prev * prev_from_frame;
-            let axis_frame = match robot.convention {
-                Convention::Standard => &base_from_prev,
-                Convention::Modified => &base_from_frame,
-            };
-            self.joint_axes
-                .push(axis_frame.rotation.matrix().column(2).into_owned());
-            self.joint_origins.push(axis_frame.translation.vector);
-            self.joint_kinds.push(joint.kind);
-            self.link_transforms.push(prev_from_frame);
-            self.base_from_frames.push(base_from_frame);
-            base_from_prev = base_from_frame;
+        if self.link_transforms.len() != n {
+            let id = IsometryMatrix3::identity();
+            self.link_transforms.resize(n, id);
+            self.base_from_frames.resize(n, id);
+            self.joint_axes.resize(n, Vector3::z());
+            self.joint_origins.resize(n, Vector3::zeros());
+            self.joint_kinds.resize(n, JointKind::Revolute);
+            self.alpha_sin_cos.resize(n, (0.0, 1.0));
+            self.alpha_of_cache.resize(n, f64::NAN.to_bits());
         }
-        debug_assert_eq!(self.base_from_frames.len(), n);
-        self.base_from_tool = base_from_prev * robot.flange_from_tool;
+        let mut r = *robot.world_from_base.rotation.matrix();
+        let mut o = robot.world_from_base.translation.vector;
+        for (i, joint) in robot.joints.iter().enumerate() {
+            let bits = joint.dh.alpha.to_bits();
+            if self.alpha_of_cache[i] != bits {
+                self.alpha_of_cache[i] = bits;
+                self.alpha_sin_cos[i] = sin_cos(joint.dh.alpha);
+            }
+            let (sa, ca) = self.alpha_sin_cos[i];
+            let (theta, d) = theta_d(joint.kind, &joint.dh, q.get(i).copied().unwrap_or(0.0));
+            let (st, ct) = sin_cos(theta);
+            let a = joint.dh.a;
+            let (r_new, o_new, axis, origin) =
+                advance(robot.convention, &r, &o, (st, ct), (sa, ca), a, d);
+            self.link_transforms[i] = match robot.convention {
+                Convention::Standard => standard_from_sincos(st, ct, sa, ca, d, a),
+                Convention::Modified => modified_from_sincos(st, ct, sa, ca, d, a),
+            };
+            self.base_from_frames[i] = iso(r_new, o_new);
+            self.joint_axes[i] = axis;
+            self.joint_origins[i] = origin;
+            self.joint_kinds[i] = joint.kind;
+            r = r_new;
+            o = o_new;
+        }
+        self.base_from_tool = iso(r, o) * robot.flange_from_tool;
     }
 
     /// Number of joints.
@@ -176,12 +243,23 @@ impl ForwardKinematics {
 /// The tool pose alone (`T_0n · flange_from_tool`), without keeping the frames. Used by
 /// the numerical Jacobian and the IK error checks.
 pub fn tool_pose(robot: &Robot, q: &[f64]) -> IsometryMatrix3<f64> {
-    let mut pose = robot.world_from_base;
+    let mut r = *robot.world_from_base.rotation.matrix();
+    let mut o = robot.world_from_base.translation.vector;
     for (i, joint) in robot.joints.iter().enumerate() {
-        let qi = q.get(i).copied().unwrap_or(0.0);
-        pose *= link_transform(robot.convention, joint.kind, &joint.dh, qi);
+        let (theta, d) = theta_d(joint.kind, &joint.dh, q.get(i).copied().unwrap_or(0.0));
+        let (r_new, o_new, _, _) = advance(
+            robot.convention,
+            &r,
+            &o,
+            sin_cos(theta),
+            sin_cos(joint.dh.alpha),
+            joint.dh.a,
+            d,
+        );
+        r = r_new;
+        o = o_new;
     }
-    pose * robot.flange_from_tool
+    iso(r, o) * robot.flange_from_tool
 }
 
 /// A pose as the 4×4 homogeneous matrix shown to people.

@@ -1,6 +1,8 @@
 //! The 3D renderer: a real wgpu pipeline with a depth buffer (and 4× MSAA where the
-//! backend allows it) that draws the scene into an offscreen sRGB texture, which egui then
-//! shows as an image. The same code runs on WebGPU, WebGL2 and native Vulkan (lavapipe in
+//! backend allows it) that draws the scene into an offscreen texture, which egui then
+//! shows as an image. Shading is done in linear light and the shader writes sRGB-encoded
+//! values into a plain `Rgba8Unorm` texture, which is what egui expects of its textures
+//! (WebGL2 cannot reinterpret an sRGB texture as unorm, so the encoding is explicit). The same code runs on WebGPU, WebGL2 and native Vulkan (lavapipe in
 //! the UI tests). The renderer never computes kinematics: it draws a [`Scene`].
 
 pub mod camera;
@@ -122,7 +124,7 @@ struct Targets {
     resolved: wgpu::TextureView,
 }
 
-const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth24Plus;
 
 /// Owns the pipelines, meshes and offscreen targets.
@@ -484,11 +486,12 @@ impl SceneRenderer {
         let Some(targets) = &self.targets else {
             return texture_id;
         };
+        // The target holds sRGB-encoded values: the clear colour goes in as it is.
         let bg = scene.background;
         let clear = wgpu::Color {
-            r: srgb_to_linear(bg[0]) as f64,
-            g: srgb_to_linear(bg[1]) as f64,
-            b: srgb_to_linear(bg[2]) as f64,
+            r: bg[0] as f64 / 255.0,
+            g: bg[1] as f64 / 255.0,
+            b: bg[2] as f64 / 255.0,
             a: 1.0,
         };
         let (view, resolve_target) = match &targets.msaa {

@@ -1,5 +1,6 @@
 // ArmLab's scene shader: lit, instanced meshes and unlit coloured lines.
-// Colours arrive linear; the target texture is sRGB, so the hardware encodes them.
+// Colours arrive linear; shading is linear; the output is encoded to sRGB here because the
+// target is a plain Rgba8Unorm texture (what egui samples as gamma-space colour).
 
 struct Globals {
     view_proj: mat4x4<f32>,
@@ -10,6 +11,12 @@ struct Globals {
 };
 
 @group(0) @binding(0) var<uniform> globals: Globals;
+
+fn srgb_from_linear(c: vec3<f32>) -> vec3<f32> {
+    let lo = c * 12.92;
+    let hi = 1.055 * pow(max(c, vec3<f32>(0.0)), vec3<f32>(1.0 / 2.4)) - 0.055;
+    return select(hi, lo, c <= vec3<f32>(0.0031308));
+}
 
 struct MeshIn {
     @location(0) position: vec3<f32>,
@@ -57,7 +64,8 @@ fn fs_mesh(v: MeshOut) -> @location(0) vec4<f32> {
     let half_vec = normalize(-globals.light_dir.xyz + to_eye);
     let spec = pow(max(dot(n, half_vec), 0.0), 32.0) * 0.25;
     let shade = 0.28 + 0.55 * key + 0.22 * fill;
-    return vec4<f32>(v.color.rgb * shade + vec3<f32>(spec), v.color.a);
+    let lit = min(v.color.rgb * shade + vec3<f32>(spec), vec3<f32>(1.0));
+    return vec4<f32>(srgb_from_linear(lit), v.color.a);
 }
 
 struct LineIn {
@@ -80,5 +88,5 @@ fn vs_line(v: LineIn) -> LineOut {
 
 @fragment
 fn fs_line(v: LineOut) -> @location(0) vec4<f32> {
-    return v.color;
+    return vec4<f32>(srgb_from_linear(v.color.rgb), v.color.a);
 }

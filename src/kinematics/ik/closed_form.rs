@@ -282,7 +282,8 @@ fn planar_2r(x: f64, y: f64, a1: f64, a2: f64, seed_a: f64, out: &mut Vec<Planar
             y.atan2(x) - ky.atan2(kx)
         };
         out.push((ta, tb, exact, singular));
-        if s == 0.0 {
+        if singular {
+            // The two elbows coincide (to 1e−7 rad): one solution.
             break;
         }
     }
