@@ -1,6 +1,9 @@
 //! Joint-angle bookkeeping (SPEC §2).
 // On wasm the tests are wasm_bindgen_tests, which clippy does not treat as tests.
-#![cfg_attr(target_arch = "wasm32", allow(clippy::unwrap_used, clippy::expect_used))]
+#![cfg_attr(
+    target_arch = "wasm32",
+    allow(clippy::unwrap_used, clippy::expect_used)
+)]
 
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
@@ -74,7 +77,18 @@ fn fast_sin_cos_agrees_with_the_library() {
     let mut worst: f64 = 0.0;
     let mut xs: Vec<f64> = (0..20000).map(|_| rng.uniform(-50.0, 50.0)).collect();
     xs.extend((0..2000).map(|_| rng.uniform(-1e5, 1e5)));
-    xs.extend([0.0, -0.0, PI, -PI, PI / 2.0, PI / 4.0, 3.0 * PI / 4.0, 1e-300, 2e6, f64::NAN]);
+    xs.extend([
+        0.0,
+        -0.0,
+        PI,
+        -PI,
+        PI / 2.0,
+        PI / 4.0,
+        3.0 * PI / 4.0,
+        1e-300,
+        2e6,
+        f64::NAN,
+    ]);
     for x in xs {
         let (s, c) = sin_cos(x);
         let (s0, c0) = x.sin_cos();

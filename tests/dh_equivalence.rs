@@ -1,6 +1,9 @@
 //! SPEC §1.2: the UR10's modified table and its standard-DH twin give the same T_06.
 // On wasm the tests are wasm_bindgen_tests, which clippy does not treat as tests.
-#![cfg_attr(target_arch = "wasm32", allow(clippy::unwrap_used, clippy::expect_used))]
+#![cfg_attr(
+    target_arch = "wasm32",
+    allow(clippy::unwrap_used, clippy::expect_used)
+)]
 
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;

@@ -1,7 +1,10 @@
 //! The geometric Jacobian against its central-difference check (SPEC §2), the measures,
 //! and velocity kinematics.
 // On wasm the tests are wasm_bindgen_tests, which clippy does not treat as tests.
-#![cfg_attr(target_arch = "wasm32", allow(clippy::unwrap_used, clippy::expect_used))]
+#![cfg_attr(
+    target_arch = "wasm32",
+    allow(clippy::unwrap_used, clippy::expect_used)
+)]
 
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;

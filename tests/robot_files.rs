@@ -1,7 +1,10 @@
 //! Robot files: every preset loads, saving and loading round-trips, and every kind of
 //! bad input gives its own typed error with a sentence naming the joint and the field.
 // On wasm the tests are wasm_bindgen_tests, which clippy does not treat as tests.
-#![cfg_attr(target_arch = "wasm32", allow(clippy::unwrap_used, clippy::expect_used))]
+#![cfg_attr(
+    target_arch = "wasm32",
+    allow(clippy::unwrap_used, clippy::expect_used)
+)]
 
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
@@ -47,6 +50,20 @@ fn every_preset_loads_and_round_trips_through_its_file_format() {
             );
         }
     }
+}
+
+#[test]
+fn the_metrover_carries_its_part_sizes_from_spec() {
+    let robot = armlab::kinematics::preset("metrover").unwrap();
+    assert_eq!(robot.parts.base, Some([600.0, 300.0, 340.0]));
+    assert_eq!(robot.parts.hand, Some([80.0, 80.0, 160.0]));
+    assert_eq!(robot.joints[1].parts.housing, Some([140.0, 140.0, 110.0]));
+    assert_eq!(robot.joints[1].parts.link, Some([480.0, 80.0, 80.0]));
+    assert_eq!(robot.joints[2].parts.housing, Some([80.0, 80.0, 110.0]));
+    assert_eq!(robot.joints[3].parts.link, Some([490.0, 80.0, 80.0]));
+    let again = robot_from_json(&robot_to_json(&robot)).unwrap();
+    assert_eq!(again.parts, robot.parts);
+    assert_eq!(again.joints[3].parts, robot.joints[3].parts);
 }
 
 #[test]
@@ -192,6 +209,11 @@ fn malformed_files_each_give_their_own_typed_error() {
         ("too many joints", robot_text("", &many_joints), |e| {
             matches!(e, RobotError::TooManyJoints { count: 65, max: 64 })
         }),
+        (
+            "negative part size",
+            robot_text(r#", "base_size": [600, -300, 340]"#, GOOD_JOINT),
+            |e| matches!(e, RobotError::NegativeSize { place: Place::Robot, field, .. } if field == "base_size"),
+        ),
         (
             "bad tool",
             robot_text(r#", "tool": { "xyz": [1, 2] }"#, GOOD_JOINT),

@@ -57,13 +57,14 @@ ensure_apt() {
 }
 
 # The release web build: small over fast (opt-level z, fat LTO, one codegen unit, abort on
-# panic, stripped), then wasm-opt -Oz through trunk (index.html's data-wasm-opt). Its own
+# panic), then wasm-opt -Oz through trunk (index.html's data-wasm-opt), which also strips
+# names (stripping in cargo would hide the wasm feature section from wasm-bindgen). Its own
 # target folder, so that these profile settings do not rebuild the JS API's release build.
 build_web() {
   say "building the page (trunk build --release)"
   (cd "$ROOT" && cargo fetch --target wasm32-unknown-unknown -q \
     && CARGO_TARGET_DIR="$ROOT/target/web" CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_PROFILE_RELEASE_PANIC=abort \
-       CARGO_PROFILE_RELEASE_STRIP=true CARGO_PROFILE_RELEASE_LTO=fat \
+       CARGO_PROFILE_RELEASE_LTO=fat \
        CARGO_PROFILE_RELEASE_CODEGEN_UNITS=1 \
        trunk build --release --offline "$@")
 }

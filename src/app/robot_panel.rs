@@ -119,6 +119,7 @@ impl DhEditor {
                 limits,
                 max_speed: old.and_then(|o| o.max_speed),
                 home,
+                parts: old.map(|o| o.parts).unwrap_or_default(),
             });
         }
         let robot = Robot {

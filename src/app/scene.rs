@@ -150,7 +150,10 @@ pub fn build(input: &SceneInput<'_>) -> (Scene, f64) {
 
     // Base: a block under frame 0 with its top at z = 0 of the base frame.
     let base = &robot.world_from_base;
-    let base_size = Vector3::new(reach * 0.22, reach * 0.22, reach * 0.06);
+    let base_size = robot.parts.base.map_or(
+        Vector3::new(reach * 0.22, reach * 0.22, reach * 0.06),
+        Vector3::from,
+    );
     let centre = base * Point3::new(0.0, 0.0, -base_size.z * 0.5);
     instances.push(instance(
         Shape::Box,
@@ -183,8 +186,39 @@ pub fn build(input: &SceneInput<'_>) -> (Scene, f64) {
                 o_prev + x_prev * (x_prev.dot(&(o - o_prev)))
             }
         };
-        instances.extend(segment(Shape::Cylinder, &o_prev, &corner, link_w, color));
-        instances.extend(segment(Shape::Cylinder, &corner, &o, link_w, color));
+        let (first, second) = ((o_prev, corner), (corner, o));
+        match joint.parts.link {
+            // A link of given size: a box along the longer DH offset, centred on it.
+            Some([l, w, h]) => {
+                let (long, short) = if (first.1 - first.0).norm() >= (second.1 - second.0).norm() {
+                    (first, second)
+                } else {
+                    (second, first)
+                };
+                let dir = long.1 - long.0;
+                if dir.norm() > 1e-9 {
+                    let mid = long.0 + dir * 0.5;
+                    instances.push(instance(
+                        Shape::Box,
+                        &mid,
+                        &rotation_to(&dir.normalize()),
+                        Vector3::new(w, h, l),
+                        color,
+                    ));
+                }
+                instances.extend(segment(Shape::Cylinder, &short.0, &short.1, link_w, color));
+            }
+            None => {
+                instances.extend(segment(Shape::Cylinder, &first.0, &first.1, link_w, color));
+                instances.extend(segment(
+                    Shape::Cylinder,
+                    &second.0,
+                    &second.1,
+                    link_w,
+                    color,
+                ));
+            }
+        }
         // The joint housing along its axis.
         let axis = fk.joint_axes[i];
         let at = Point3::from(fk.joint_origins[i]);
@@ -233,21 +267,29 @@ pub fn build(input: &SceneInput<'_>) -> (Scene, f64) {
         link_w * 0.8,
         LINK,
     ));
-    let finger_len = reach * 0.05;
+    // A U-shaped gripper around the tool point: a palm behind it and two fingers
+    // reaching past it (outer size from the robot file when given).
+    let [hand_l, hand_w, hand_h] =
+        robot
+            .parts
+            .hand
+            .unwrap_or([link_w * 0.9, reach * 0.065, reach * 0.1]);
+    let finger = hand_h * 0.5;
     let z = tool.rotation.matrix().column(2).into_owned();
     let y = tool.rotation.matrix().column(1).into_owned();
-    let palm = o_tool - z * finger_len;
+    let palm = o_tool - z * finger;
     instances.push(instance(
         Shape::Box,
         &palm,
         &tool.rotation,
-        Vector3::new(link_w * 0.9, finger_len * 1.3, link_w * 0.5),
+        Vector3::new(hand_l, hand_w, hand_h * 0.2),
         GRIPPER,
     ));
+    let thickness = hand_w * 0.18;
     for side in [-1.0, 1.0] {
-        let a = palm + y * (side * finger_len * 0.55);
-        let b = a + z * finger_len * 1.1;
-        instances.extend(segment(Shape::Box, &a, &b, link_w * 0.35, GRIPPER));
+        let a = palm + y * (side * (hand_w - thickness) * 0.5);
+        let b = a + z * (finger * 1.4);
+        instances.extend(segment(Shape::Box, &a, &b, thickness, GRIPPER));
     }
 
     // DH frames.

@@ -117,6 +117,16 @@ pub enum RobotError {
         /// The largest allowed magnitude.
         limit: f64,
     },
+    /// A drawn part's size below zero.
+    #[error("In {place}, the field \"{field}\" holds {value}: a size cannot be negative.")]
+    NegativeSize {
+        /// Where.
+        place: Place,
+        /// Which field.
+        field: String,
+        /// The value.
+        value: f64,
+    },
     /// A joint's lower limit is above its upper limit.
     #[error("Joint {joint}: the lower limit {min} is above the upper limit {max}.")]
     LimitsReversed {

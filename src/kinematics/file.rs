@@ -19,8 +19,8 @@ use serde_json::{Map, Value, json};
 use super::error::{Place, RobotError};
 use super::orientation::ZyxEuler;
 use super::robot::{
-    Convention, DhRow, Joint, JointKind, JointLimits, LengthUnit, MAX_JOINTS, Robot,
-    isometry_from_xyz_rpy,
+    Convention, DhRow, Joint, JointKind, JointLimits, LengthUnit, MAX_JOINTS, PartSizes, Robot,
+    RobotParts, isometry_from_xyz_rpy,
 };
 
 const ROBOT_FIELDS: &[&str] = &[
@@ -32,6 +32,8 @@ const ROBOT_FIELDS: &[&str] = &[
     "joints",
     "base",
     "tool",
+    "base_size",
+    "hand_size",
 ];
 const JOINT_FIELDS: &[&str] = &[
     "name",
@@ -46,6 +48,8 @@ const JOINT_FIELDS: &[&str] = &[
     "max",
     "home",
     "max_speed",
+    "housing_size",
+    "link_size",
 ];
 const TRANSFORM_FIELDS: &[&str] = &["xyz", "rpy_deg"];
 
@@ -96,6 +100,10 @@ pub fn robot_from_value(value: &Value) -> Result<Robot, RobotError> {
         .collect::<Result<Vec<_>, _>>()?;
     let world_from_base = transform_from_value(obj.get("base"), Place::Base)?;
     let flange_from_tool = transform_from_value(obj.get("tool"), Place::Tool)?;
+    let parts = RobotParts {
+        base: triple(obj, &place, "base_size")?,
+        hand: triple(obj, &place, "hand_size")?,
+    };
     Robot {
         name,
         description,
@@ -104,6 +112,7 @@ pub fn robot_from_value(value: &Value) -> Result<Robot, RobotError> {
         joints,
         world_from_base,
         flange_from_tool,
+        parts,
     }
     .validated()
 }
@@ -173,6 +182,10 @@ fn joint_from_value(n: usize, value: &Value) -> Result<Joint, RobotError> {
         }
     };
     let name = string(obj, &place, "name")?.unwrap_or_else(|| format!("joint {n}"));
+    let parts = PartSizes {
+        housing: triple(obj, &place, "housing_size")?,
+        link: triple(obj, &place, "link_size")?,
+    };
     Ok(Joint {
         name,
         kind,
@@ -180,6 +193,7 @@ fn joint_from_value(n: usize, value: &Value) -> Result<Joint, RobotError> {
         limits,
         max_speed,
         home,
+        parts,
     })
 }
 
@@ -241,6 +255,14 @@ pub fn robot_to_json(robot: &Robot) -> String {
                     }
                 }
             }
+            for (key, size) in [
+                ("housing_size", j.parts.housing),
+                ("link_size", j.parts.link),
+            ] {
+                if let Some(v) = size {
+                    obj.insert(key.into(), json!(v));
+                }
+            }
             Value::Object(obj)
         })
         .collect();
@@ -252,6 +274,14 @@ pub fn robot_to_json(robot: &Robot) -> String {
     }
     root.insert("convention".into(), json!(robot.convention.as_str()));
     root.insert("length_unit".into(), json!(robot.length_unit.symbol()));
+    for (key, size) in [
+        ("base_size", robot.parts.base),
+        ("hand_size", robot.parts.hand),
+    ] {
+        if let Some(v) = size {
+            root.insert(key.into(), json!(v));
+        }
+    }
     root.insert("joints".into(), Value::Array(joints));
     for (key, iso) in [
         ("base", &robot.world_from_base),

@@ -32,4 +32,6 @@ pub use jacobian::{
 pub use orientation::{AngleAxis, EulerParameters, Orientation, XyzFixed, ZyxEuler, rotation_log};
 pub use presets::{PRESETS, preset, preset_ids};
 pub use rng::SplitMix64;
-pub use robot::{Convention, DhRow, Joint, JointKind, JointLimits, LengthUnit, Robot};
+pub use robot::{
+    Convention, DhRow, Joint, JointKind, JointLimits, LengthUnit, PartSizes, Robot, RobotParts,
+};

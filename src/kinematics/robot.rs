@@ -127,6 +127,28 @@ impl JointLimits {
     }
 }
 
+/// Outer sizes (length × width × height, in the robot's unit) of drawn parts, when the
+/// robot file gives them (the Metrover does, SPEC §1.1). Pure data: the core never uses
+/// it; the renderer draws default proportions for what is `None`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PartSizes {
+    /// The joint's housing: a cylinder of diameter max(length, width) and height `height`
+    /// along the joint axis.
+    pub housing: Option<[f64; 3]>,
+    /// The link that this row's longer DH offset draws (a along x, or d along z): a box
+    /// `length` long with a `width` × `height` cross-section, centred on that offset.
+    pub link: Option<[f64; 3]>,
+}
+
+/// Outer sizes of the base block and the hand, when the robot file gives them.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RobotParts {
+    /// A block under DH frame 0 with its top at z = 0.
+    pub base: Option<[f64; 3]>,
+    /// The gripper around the tool point (width across the fingers, height along them).
+    pub hand: Option<[f64; 3]>,
+}
+
 /// One joint: its DH row in the robot's convention, its type, limits and name.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Joint {
@@ -142,6 +164,8 @@ pub struct Joint {
     pub max_speed: Option<f64>,
     /// The home value of the joint variable.
     pub home: f64,
+    /// Sizes of its drawn parts, if given.
+    pub parts: PartSizes,
 }
 
 impl Joint {
@@ -192,6 +216,8 @@ pub struct Robot {
     pub world_from_base: IsometryMatrix3<f64>,
     /// The tool frame relative to the last DH frame (identity when the tool is frame n).
     pub flange_from_tool: IsometryMatrix3<f64>,
+    /// Sizes of the base block and the hand, if given.
+    pub parts: RobotParts,
 }
 
 impl Robot {
@@ -255,6 +281,11 @@ impl Robot {
             check_value(&place, "min", joint.limits.min * lim_scale, lim_max)?;
             check_value(&place, "max", joint.limits.max * lim_scale, lim_max)?;
             check_value(&place, "home", joint.home * lim_scale, lim_max)?;
+            for (field, size) in [("housing", joint.parts.housing), ("link", joint.parts.link)] {
+                for v in size.iter().flatten() {
+                    check_size(&place, field, *v)?;
+                }
+            }
             if let Some(speed) = joint.max_speed {
                 check_value(&place, "max_speed", speed * lim_scale, MAX_LENGTH)?;
             }
@@ -264,6 +295,14 @@ impl Robot {
                     min: joint.limits.min * lim_scale,
                     max: joint.limits.max * lim_scale,
                 });
+            }
+        }
+        for (field, size) in [
+            ("base_size", self.parts.base),
+            ("hand_size", self.parts.hand),
+        ] {
+            for v in size.iter().flatten() {
+                check_size(&Place::Robot, field, *v)?;
             }
         }
         for (place, iso) in [
@@ -325,6 +364,19 @@ pub(crate) fn check_value(
             field: field.to_string(),
             value,
             limit,
+        });
+    }
+    Ok(())
+}
+
+/// A part size must be a finite, non-negative length.
+fn check_size(place: &Place, field: &str, value: f64) -> Result<(), RobotError> {
+    check_value(place, field, value, MAX_LENGTH)?;
+    if value < 0.0 {
+        return Err(RobotError::NegativeSize {
+            place: place.clone(),
+            field: field.to_string(),
+            value,
         });
     }
     Ok(())

@@ -1,6 +1,9 @@
 //! Helpers shared by the core's test files (native and wasm).
 // On wasm the tests are wasm_bindgen_tests, which clippy does not treat as tests.
-#![cfg_attr(target_arch = "wasm32", allow(clippy::unwrap_used, clippy::expect_used))]
+#![cfg_attr(
+    target_arch = "wasm32",
+    allow(clippy::unwrap_used, clippy::expect_used)
+)]
 #![allow(dead_code)]
 
 use armlab::kinematics::{Robot, SplitMix64, preset, preset_ids};
