@@ -209,7 +209,10 @@ fn ur10_snapshot_on_the_software_vulkan_adapter() {
 fn metrover_snapshot_with_its_part_sizes() {
     let mut h = harness("#robot=metrover&q=0.5,0.9,0.6,0.3,0.2&task=position");
     h.run_steps(2);
-    assert_eq!(h.state().session.robot.parts.base, Some([600.0, 300.0, 340.0]));
+    assert_eq!(
+        h.state().session.robot.parts.base,
+        Some([600.0, 300.0, 340.0])
+    );
     assert!(h.state().viewport.rendered);
     h.snapshot("metrover");
 }

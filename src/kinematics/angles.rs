@@ -72,33 +72,31 @@ pub fn nearest_equivalent_within(value: f64, current: f64, limits: &JointLimits)
 #[inline]
 pub fn sin_cos(x: f64) -> (f64, f64) {
     const TWO_OVER_PI: f64 = std::f64::consts::FRAC_2_PI;
-    const PIO2_1: f64 = 1.570_796_326_734_125_614_17; // first 33 bits of π/2
-    const PIO2_2: f64 = 6.077_100_506_303_965_976_60e-11; // next 33 bits
-    const PIO2_3: f64 = 2.022_266_248_795_950_631_54e-21; // the rest
-    if !(x.abs() < 1e6) {
-        return x.sin_cos(); // huge or not finite: the library handles it
+    const PIO2_1: f64 = 1.5707963267341256; // first 33 bits of π/2
+    const PIO2_2: f64 = 6.077100506303966e-11; // next 33 bits
+    const PIO2_3: f64 = 2.0222662487959506e-21; // the rest
+    if x.is_nan() || x.abs() >= 1e6 {
+        return x.sin_cos(); // huge, infinite or NaN: the library handles it
     }
     // Round to nearest by adding and removing 1.5·2⁵² (no library call, unlike `round`).
-    const ROUNDER: f64 = 6_755_399_441_055_744.0;
+    const ROUNDER: f64 = 6755399441055744.0;
     let k = (x * TWO_OVER_PI + ROUNDER) - ROUNDER;
     let r = ((x - k * PIO2_1) - k * PIO2_2) - k * PIO2_3;
     let z = r * r;
     let s = r + r
         * z
-        * (-1.666_666_666_666_663_243_48e-1
-            + z * (8.333_333_333_322_489_461_24e-3
-                + z * (-1.984_126_982_985_794_931_34e-4
-                    + z * (2.755_731_370_707_006_767_89e-6
-                        + z * (-2.505_076_025_340_686_341_95e-8
-                            + z * 1.589_690_995_211_550_102_21e-10)))));
+        * (-0.16666666666666632
+            + z * (0.00833333333332249
+                + z * (-0.0001984126982985795
+                    + z * (2.7557313707070068e-6
+                        + z * (-2.5050760253406863e-8 + z * 1.58969099521155e-10)))));
     let c = 1.0 - 0.5 * z
         + z * z
-            * (4.166_666_666_666_660_190_37e-2
-                + z * (-1.388_888_888_887_410_957_49e-3
-                    + z * (2.480_158_728_947_672_941_78e-5
-                        + z * (-2.755_731_435_139_066_330_35e-7
-                            + z * (2.087_572_321_298_174_827_90e-9
-                                + z * -1.135_964_755_778_819_482_65e-11)))));
+            * (0.0416666666666666
+                + z * (-0.001388888888887411
+                    + z * (2.480158728947673e-5
+                        + z * (-2.7557314351390663e-7
+                            + z * (2.087572321298175e-9 + z * -1.1359647557788195e-11)))));
     match (k as i64).rem_euclid(4) {
         0 => (s, c),
         1 => (c, -s),
