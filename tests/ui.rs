@@ -1,6 +1,7 @@
 //! UI tests of the app through egui_kittest (native only, `app` feature): what a person
 //! sees and does. The harness renders with wgpu on the machine's Vulkan adapter (lavapipe
 //! here), so the 3D viewport runs its real pipeline.
+#![cfg(not(target_arch = "wasm32"))]
 
 use egui::accesskit::Role;
 use egui_kittest::Harness;

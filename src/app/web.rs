@@ -10,9 +10,20 @@ use super::ArmLabApp;
 
 const STORAGE_KEY: &str = "armlab.session";
 
+/// What `window.armlab` reads, written each frame.
+struct Published {
+    /// `state()`'s JSON.
+    state: String,
+    /// Named screen points in egui points.
+    points: Vec<(String, [f32; 2])>,
+    /// CSS pixels per egui point.
+    css_per_point: f32,
+}
+
 thread_local! {
-    /// What `window.armlab` reads: the state JSON and the screen points, written each frame.
-    static HOOK: RefCell<(String, Vec<(String, [f32; 2])>, f32)> = const { RefCell::new((String::new(), Vec::new(), 1.0)) };
+    static HOOK: RefCell<Published> = const {
+        RefCell::new(Published { state: String::new(), points: Vec::new(), css_per_point: 1.0 })
+    };
     /// Recent frame times for `window.armlab.frameTimes()`.
     static FRAMES: RefCell<Vec<f64>> = const { RefCell::new(Vec::new()) };
     /// Text of a file the user picked, waiting for the next frame.
@@ -134,7 +145,13 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
     // egui points to CSS pixels: the canvas fills the page from (0, 0).
     let css_per_point = ctx.pixels_per_point() / ctx.native_pixels_per_point().unwrap_or(1.0);
     let state = app.state_json();
-    HOOK.with(|h| *h.borrow_mut() = (state, app.viewport.points.clone(), css_per_point));
+    HOOK.with(|h| {
+        *h.borrow_mut() = Published {
+            state,
+            points: app.viewport.points.clone(),
+            css_per_point,
+        }
+    });
     FIRST_FRAME.with(|f| {
         if f.borrow().is_none() && app.viewport.rendered {
             *f.borrow_mut() = Some(super::hook::now_ms());
@@ -153,15 +170,16 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
 
 fn install_hook(window: &web_sys::Window) {
     let obj = js_sys::Object::new();
-    let state = Closure::<dyn Fn() -> String>::new(|| HOOK.with(|h| h.borrow().0.clone()));
+    let state = Closure::<dyn Fn() -> String>::new(|| HOOK.with(|h| h.borrow().state.clone()));
     let point = Closure::<dyn Fn(String) -> JsValue>::new(|name: String| {
         HOOK.with(|h| {
             let h = h.borrow();
-            match h.1.iter().find(|(n, _)| *n == name) {
+            match h.points.iter().find(|(n, _)| *n == name) {
                 Some((_, p)) => {
                     let o = js_sys::Object::new();
-                    let _ = js_sys::Reflect::set(&o, &"x".into(), &((p[0] * h.2) as f64).into());
-                    let _ = js_sys::Reflect::set(&o, &"y".into(), &((p[1] * h.2) as f64).into());
+                    let k = h.css_per_point;
+                    let _ = js_sys::Reflect::set(&o, &"x".into(), &((p[0] * k) as f64).into());
+                    let _ = js_sys::Reflect::set(&o, &"y".into(), &((p[1] * k) as f64).into());
                     o.into()
                 }
                 None => JsValue::NULL,
