@@ -125,8 +125,14 @@ fn targets(robot: &Robot, config: &BenchConfig) -> Vec<IsometryMatrix3<f64>> {
         .collect()
 }
 
-/// Cold numeric solves from the midpoint of the limits.
-fn cold_row(robot_id: &str, config: &BenchConfig, now: &dyn Fn() -> f64) -> Option<Value> {
+/// Solves every protocol target from the midpoint of the limits with `method`, timing each
+/// call and verifying each answer with a separate FK; also returns the restarts used.
+fn solve_stats(
+    robot_id: &str,
+    method: IkMethod,
+    config: &BenchConfig,
+    now: &dyn Fn() -> f64,
+) -> Option<(Stats, usize)> {
     let robot = preset(robot_id).ok()?;
     let seed = robot.mid_limits();
     let settings = settings(config);
@@ -135,14 +141,7 @@ fn cold_row(robot_id: &str, config: &BenchConfig, now: &dyn Fn() -> f64) -> Opti
     let mut restarts = 0usize;
     for target in targets(&robot, config) {
         let t0 = now();
-        let r = solver.solve(
-            &robot,
-            &target,
-            Task::FullPose,
-            &seed,
-            IkMethod::DampedLeastSquares,
-            &settings,
-        );
+        let r = solver.solve(&robot, &target, Task::FullPose, &seed, method, &settings);
         let t1 = now();
         let r = r.ok()?;
         stats.times.push(t1 - t0);
@@ -152,6 +151,12 @@ fn cold_row(robot_id: &str, config: &BenchConfig, now: &dyn Fn() -> f64) -> Opti
             stats.successes += 1;
         }
     }
+    Some((stats, restarts))
+}
+
+/// Cold numeric solves from the midpoint of the limits.
+fn cold_row(robot_id: &str, config: &BenchConfig, now: &dyn Fn() -> f64) -> Option<Value> {
+    let (mut stats, restarts) = solve_stats(robot_id, IkMethod::DampedLeastSquares, config, now)?;
     stats.extra.push((
         "restarts_mean",
         json!(restarts as f64 / config.samples.max(1) as f64),
@@ -209,29 +214,7 @@ fn closed_form_row(robot_id: &str, config: &BenchConfig, now: &dyn Fn() -> f64) 
 
 /// The hybrid: the closed-form branch nearest the seed through the solver interface.
 fn hybrid_row(robot_id: &str, config: &BenchConfig, now: &dyn Fn() -> f64) -> Option<Value> {
-    let robot = preset(robot_id).ok()?;
-    let seed = robot.mid_limits();
-    let settings = settings(config);
-    let mut solver = IkSolver::new();
-    let mut stats = Stats::default();
-    for target in targets(&robot, config) {
-        let t0 = now();
-        let r = solver.solve(
-            &robot,
-            &target,
-            Task::FullPose,
-            &seed,
-            IkMethod::ClosedForm,
-            &settings,
-        );
-        let t1 = now();
-        let r = r.ok()?;
-        stats.times.push(t1 - t0);
-        stats.iterations.push(r.iterations as f64);
-        if verified(&robot, &r.q, &target) {
-            stats.successes += 1;
-        }
-    }
+    let (mut stats, _) = solve_stats(robot_id, IkMethod::ClosedForm, config, now)?;
     Some(stats.json(
         &format!("{robot_id} closed form, branch nearest the seed"),
         robot_id,
