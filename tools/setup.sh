@@ -5,6 +5,10 @@
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 export PATH="$HOME/.cargo/bin:$ROOT/web/node_modules/.bin:$PATH"
 TRUNK_VERSION="0.21.14"
+# Build output outside the clone, so that CI's fresh clones on a warm machine reuse
+# compiled dependencies (a brand-new machine starts cold either way).
+export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$HOME/.cache/armlab/target}"
+mkdir -p "$CARGO_TARGET_DIR"
 
 say() { printf '\n\033[1m== %s\033[0m\n' "$*"; }
 
@@ -63,7 +67,7 @@ ensure_apt() {
 build_web() {
   say "building the page (trunk build --release)"
   (cd "$ROOT" && cargo fetch --target wasm32-unknown-unknown -q \
-    && CARGO_TARGET_DIR="$ROOT/target/web" CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_PROFILE_RELEASE_PANIC=abort \
+    && CARGO_TARGET_DIR="$CARGO_TARGET_DIR/web" CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_PROFILE_RELEASE_PANIC=abort \
        CARGO_PROFILE_RELEASE_LTO=fat \
        CARGO_PROFILE_RELEASE_CODEGEN_UNITS=1 \
        trunk build --release --offline "$@")

@@ -64,7 +64,9 @@ add ui
 
 say "the JS API in Node"
 cargo rustc --lib --crate-type cdylib --release --target wasm32-unknown-unknown --no-default-features --features js
-wasm-bindgen --target nodejs --out-dir target/armlab-node target/wasm32-unknown-unknown/release/armlab.wasm
+wasm-bindgen --target nodejs --out-dir "$CARGO_TARGET_DIR/armlab-node" \
+  "$CARGO_TARGET_DIR/wasm32-unknown-unknown/release/armlab.wasm"
+export ARMLAB_NODE_PKG="$CARGO_TARGET_DIR/armlab-node/armlab.js"
 run js-api node --test web/api.test.mjs
 add js-api
 
