@@ -51,3 +51,15 @@ test('bad requests throw an Error with the core sentence', () => {
   assert.throws(() => armlab.fk(JSON.stringify({ robot: 'r2d2' })), /There is no robot called "r2d2"/);
   assert.throws(() => armlab.fk('{'), /Bad request/);
 });
+
+test('ik reaches a position target with the tool and reports the run', () => {
+  const out = JSON.parse(armlab.ik(JSON.stringify({
+    robot: 'ur10', q: [0, -1, 1, -1, -1, 0],
+    target: { position: [800, -200, 400] }, task: 'position', method: 'dls',
+  })));
+  assert.equal(out.success, true);
+  assert.ok(out.position_error < 1e-3, `${out.position_error} mm`);
+  const [x, y, z] = [out.tool[0][3], out.tool[1][3], out.tool[2][3]];
+  assert.ok(Math.hypot(x - 800, y + 200, z - 400) < 1e-3);
+  assert.equal(out.q.length, 6);
+});
