@@ -305,8 +305,8 @@ impl ArmLabApp {
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE.fill(style::background(self.settings.presentation)))
             .show(ui, |ui| {
-                let renderer = self.renderer.take();
-                let mut renderer = renderer;
+                // Lent to the viewport for the frame (it also borrows the app).
+                let mut renderer = self.renderer.take();
                 viewport::show(self, ui, render_state, renderer.as_mut());
                 self.renderer = renderer;
             });

@@ -378,16 +378,12 @@ fn dh_table(app: &mut ArmLabApp, ui: &mut egui::Ui) {
             }
         }
     }
-    if editor_is_empty(&app.editor) {
+    if app.editor.rows.is_empty() {
         ui.colored_label(
             style::ERROR,
             "The robot has no joints: a chain needs at least one.",
         );
     }
-}
-
-fn editor_is_empty(editor: &DhEditor) -> bool {
-    editor.rows.is_empty()
 }
 
 /// Saves a text file: a download in the browser, a file in the working folder natively.
