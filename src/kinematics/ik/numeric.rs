@@ -243,17 +243,7 @@ impl Workspace {
         if settings.record_trace {
             self.fk.update(robot, &self.q);
             let ev = evaluate(&ctx.tt, &self.fk.base_from_tool, inv_len);
-            trace.push(IkStep {
-                q: self.q.clone(),
-                raw_q: seed.to_vec(),
-                error: ev.e.norm(),
-                position_error: ev.position_error,
-                orientation_error: ev.orientation_error,
-                step: 0.0,
-                damping: 0.0,
-                accepted: true,
-                restart: false,
-            });
+            trace.push(start_step(&self.q, seed, &ev, false));
         }
         let record = settings.record_trace.then_some(&mut trace);
         let mut record = record;
@@ -297,17 +287,7 @@ impl Workspace {
             if let Some(t) = record.as_deref_mut() {
                 self.fk.update(robot, &self.q);
                 let ev = evaluate(&ctx.tt, &self.fk.base_from_tool, inv_len);
-                t.push(IkStep {
-                    q: self.q.clone(),
-                    raw_q: self.q.clone(),
-                    error: ev.e.norm(),
-                    position_error: ev.position_error,
-                    orientation_error: ev.orientation_error,
-                    step: 0.0,
-                    damping: 0.0,
-                    accepted: true,
-                    restart: true,
-                });
+                t.push(start_step(&self.q, &self.q, &ev, true));
             }
         }
         let (converged, _, stationary, position_error, orientation_error) =
@@ -576,4 +556,19 @@ fn pinv_times(m: &Matrix6<f64>, e: &Vector6<f64>) -> Vector6<f64> {
         }
     }
     y
+}
+
+/// The trace entry of an attempt's start point (from the seed, or a restart).
+fn start_step(q: &[f64], raw_q: &[f64], ev: &Eval, restart: bool) -> IkStep {
+    IkStep {
+        q: q.to_vec(),
+        raw_q: raw_q.to_vec(),
+        error: ev.e.norm(),
+        position_error: ev.position_error,
+        orientation_error: ev.orientation_error,
+        step: 0.0,
+        damping: 0.0,
+        accepted: true,
+        restart,
+    }
 }
