@@ -65,7 +65,11 @@ fn clean(v: f64, decimals: usize) -> f64 {
     if (v * scale).round() == 0.0 { 0.0 } else { v }
 }
 
-/// A matrix as a grid with copy buttons; returns true when the header is hovered.
+/// A matrix with copy buttons; returns true when it is hovered.
+///
+/// The numbers are one monospace text (columns right-aligned, as "Text" copies them).
+/// Blocks scrolled out of sight keep their last size without laying out their numbers:
+/// while an arm moves every number changes each frame, and text layout is the panel's cost.
 fn matrix_block(
     ui: &mut egui::Ui,
     title: &str,
@@ -84,17 +88,16 @@ fn matrix_block(
         let header = ui.horizontal(|ui| {
             let title = ui.strong(title).on_hover_text(hover);
             ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                for (label, text) in [
-                    ("NumPy", to_numpy(m, decimals)),
-                    ("LaTeX", to_latex(m, decimals)),
-                    ("Text", to_plain(m, decimals)),
-                ] {
+                type Format = fn(&DMatrix<f64>, usize) -> String;
+                let formats: [(&str, Format); 3] =
+                    [("NumPy", to_numpy), ("LaTeX", to_latex), ("Text", to_plain)];
+                for (label, format) in formats {
                     if ui
                         .small_button(label)
                         .on_hover_text(format!("Copy as {label}"))
                         .clicked()
                     {
-                        ui.ctx().copy_text(text);
+                        ui.ctx().copy_text(format(m, decimals));
                     }
                 }
                 ui.label("copy:");
@@ -102,16 +105,19 @@ fn matrix_block(
             title.hovered()
         });
         hovered |= header.inner || header.response.hovered();
-        let grid = egui::Grid::new(title).spacing([10.0, 2.0]).show(ui, |ui| {
-            for r in 0..m.nrows() {
-                for c in 0..m.ncols() {
-                    let v = clean(m[(r, c)], decimals);
-                    ui.monospace(format!("{v:.decimals$}"));
-                }
-                ui.end_row();
-            }
-        });
-        hovered |= grid.response.hovered();
+        let id = ui.make_persistent_id(("matrix body", title));
+        let known: Option<egui::Vec2> = ui.data(|d| d.get_temp(id));
+        let out_of_sight = known
+            .filter(|size| !ui.is_rect_visible(egui::Rect::from_min_size(ui.cursor().min, *size)));
+        let body = match out_of_sight {
+            Some(size) => ui.allocate_exact_size(size, egui::Sense::hover()).1,
+            None => ui.add(
+                egui::Label::new(egui::RichText::new(to_plain(m, decimals)).monospace())
+                    .wrap_mode(egui::TextWrapMode::Extend),
+            ),
+        };
+        ui.data_mut(|d| d.insert_temp(id, body.rect.size()));
+        hovered |= body.hovered();
     });
     hovered
 }

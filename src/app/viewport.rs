@@ -11,7 +11,7 @@ use crate::kinematics::Task;
 use crate::render::SceneRenderer;
 
 use super::scene::{self, MarkerLook, handle_px};
-use super::{ArmLabApp, ik_panel, style};
+use super::{ArmLabApp, hook, ik_panel, style};
 
 /// A grabbable part of the target marker.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -328,7 +328,9 @@ pub fn show(
     if app.viewport.dragging() {
         // Every frame of the drag, including frames where the pointer rests: the arm
         // keeps converging (each call moves each joint by at most the per-call limit).
+        let t0 = hook::now_ms();
         ik_panel::drag_solve(app);
+        app.timing.ik_ms += hook::now_ms() - t0;
         if !app.ik.reached && !app.ik.unreachable {
             ui.ctx().request_repaint();
         }
@@ -377,6 +379,7 @@ pub fn show(
             (rect.width() * ppp).round() as u32,
             (rect.height() * ppp).round() as u32,
         ];
+        let t0 = hook::now_ms();
         let (scene, step) = scene::build(&scene::SceneInput {
             robot: &app.session.robot,
             fk: &app.fk,
@@ -389,7 +392,10 @@ pub fn show(
             background: [bg.r(), bg.g(), bg.b()],
         });
         app.viewport.grid_step = step;
+        let t1 = hook::now_ms();
         let texture = r.render(rs, px_size, &scene);
+        app.timing.scene_ms += t1 - t0;
+        app.timing.render_ms += hook::now_ms() - t1;
         painter.image(
             texture,
             rect,

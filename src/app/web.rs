@@ -25,13 +25,17 @@ thread_local! {
         RefCell::new(Published { state: String::new(), points: Vec::new(), css_per_point: 1.0 })
     };
     /// Recent frame times for `window.armlab.frameTimes()`.
-    static FRAMES: RefCell<Vec<f64>> = const { RefCell::new(Vec::new()) };
+    static FRAMES: RefCell<Vec<super::FrameTime>> = const { RefCell::new(Vec::new()) };
     /// Text of a file the user picked, waiting for the next frame.
     static UPLOAD: RefCell<Option<String>> = const { RefCell::new(None) };
     /// A hash the page asked the app to open (back/forward, `window.armlab.open`).
     static PENDING_HASH: RefCell<Option<String>> = const { RefCell::new(None) };
     /// The egui context, to wake the app when something arrives from the page.
     static CTX: RefCell<Option<egui::Context>> = const { RefCell::new(None) };
+    /// The hash last written to the address bar and localStorage, and when.
+    static STORED: RefCell<(String, f64)> = const { RefCell::new((String::new(), f64::NEG_INFINITY)) };
+    /// A changed hash waiting for its turn to be written.
+    static PENDING_STORE: RefCell<Option<String>> = const { RefCell::new(None) };
     /// `performance.now()` at the first drawn frame.
     static FIRST_FRAME: RefCell<Option<f64>> = const { RefCell::new(None) };
 }
@@ -118,8 +122,40 @@ pub fn start() {
     });
 }
 
-/// Writes the hash into the address bar (without a history entry) and localStorage.
-pub fn store_hash(hash: &str) {
+/// Writes the link hash into the address bar (without a history entry) and localStorage
+/// when it has changed: not while a pointer is held, and at most four times a second.
+///
+/// A drag changes the hash every frame, and `history.replaceState` and localStorage are
+/// synchronous calls that took 5–20 ms each in Chromium here; writing every frame of a
+/// drag was most of the frame time. The release writes the final state; a change made
+/// within the quarter second waits for a frame requested for then, and leaving the page
+/// (`pagehide`) writes whatever is still waiting.
+pub fn store_hash(app: &ArmLabApp, ctx: &egui::Context) {
+    const INTERVAL_MS: f64 = 250.0;
+    if ctx.input(|i| i.pointer.any_down()) {
+        return;
+    }
+    let hash = app.hash();
+    let now = super::hook::now_ms();
+    let wait = STORED.with(|s| {
+        let s = s.borrow();
+        (s.0 != hash).then_some(INTERVAL_MS - (now - s.1))
+    });
+    match wait {
+        None => PENDING_STORE.with(|p| *p.borrow_mut() = None),
+        Some(ms) if ms > 0.0 => {
+            PENDING_STORE.with(|p| *p.borrow_mut() = Some(hash));
+            ctx.request_repaint_after(std::time::Duration::from_secs_f64(ms / 1e3));
+        }
+        Some(_) => {
+            write_hash(&hash);
+            PENDING_STORE.with(|p| *p.borrow_mut() = None);
+            STORED.with(|s| *s.borrow_mut() = (hash, now));
+        }
+    }
+}
+
+fn write_hash(hash: &str) {
     let Some(window) = web_sys::window() else {
         return;
     };
@@ -157,13 +193,13 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
             *f.borrow_mut() = Some(super::hook::now_ms());
         }
     });
-    if let Some(ms) = app.frame_ms.back().copied() {
+    if let Some(t) = app.frame_ms.back().copied() {
         FRAMES.with(|f| {
             let mut f = f.borrow_mut();
             if f.len() >= 5000 {
                 f.remove(0);
             }
-            f.push(ms);
+            f.push(t);
         });
     }
 }
@@ -186,8 +222,23 @@ fn install_hook(window: &web_sys::Window) {
             }
         })
     });
-    let frames = Closure::<dyn Fn() -> Vec<f64>>::new(|| {
-        FRAMES.with(|f| std::mem::take(&mut *f.borrow_mut()))
+    let frames = Closure::<dyn Fn() -> js_sys::Array>::new(|| {
+        let taken = FRAMES.with(|f| std::mem::take(&mut *f.borrow_mut()));
+        taken
+            .iter()
+            .map(|t| {
+                let o = js_sys::Object::new();
+                for (key, ms) in [
+                    ("app", t.app_ms),
+                    ("ik", t.ik_ms),
+                    ("scene", t.scene_ms),
+                    ("render", t.render_ms),
+                ] {
+                    let _ = js_sys::Reflect::set(&o, &key.into(), &ms.into());
+                }
+                JsValue::from(o)
+            })
+            .collect()
     });
     let open = Closure::<dyn Fn(String)>::new(|hash: String| {
         PENDING_HASH.with(|p| *p.borrow_mut() = Some(hash));
@@ -204,6 +255,8 @@ fn install_hook(window: &web_sys::Window) {
     let _ = js_sys::Reflect::set(window, &"armlab".into(), &obj);
 }
 
+/// Opens links the page navigates to (back/forward, an edited address) and writes a
+/// waiting hash when the page is left.
 fn install_hashchange(window: &web_sys::Window) {
     let on_change = Closure::<dyn Fn()>::new(|| {
         if let Some(hash) = web_sys::window().and_then(|w| w.location().hash().ok()) {
@@ -214,6 +267,13 @@ fn install_hashchange(window: &web_sys::Window) {
     let _ =
         window.add_event_listener_with_callback("hashchange", on_change.as_ref().unchecked_ref());
     on_change.forget();
+    let on_leave = Closure::<dyn Fn()>::new(|| {
+        if let Some(hash) = PENDING_STORE.with(|p| p.borrow_mut().take()) {
+            write_hash(&hash);
+        }
+    });
+    let _ = window.add_event_listener_with_callback("pagehide", on_leave.as_ref().unchecked_ref());
+    on_leave.forget();
 }
 
 /// Offers `text` as a download named `name`.
