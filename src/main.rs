@@ -10,11 +10,22 @@ fn main() -> eframe::Result {
         ..Default::default()
     };
     // A hash on the command line opens that state, like a shared link: `armlab '#robot=ur10'`.
-    let hash = std::env::args().nth(1).unwrap_or_default();
+    // Without one, the last session returns (written when the window closes).
+    let session_file = armlab::app::session::native_session_file();
+    let hash = std::env::args().nth(1).unwrap_or_else(|| {
+        session_file
+            .as_ref()
+            .and_then(|path| std::fs::read_to_string(path).ok())
+            .unwrap_or_default()
+    });
     eframe::run_native(
         "ArmLab",
         options,
-        Box::new(move |cc| Ok(Box::new(armlab::app::ArmLabApp::new(cc, &hash)))),
+        Box::new(move |cc| {
+            let mut app = armlab::app::ArmLabApp::new(cc, &hash);
+            app.session_file = session_file;
+            Ok(Box::new(app))
+        }),
     )
 }
 

@@ -32,7 +32,7 @@ fn moving_a_slider_changes_q_and_the_tool_pose_numbers() {
     let before_x = tool_x(&h);
     let shown = format!("{:.3}", before_x);
     assert!(
-        h.query_all_by_label(&shown).count() >= 1,
+        h.query_all_by_label_contains(&shown).count() >= 1,
         "T_0n shows x = {shown}"
     );
     // Focus the θ1 slider and press the right arrow a few times.
@@ -54,7 +54,7 @@ fn moving_a_slider_changes_q_and_the_tool_pose_numbers() {
     assert!((after_x - before_x).abs() > 1e-3);
     let shown_after = format!("{:.3}", after_x);
     assert!(
-        h.query_all_by_label(&shown_after).count() >= 1,
+        h.query_all_by_label_contains(&shown_after).count() >= 1,
         "T_0n now shows x = {shown_after}"
     );
 }
@@ -216,4 +216,51 @@ fn metrover_snapshot_with_its_part_sizes() {
     );
     assert!(h.state().viewport.rendered);
     h.snapshot("metrover");
+}
+
+#[test]
+fn the_native_file_dialog_saves_and_opens_a_robot_file() {
+    use armlab::app::files::{FileDialog, Mode};
+    let dir = std::env::temp_dir().join(format!("armlab-ui-files-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp folder");
+    let mut h = harness("#robot=scara");
+    h.state_mut().file_dialog = Some(FileDialog::new(Mode::Save, "my scara", dir.clone()));
+    h.run_steps(2);
+    h.get_by_label("Save").click();
+    h.run_steps(2);
+    let saved = dir.join("my scara.json");
+    let text = std::fs::read_to_string(&saved).expect("the dialog wrote the file");
+    let robot = armlab::kinematics::robot_from_json(&text).expect("a valid robot file");
+    assert_eq!(robot.name, h.state().session.robot.name);
+    assert!(h.state().file_dialog.is_none(), "the dialog closed");
+
+    // Open it again from another robot: pick the file in the listing, then Open.
+    let mut h = harness("#robot=ur10");
+    h.state_mut().file_dialog = Some(FileDialog::new(Mode::Open, "", dir.clone()));
+    h.run_steps(2);
+    h.get_by_label("my scara.json").click();
+    h.run_steps(2);
+    h.get_by_label("Open").click();
+    h.run_steps(2);
+    assert_eq!(h.state().session.robot.name, robot.name);
+    assert_eq!(h.state().session.robot.dof(), robot.dof());
+    std::fs::remove_dir_all(&dir).expect("clean up");
+}
+
+#[test]
+fn the_native_app_keeps_its_session_when_it_closes() {
+    let file =
+        std::env::temp_dir().join(format!("armlab-ui-session-{}/session", std::process::id()));
+    let mut h = harness("#robot=puma560&q=0.1,0.2,0.3,0.4,0.5,0.6");
+    h.state_mut().session_file = Some(file.clone());
+    eframe::App::on_exit(h.state_mut());
+    let hash = std::fs::read_to_string(&file).expect("the session was written");
+    let reopened = armlab::app::session::Session::from_hash(&hash)
+        .expect("a valid hash")
+        .expect("a non-empty hash");
+    assert_eq!(reopened.robot.name, "Puma 560");
+    assert_eq!(reopened.q, h.state().session.q);
+    if let Some(dir) = file.parent() {
+        std::fs::remove_dir_all(dir).expect("clean up");
+    }
 }

@@ -59,7 +59,7 @@ if [ "$native" -eq 0 ] || [ "$native" != "$wasm" ]; then
 fi
 add core-native; add core-doc; add core-wasm
 
-run ui cargo test --test ui
+run ui cargo test --lib --test ui
 add ui
 
 say "the JS API in Node"

@@ -3,6 +3,8 @@
 //! change `q`, the robot or the target → the core recomputes FK, the Jacobian and IK → the
 //! viewport builds a [`crate::render::Scene`] and the panels show the matrices.
 
+#[cfg(not(target_arch = "wasm32"))]
+pub mod files;
 pub mod hook;
 pub mod ik_panel;
 pub mod joints;
@@ -61,6 +63,21 @@ pub struct IkStatus {
     pub iterations: usize,
 }
 
+/// Main-thread milliseconds of one frame of the app, in parts.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct FrameTime {
+    /// The app's own work: egui layout of every panel, scene preparation and IK; all of
+    /// the frame except `render_ms`.
+    pub app_ms: f64,
+    /// Of `app_ms`: the IK step of a drag.
+    pub ik_ms: f64,
+    /// Of `app_ms`: building the scene (instances, lines, camera).
+    pub scene_ms: f64,
+    /// Encoding and submitting the 3D view's draw calls to wgpu (GPU work issued from the
+    /// main thread: on WebGL2 these are the GL calls).
+    pub render_ms: f64,
+}
+
 /// The whole app.
 pub struct ArmLabApp {
     /// Robot, joints, target and IK mode: what a link carries.
@@ -85,16 +102,23 @@ pub struct ArmLabApp {
     pub hovered_link: Option<usize>,
     /// The viewport's interaction state.
     pub viewport: viewport::ViewportState,
-    /// Main-thread milliseconds of recent frames (egui + scene + IK).
-    pub frame_ms: std::collections::VecDeque<f64>,
+    /// Main-thread time of recent frames, split into its parts.
+    pub frame_ms: std::collections::VecDeque<FrameTime>,
+    /// The parts of the frame being drawn, filled in as they run.
+    pub timing: FrameTime,
     /// Frames drawn so far.
     pub frame: u64,
     /// The IK solver with its reusable workspaces.
     pub solver: crate::kinematics::ik::IkSolver,
     /// The last full solve, for replay.
     pub replay: ik_panel::Replay,
+    /// The native file dialog, while it is open.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub file_dialog: Option<files::FileDialog>,
+    /// Where the native app keeps the last session (set by `main`; none in tests).
+    #[cfg(not(target_arch = "wasm32"))]
+    pub session_file: Option<std::path::PathBuf>,
     renderer: Option<SceneRenderer>,
-    last_hash: String,
 }
 
 impl ArmLabApp {
@@ -123,11 +147,15 @@ impl ArmLabApp {
             hovered_link: None,
             viewport: viewport::ViewportState::default(),
             frame_ms: std::collections::VecDeque::new(),
+            timing: FrameTime::default(),
             frame: 0,
             solver: crate::kinematics::ik::IkSolver::new(),
             replay: ik_panel::Replay::default(),
+            #[cfg(not(target_arch = "wasm32"))]
+            file_dialog: None,
+            #[cfg(not(target_arch = "wasm32"))]
+            session_file: None,
             renderer: None,
-            last_hash: String::new(),
             session,
         };
         app.load_session(app.session.clone());
@@ -266,11 +294,13 @@ impl ArmLabApp {
     }
 
     /// Takes the app's own time for a frame.
-    fn record_frame_time(&mut self, ms: f64) {
+    fn record_frame_time(&mut self, total_ms: f64) {
         if self.frame_ms.len() >= 600 {
             self.frame_ms.pop_front();
         }
-        self.frame_ms.push_back(ms);
+        let mut t = std::mem::take(&mut self.timing);
+        t.app_ms = total_ms - t.render_ms;
+        self.frame_ms.push_back(t);
     }
 
     /// Draws the whole UI: top bar, joint and IK panel, matrices, viewport.
@@ -310,14 +340,13 @@ impl ArmLabApp {
                 viewport::show(self, ui, render_state, renderer.as_mut());
                 self.renderer = renderer;
             });
-        let hash = self.hash();
-        if hash != self.last_hash {
-            #[cfg(target_arch = "wasm32")]
-            web::store_hash(&hash);
-            self.last_hash = hash;
-        }
+        #[cfg(not(target_arch = "wasm32"))]
+        robot_panel::show_file_dialog(self, ui.ctx());
         #[cfg(target_arch = "wasm32")]
-        web::publish(self, ui.ctx());
+        {
+            web::store_hash(self, ui.ctx());
+            web::publish(self, ui.ctx());
+        }
         self.record_frame_time(hook::now_ms() - start);
     }
 
@@ -372,6 +401,20 @@ impl eframe::App for ArmLabApp {
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
         let render_state = frame.wgpu_render_state().cloned();
         self.show(ui, render_state.as_ref());
+    }
+
+    #[cfg(not(target_arch = "wasm32"))]
+    fn on_exit(&mut self) {
+        // The native app's session persistence (the page uses localStorage).
+        if let Some(path) = &self.session_file {
+            let written = path
+                .parent()
+                .map_or(Ok(()), std::fs::create_dir_all)
+                .and_then(|()| std::fs::write(path, self.hash()));
+            if let Err(e) = written {
+                log::warn!("could not keep the session in {}: {e}", path.display());
+            }
+        }
     }
 
     fn clear_color(&self, _visuals: &egui::Visuals) -> [f32; 4] {

@@ -208,20 +208,31 @@ pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui) {
     let c = header.header_response.rect.center();
     app.viewport.points.push(("dh-header".into(), [c.x, c.y]));
     ui.horizontal(|ui| {
-        if ui.button("Save robot file").clicked() {
-            let text = robot_to_json(&app.session.robot);
-            let name = format!(
-                "{}.json",
-                app.session.robot.name.to_lowercase().replace(' ', "-")
-            );
-            match save_file(&name, &text) {
-                Ok(where_) => app.message = Some(format!("Saved the robot as {where_}.")),
-                Err(e) => app.message = Some(format!("Could not save the robot file: {e}.")),
+        #[cfg(target_arch = "wasm32")]
+        {
+            if ui.button("Save robot file").clicked() {
+                let text = robot_to_json(&app.session.robot);
+                let name = robot_file_name(&app.session.robot);
+                app.message = Some(match super::web::download(&name, &text) {
+                    Ok(()) => format!("Saved the robot as a download ({name})."),
+                    Err(e) => format!("Could not save the robot file: {e}."),
+                });
+            }
+            if ui.button("Load robot file…").clicked() {
+                super::web::open_file_chooser();
             }
         }
-        #[cfg(target_arch = "wasm32")]
-        if ui.button("Load robot file…").clicked() {
-            super::web::open_file_chooser();
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            use super::files::{FileDialog, Mode};
+            let here = || std::env::current_dir().unwrap_or_else(|_| ".".into());
+            if ui.button("Save robot file…").clicked() {
+                let name = robot_file_name(&app.session.robot);
+                app.file_dialog = Some(FileDialog::new(Mode::Save, &name, here()));
+            }
+            if ui.button("Open robot file…").clicked() {
+                app.file_dialog = Some(FileDialog::new(Mode::Open, "", here()));
+            }
         }
     });
     ui.label(egui::RichText::new("Or drop a robot file (.json) onto the window.").small());
@@ -386,16 +397,37 @@ fn dh_table(app: &mut ArmLabApp, ui: &mut egui::Ui) {
     }
 }
 
-/// Saves a text file: a download in the browser, a file in the working folder natively.
-fn save_file(name: &str, text: &str) -> Result<String, String> {
-    #[cfg(target_arch = "wasm32")]
-    {
-        super::web::download(name, text).map(|_| format!("a download ({name})"))
+/// The file name a robot is saved under: its name in lower case, spaces as dashes.
+pub fn robot_file_name(robot: &crate::kinematics::Robot) -> String {
+    format!("{}.json", robot.name.to_lowercase().replace(' ', "-"))
+}
+
+/// Shows the native file dialog while it is open, and loads or saves what it chose.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn show_file_dialog(app: &mut ArmLabApp, ctx: &egui::Context) {
+    use super::files::Choice;
+    let Some(dialog) = app.file_dialog.as_mut() else {
+        return;
+    };
+    let mut open = true;
+    let choice = dialog.show(ctx, &mut open);
+    if !open {
+        app.file_dialog = None;
     }
-    #[cfg(not(target_arch = "wasm32"))]
-    {
-        std::fs::write(name, text).map_err(|e| e.to_string())?;
-        let path = std::fs::canonicalize(name).map_err(|e| e.to_string())?;
-        Ok(path.display().to_string())
+    match choice {
+        Some(Choice::Open(path)) => match std::fs::read_to_string(&path) {
+            Ok(text) => load_robot_text(app, &text),
+            Err(e) => {
+                app.message = Some(format!("Could not read {}: {e}.", path.display()));
+            }
+        },
+        Some(Choice::Save(path)) => {
+            let text = robot_to_json(&app.session.robot);
+            app.message = Some(match std::fs::write(&path, text) {
+                Ok(()) => format!("Saved the robot as {}.", path.display()),
+                Err(e) => format!("Could not save the robot file {}: {e}.", path.display()),
+            });
+        }
+        None => {}
     }
 }

@@ -280,3 +280,15 @@ pub fn percent_decode(text: &str) -> Result<String, String> {
     }
     String::from_utf8(out).map_err(|_| "the link's text is not valid UTF-8".to_string())
 }
+
+/// Where the native app keeps the last session's link hash:
+/// `$XDG_CONFIG_HOME/armlab/session` (or `~/.config/armlab/session`; `%APPDATA%` on Windows).
+#[cfg(not(target_arch = "wasm32"))]
+pub fn native_session_file() -> Option<std::path::PathBuf> {
+    let env = |key: &str| std::env::var_os(key).filter(|v| !v.is_empty());
+    let config = env("XDG_CONFIG_HOME")
+        .map(std::path::PathBuf::from)
+        .or_else(|| env("APPDATA").map(std::path::PathBuf::from))
+        .or_else(|| env("HOME").map(|home| std::path::PathBuf::from(home).join(".config")))?;
+    Some(config.join("armlab").join("session"))
+}
