@@ -150,7 +150,17 @@ pub fn store_hash(app: &ArmLabApp, ctx: &egui::Context) {
         Some(_) => {
             write_hash(&hash);
             PENDING_STORE.with(|p| *p.borrow_mut() = None);
-            STORED.with(|s| *s.borrow_mut() = (hash, now));
+            STORED.with(|s| {
+                let mut s = s.borrow_mut();
+                // The first write only records the opened state: it does not delay the
+                // user's first change (a click and then a reload must keep the click).
+                let at = if s.0.is_empty() {
+                    f64::NEG_INFINITY
+                } else {
+                    now
+                };
+                *s = (hash, at);
+            });
         }
     }
 }
