@@ -67,9 +67,7 @@ fn clean(v: f64, decimals: usize) -> f64 {
 
 /// A matrix with copy buttons; returns true when it is hovered.
 ///
-/// The numbers are one monospace text (columns right-aligned, as "Text" copies them).
-/// Blocks scrolled out of sight keep their last size without laying out their numbers:
-/// while an arm moves every number changes each frame, and text layout is the panel's cost.
+/// Blocks scrolled out of sight keep their last size without drawing their numbers.
 fn matrix_block(
     ui: &mut egui::Ui,
     title: &str,
@@ -111,15 +109,120 @@ fn matrix_block(
             .filter(|size| !ui.is_rect_visible(egui::Rect::from_min_size(ui.cursor().min, *size)));
         let body = match out_of_sight {
             Some(size) => ui.allocate_exact_size(size, egui::Sense::hover()).1,
-            None => ui.add(
-                egui::Label::new(egui::RichText::new(to_plain(m, decimals)).monospace())
-                    .wrap_mode(egui::TextWrapMode::Extend),
-            ),
+            None => number_table(ui, m, decimals),
         };
         ui.data_mut(|d| d.insert_temp(id, body.rect.size()));
         hovered |= body.hovered();
     });
     hovered
+}
+
+/// The characters a formatted number can hold.
+const NUMBER_CHARS: &str = "0123456789-.";
+
+/// The matrix's numbers in right-aligned columns, in the monospace text style.
+///
+/// While an arm moves every number of every visible matrix changes each frame, and egui
+/// shapes and lays out changed text from scratch: that was most of this panel's frame
+/// time. Numbers use a dozen characters, so those are laid out once as one text (egui
+/// caches it) and each number is drawn by copying its characters' glyph quads into one
+/// mesh (egui builds each glyph as one quad: four vertices, two triangles). The
+/// screen-reader and test label is the "Text" copy of the matrix.
+fn number_table(ui: &mut egui::Ui, m: &DMatrix<f64>, decimals: usize) -> egui::Response {
+    let cells: Vec<String> = m
+        .iter()
+        .map(|v| format!("{:.p$}", clean(*v, decimals), p = decimals))
+        .collect();
+    let font = egui::TextStyle::Monospace.resolve(ui.style());
+    let color = ui.visuals().text_color();
+    let glyphs = ui
+        .painter()
+        .layout_no_wrap(NUMBER_CHARS.to_owned(), font, color);
+    let Some(row) = glyphs.rows.first() else {
+        return ui.label(to_plain(m, decimals));
+    };
+    // For each of NUMBER_CHARS: its glyph and the vertices of its quad in the row's mesh.
+    let quads: Vec<(&egui::epaint::text::Glyph, std::ops::Range<usize>)> = (0..row.glyphs.len())
+        .map(|i| {
+            let end = row
+                .glyphs
+                .get(i + 1)
+                .map_or(row.visuals.glyph_vertex_range.end, |next| {
+                    next.first_vertex as usize
+                });
+            (&row.glyphs[i], row.glyphs[i].first_vertex as usize..end)
+        })
+        .collect();
+    let quad = |c: char| quads.iter().find(|(g, _)| g.chr == c);
+    if cells
+        .iter()
+        .any(|cell| cell.chars().any(|c| quad(c).is_none()))
+    {
+        // A number this table cannot draw (NaN, infinity): plain text instead.
+        return ui.label(egui::RichText::new(to_plain(m, decimals)).monospace());
+    }
+    let width = |cell: &str| -> f32 {
+        cell.chars()
+            .filter_map(quad)
+            .map(|(g, _)| g.advance_width)
+            .sum()
+    };
+    let gap = quad('0').map_or(8.0, |(g, _)| g.advance_width) * 2.5;
+    let column_widths: Vec<f32> = (0..m.ncols())
+        .map(|c| {
+            (0..m.nrows())
+                .map(|r| width(&cells[c * m.nrows() + r]))
+                .fold(0.0, f32::max)
+        })
+        .collect();
+    let row_height = row.size.y;
+    let size = egui::vec2(
+        column_widths.iter().sum::<f32>() + gap * m.ncols().saturating_sub(1) as f32,
+        row_height * m.nrows() as f32,
+    );
+    let (rect, response) = ui.allocate_exact_size(size, egui::Sense::hover());
+    response
+        .widget_info(|| egui::WidgetInfo::labeled(egui::Role::Label, true, to_plain(m, decimals)));
+    if !ui.is_rect_visible(rect) {
+        return response;
+    }
+    let ppp = ui.ctx().pixels_per_point();
+    let atlas = ui.ctx().fonts(|f| f.font_image_size());
+    let uv_scale = egui::vec2(1.0 / atlas[0] as f32, 1.0 / atlas[1] as f32);
+    let mut mesh = egui::Mesh::default();
+    let mut left = rect.left();
+    for (c, column_width) in column_widths.iter().enumerate() {
+        for r in 0..m.nrows() {
+            let cell = &cells[c * m.nrows() + r];
+            let mut x = left + column_width - width(cell);
+            let y = rect.top() + row_height * r as f32;
+            for (glyph, vertices) in cell.chars().filter_map(quad) {
+                // The row's mesh is relative to the row's top left and the glyph's pen
+                // position is `glyph.pos.x`; whole pixels keep the copy as crisp as the text.
+                let shift = egui::vec2(
+                    ((x - glyph.pos.x) * ppp).round() / ppp,
+                    (y * ppp).round() / ppp,
+                );
+                let first = mesh.vertices.len() as u32;
+                mesh.vertices
+                    .extend(row.visuals.mesh.vertices[vertices.clone()].iter().map(|v| {
+                        egui::epaint::Vertex {
+                            pos: v.pos + shift,
+                            uv: (v.uv.to_vec2() * uv_scale).to_pos2(),
+                            color: v.color,
+                        }
+                    }));
+                for quad_start in (first..mesh.vertices.len() as u32).step_by(4) {
+                    mesh.add_triangle(quad_start, quad_start + 1, quad_start + 2);
+                    mesh.add_triangle(quad_start + 2, quad_start + 1, quad_start + 3);
+                }
+                x += glyph.advance_width;
+            }
+        }
+        left += column_width + gap;
+    }
+    ui.painter().add(mesh);
+    response
 }
 
 fn homogeneous(pose: &nalgebra::IsometryMatrix3<f64>) -> DMatrix<f64> {
