@@ -126,8 +126,9 @@ const NUMBER_CHARS: &str = "0123456789-.";
 /// shapes and lays out changed text from scratch: that was most of this panel's frame
 /// time. Numbers use a dozen characters, so those are laid out once as one text (egui
 /// caches it) and each number is drawn by copying its characters' glyph quads into one
-/// mesh (egui builds each glyph as one quad: four vertices, two triangles). The
-/// screen-reader and test label is the "Text" copy of the matrix.
+/// mesh (egui builds each glyph as one quad: four vertices, two triangles). The mesh is
+/// put in place by [`finish_numbers`] at the end of the frame. The screen-reader and test
+/// label is the "Text" copy of the matrix.
 fn number_table(ui: &mut egui::Ui, m: &DMatrix<f64>, decimals: usize) -> egui::Response {
     let cells: Vec<String> = m
         .iter()
@@ -187,8 +188,6 @@ fn number_table(ui: &mut egui::Ui, m: &DMatrix<f64>, decimals: usize) -> egui::R
         return response;
     }
     let ppp = ui.ctx().pixels_per_point();
-    let atlas = ui.ctx().fonts(|f| f.font_image_size());
-    let uv_scale = egui::vec2(1.0 / atlas[0] as f32, 1.0 / atlas[1] as f32);
     let mut mesh = egui::Mesh::default();
     let mut left = rect.left();
     for (c, column_width) in column_widths.iter().enumerate() {
@@ -208,8 +207,7 @@ fn number_table(ui: &mut egui::Ui, m: &DMatrix<f64>, decimals: usize) -> egui::R
                     .extend(row.visuals.mesh.vertices[vertices.clone()].iter().map(|v| {
                         egui::epaint::Vertex {
                             pos: v.pos + shift,
-                            uv: (v.uv.to_vec2() * uv_scale).to_pos2(),
-                            color: v.color,
+                            ..*v
                         }
                     }));
                 for quad_start in (first..mesh.vertices.len() as u32).step_by(4) {
@@ -221,8 +219,42 @@ fn number_table(ui: &mut egui::Ui, m: &DMatrix<f64>, decimals: usize) -> egui::R
         }
         left += column_width + gap;
     }
-    ui.painter().add(mesh);
+    let painter = ui.painter().clone();
+    let place = painter.add(egui::Shape::Noop);
+    ui.ctx().data_mut(|d| {
+        d.get_temp_mut_or_default::<PendingNumbers>(pending_numbers_id())
+            .0
+            .push((painter, place, mesh));
+    });
     response
+}
+
+fn pending_numbers_id() -> egui::Id {
+    egui::Id::unique("armlab_matrix_numbers")
+}
+
+/// This frame's number meshes, with texture coordinates still in font-atlas texels.
+#[derive(Clone, Default)]
+struct PendingNumbers(Vec<(egui::Painter, egui::layers::ShapeIdx, egui::Mesh)>);
+
+/// Puts this frame's matrix numbers in place. Their texture coordinates are scaled to the
+/// font atlas as it is now, at the end of the frame: the atlas grows when text drawn
+/// later in the frame needs new glyphs (egui scales its own text the same way, when it
+/// tessellates it).
+pub fn finish_numbers(ctx: &egui::Context) {
+    let Some(PendingNumbers(meshes)) =
+        ctx.data_mut(|d| d.remove_temp::<PendingNumbers>(pending_numbers_id()))
+    else {
+        return;
+    };
+    let atlas = ctx.fonts(|f| f.font_image_size());
+    let scale = egui::vec2(1.0 / atlas[0] as f32, 1.0 / atlas[1] as f32);
+    for (painter, place, mut mesh) in meshes {
+        for v in &mut mesh.vertices {
+            v.uv = (v.uv.to_vec2() * scale).to_pos2();
+        }
+        painter.set(place, mesh);
+    }
 }
 
 fn homogeneous(pose: &nalgebra::IsometryMatrix3<f64>) -> DMatrix<f64> {

@@ -342,6 +342,8 @@ impl ArmLabApp {
             });
         #[cfg(not(target_arch = "wasm32"))]
         robot_panel::show_file_dialog(self, ui.ctx());
+        // Last, once every text of the frame has its glyphs in the font atlas.
+        matrices::finish_numbers(ui.ctx());
         #[cfg(target_arch = "wasm32")]
         {
             web::store_hash(self, ui.ctx());
