@@ -168,7 +168,7 @@ fn number_table(ui: &mut egui::Ui, m: &DMatrix<f64>, decimals: usize) -> egui::R
             .map(|(g, _)| g.advance_width)
             .sum()
     };
-    let gap = quad('0').map_or(8.0, |(g, _)| g.advance_width) * 2.5;
+    let gap = quad('0').map_or(8.0, |(g, _)| g.advance_width) * 2.0;
     let column_widths: Vec<f32> = (0..m.ncols())
         .map(|c| {
             (0..m.nrows())
