@@ -173,6 +173,26 @@ test('WebGL2 colours match the native (lavapipe) snapshot', async () => {
   await ctx.close();
 });
 
+test('a browser without WebAssembly SIMD gets a sentence, not an endless loading text', async () => {
+  const ctx = await browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
+  // Such a browser rejects SIMD modules: it neither validates nor compiles the page's wasm.
+  await ctx.addInitScript(() => {
+    WebAssembly.validate = () => false;
+    const refuse = () => Promise.reject(new WebAssembly.CompileError('SIMD is not supported'));
+    WebAssembly.instantiateStreaming = refuse;
+    WebAssembly.instantiate = refuse;
+    WebAssembly.compileStreaming = refuse;
+    WebAssembly.compile = refuse;
+  });
+  const page = await ctx.newPage();
+  await page.goto(base, { waitUntil: 'load' });
+  await page.waitForTimeout(500);
+  const text = await page.textContent('#armlab_message');
+  assert.match(text, /needs a browser with WebAssembly SIMD/);
+  assert.equal(await page.isVisible('#armlab_message'), true);
+  await ctx.close();
+});
+
 test('a link opens exactly its robot, pose and target', async () => {
   const hash = '#robot=puma560&q=0.1,0.2,-0.3,0.4,0.5,-0.6&target=0.5,-0.1,0.6,0.2,0.1,0.3&task=position&method=pinv';
   const { page, ctx } = await open(hash);
