@@ -130,17 +130,13 @@ const NUMBER_CHARS: &str = "0123456789-.";
 /// put in place by [`finish_numbers`] at the end of the frame. The screen-reader and test
 /// label is the "Text" copy of the matrix.
 fn number_table(ui: &mut egui::Ui, m: &DMatrix<f64>, decimals: usize) -> egui::Response {
-    let cells: Vec<String> = m
-        .iter()
-        .map(|v| format!("{:.p$}", clean(*v, decimals), p = decimals))
-        .collect();
     let font = egui::TextStyle::Monospace.resolve(ui.style());
     let color = ui.visuals().text_color();
     let glyphs = ui
         .painter()
         .layout_no_wrap(NUMBER_CHARS.to_owned(), font, color);
     let Some(row) = glyphs.rows.first() else {
-        return ui.label(to_plain(m, decimals));
+        return ui.label(plain_text(m, decimals));
     };
     // For each of NUMBER_CHARS: its glyph and the vertices of its quad in the row's mesh.
     let quads: Vec<(&egui::epaint::text::Glyph, std::ops::Range<usize>)> = (0..row.glyphs.len())
@@ -154,27 +150,29 @@ fn number_table(ui: &mut egui::Ui, m: &DMatrix<f64>, decimals: usize) -> egui::R
             (&row.glyphs[i], row.glyphs[i].first_vertex as usize..end)
         })
         .collect();
-    let quad = |c: char| quads.iter().find(|(g, _)| g.chr == c);
-    if cells
-        .iter()
-        .any(|cell| cell.chars().any(|c| quad(c).is_none()))
-    {
-        // A number this table cannot draw (NaN, infinity): plain text instead.
-        return ui.label(egui::RichText::new(to_plain(m, decimals)).monospace());
+    // Each number (column-major, as nalgebra stores them) as its quads and its width.
+    let mut cells = Vec::with_capacity(m.len());
+    for v in m.iter() {
+        let text = format!("{:.p$}", clean(*v, decimals), p = decimals);
+        let Some(chars) = text
+            .chars()
+            .map(|c| quads.iter().find(|(g, _)| g.chr == c))
+            .collect::<Option<Vec<_>>>()
+        else {
+            // A number this table cannot draw (NaN, infinity): plain text instead.
+            return ui.label(plain_text(m, decimals));
+        };
+        let width: f32 = chars.iter().map(|(g, _)| g.advance_width).sum();
+        cells.push((chars, width));
     }
-    let width = |cell: &str| -> f32 {
-        cell.chars()
-            .filter_map(quad)
-            .map(|(g, _)| g.advance_width)
-            .sum()
-    };
-    let gap = quad('0').map_or(8.0, |(g, _)| g.advance_width) * 2.0;
-    let column_widths: Vec<f32> = (0..m.ncols())
-        .map(|c| {
-            (0..m.nrows())
-                .map(|r| width(&cells[c * m.nrows() + r]))
-                .fold(0.0, f32::max)
-        })
+    let gap = quads
+        .iter()
+        .find(|(g, _)| g.chr == '0')
+        .map_or(8.0, |(g, _)| g.advance_width)
+        * 2.0;
+    let column_widths: Vec<f32> = cells
+        .chunks(m.nrows().max(1))
+        .map(|column| column.iter().map(|(_, w)| *w).fold(0.0, f32::max))
         .collect();
     let row_height = row.size.y;
     let size = egui::vec2(
@@ -190,12 +188,11 @@ fn number_table(ui: &mut egui::Ui, m: &DMatrix<f64>, decimals: usize) -> egui::R
     let ppp = ui.ctx().pixels_per_point();
     let mut mesh = egui::Mesh::default();
     let mut left = rect.left();
-    for (c, column_width) in column_widths.iter().enumerate() {
-        for r in 0..m.nrows() {
-            let cell = &cells[c * m.nrows() + r];
-            let mut x = left + column_width - width(cell);
+    for (column, column_width) in cells.chunks(m.nrows().max(1)).zip(&column_widths) {
+        for (r, (chars, width)) in column.iter().enumerate() {
+            let mut x = left + column_width - width;
             let y = rect.top() + row_height * r as f32;
-            for (glyph, vertices) in cell.chars().filter_map(quad) {
+            for (glyph, vertices) in chars {
                 // The row's mesh is relative to the row's top left and the glyph's pen
                 // position is `glyph.pos.x`; whole pixels keep the copy as crisp as the text.
                 let shift = egui::vec2(
@@ -227,6 +224,11 @@ fn number_table(ui: &mut egui::Ui, m: &DMatrix<f64>, decimals: usize) -> egui::R
             .push((painter, place, mesh));
     });
     response
+}
+
+/// The matrix as one monospace text, for what [`number_table`] cannot draw.
+fn plain_text(m: &DMatrix<f64>, decimals: usize) -> egui::RichText {
+    egui::RichText::new(to_plain(m, decimals)).monospace()
 }
 
 fn pending_numbers_id() -> egui::Id {
