@@ -5,14 +5,14 @@
 //! Every request names a robot — a preset id (`"ur10"`) or a whole robot file object —
 //! and a joint vector `q` in the core's units (radians, the robot's length unit).
 
-use nalgebra::{IsometryMatrix3, Matrix3, Matrix6xX};
+use nalgebra::{IsometryMatrix3, Matrix3};
 use serde_json::{Value, json};
 use thiserror::Error;
 
+use crate::kinematics::fk::homogeneous;
 use crate::kinematics::{
-    ForwardKinematics, NUMERIC_EPSILON, Orientation, Robot, RobotError, Task, ToolAxis,
-    geometric_jacobian, jacobian_measures, numerical_jacobian, preset, preset_ids,
-    robot_from_value, robot_to_json, task_jacobian,
+    ForwardKinematics, IkError, IkMethod, JacobianAnalysis, Orientation, Robot, RobotError, Task,
+    preset, preset_names, robot_from_value, robot_to_json, task_jacobian,
 };
 
 /// What can go wrong with an API request.
@@ -24,6 +24,20 @@ pub enum ApiError {
     /// The robot or the joint vector is invalid.
     #[error(transparent)]
     Robot(#[from] RobotError),
+    /// The IK could not run (no closed form for this robot, a target that is not finite,
+    /// …); the core's own error, variant and all.
+    #[error(transparent)]
+    Ik(IkError),
+}
+
+impl From<IkError> for ApiError {
+    /// A robot error inside an IK error is the robot's; the rest stay IK errors.
+    fn from(e: IkError) -> Self {
+        match e {
+            IkError::Robot(r) => ApiError::Robot(r),
+            other => ApiError::Ik(other),
+        }
+    }
 }
 
 /// A parsed request: the robot and the joint vector.
@@ -61,12 +75,7 @@ fn parse_request(text: &str) -> Result<Request, ApiError> {
 
 /// Rows of a pose's 4×4 homogeneous matrix.
 pub fn pose_rows(pose: &IsometryMatrix3<f64>) -> Value {
-    let m = pose.to_homogeneous();
-    json!(
-        (0..4)
-            .map(|r| (0..4).map(|c| m[(r, c)]).collect::<Vec<_>>())
-            .collect::<Vec<_>>()
-    )
+    matrix_rows(&homogeneous(pose))
 }
 
 fn matrix_rows<R: nalgebra::Dim, C: nalgebra::Dim, S: nalgebra::RawStorage<f64, R, C>>(
@@ -92,8 +101,9 @@ pub fn orientation_json(r: &Matrix3<f64>) -> Value {
 
 /// The presets: `[{"id", "name", "dof", "convention", "length_unit"}]`.
 pub fn presets() -> String {
-    let list: Vec<Value> = preset_ids()
-        .filter_map(|id| preset(id).ok().map(|r| (id, r)))
+    let list: Vec<Value> = preset_names()
+        .iter()
+        .filter_map(|(id, _)| preset(id).ok().map(|r| (id, r)))
         .map(|(id, r)| {
             json!({ "id": id, "name": r.name, "dof": r.dof(), "convention": r.convention.as_str(), "length_unit": r.length_unit.symbol() })
         })
@@ -127,24 +137,13 @@ pub fn fk(request: &str) -> Result<String, ApiError> {
     .to_string())
 }
 
-/// Parses a task name: `"position"`, `"axis-x"`, `"axis-y"`, `"axis-z"` or `"full"`.
-pub fn parse_task(name: &str) -> Option<Task> {
-    match name {
-        "position" => Some(Task::Position),
-        "axis-x" => Some(Task::PositionAndAxis(ToolAxis::X)),
-        "axis-y" => Some(Task::PositionAndAxis(ToolAxis::Y)),
-        "axis-z" => Some(Task::PositionAndAxis(ToolAxis::Z)),
-        "full" => Some(Task::FullPose),
-        _ => None,
-    }
-}
-
 fn task_of(value: &Value) -> Result<Task, ApiError> {
     match value.get("task") {
         None => Ok(Task::FullPose),
-        Some(Value::String(name)) => parse_task(name).ok_or_else(|| {
+        Some(Value::String(name)) => Task::from_id(name).ok_or_else(|| {
             ApiError::Request(format!(
-                "unknown task \"{name}\": use position, axis-x, axis-y, axis-z or full"
+                "unknown task \"{name}\": use one of {}",
+                Task::id_list()
             ))
         }),
         Some(_) => Err(ApiError::Request("\"task\" must be a text".into())),
@@ -160,14 +159,13 @@ pub fn jacobian(request: &str) -> Result<String, ApiError> {
     let req = parse_request(request)?;
     let task = task_of(&req.value)?;
     let fk = ForwardKinematics::new(&req.robot, &req.q)?;
-    let geometric: Matrix6xX<f64> = geometric_jacobian(&fk);
-    let numerical = numerical_jacobian(&req.robot, &req.q, NUMERIC_EPSILON);
-    let rows = task_jacobian(&geometric, task, fk.tool_rotation(), 1.0);
-    let m = jacobian_measures(&geometric, task, fk.tool_rotation(), req.robot.reach());
+    let analysis = JacobianAnalysis::new(&req.robot, &fk, &req.q, task);
+    let rows = task_jacobian(&analysis.geometric, task, fk.tool_rotation(), 1.0);
+    let m = &analysis.measures;
     Ok(json!({
         "robot": req.robot.name,
-        "geometric": matrix_rows(&geometric),
-        "numerical": matrix_rows(&numerical),
+        "geometric": matrix_rows(&analysis.geometric),
+        "numerical": matrix_rows(&analysis.numerical),
         "task_rows": matrix_rows(&rows),
         "singular_values": m.singular_values,
         "manipulability": m.manipulability,
@@ -177,13 +175,6 @@ pub fn jacobian(request: &str) -> Result<String, ApiError> {
         "length_scale": m.length_scale,
     })
     .to_string())
-}
-
-fn ik_error(e: crate::kinematics::IkError) -> ApiError {
-    match e {
-        crate::kinematics::IkError::Robot(r) => ApiError::Robot(r),
-        other => ApiError::Request(other.to_string()),
-    }
 }
 
 fn number_list(value: &Value, what: &str) -> Result<Vec<f64>, ApiError> {
@@ -273,8 +264,7 @@ fn ik_target(robot: &Robot, value: Option<&Value>) -> Result<IsometryMatrix3<f64
     ))
 }
 
-fn ik_method(value: &Value) -> Result<crate::kinematics::IkMethod, ApiError> {
-    use crate::kinematics::IkMethod;
+fn ik_method(value: &Value) -> Result<IkMethod, ApiError> {
     let alpha = match value.get("alpha") {
         None | Some(Value::Null) => None,
         Some(v) => Some(
@@ -283,14 +273,20 @@ fn ik_method(value: &Value) -> Result<crate::kinematics::IkMethod, ApiError> {
                 .ok_or_else(|| ApiError::Request("\"alpha\" must be a positive number".into()))?,
         ),
     };
-    match value.get("method").map(|m| m.as_str()) {
-        None | Some(Some("dls")) => Ok(IkMethod::DampedLeastSquares),
-        Some(Some("pinv")) => Ok(IkMethod::PseudoInverse),
-        Some(Some("gradient")) => Ok(IkMethod::JacobianTranspose { alpha }),
-        Some(Some("closed-form")) => Ok(IkMethod::ClosedForm),
-        _ => Err(ApiError::Request(
-            "\"method\" must be \"dls\", \"pinv\", \"gradient\" or \"closed-form\"".into(),
-        )),
+    match value.get("method") {
+        None => Ok(IkMethod::DampedLeastSquares),
+        Some(Value::String(id)) => match IkMethod::from_id(id) {
+            Some(IkMethod::JacobianTranspose { .. }) => Ok(IkMethod::JacobianTranspose { alpha }),
+            Some(method) => Ok(method),
+            None => Err(ApiError::Request(format!(
+                "unknown method \"{id}\": use one of {} (or closed-form)",
+                IkMethod::id_list()
+            ))),
+        },
+        Some(_) => Err(ApiError::Request(format!(
+            "\"method\" must be a text: one of {}",
+            IkMethod::id_list()
+        ))),
     }
 }
 
@@ -368,7 +364,8 @@ fn ik_settings(value: &Value, drag: bool) -> Result<crate::kinematics::IkSetting
 ///   robot's length unit.
 /// - `task`: `"position"`, `"axis-x"`, `"axis-y"`, `"axis-z"` or `"full"` (default).
 /// - `method`: `"dls"` (default), `"pinv"`, `"gradient"` (with `"alpha"`: a fixed step in
-///   the robot's units; without: adaptive) or `"closed-form"`; `"jacobian"`:
+///   the robot's units; without: adaptive) or `"closed"` (also read as `"closed-form"`);
+///   the response's `method` is the id (`"closed"`); `"jacobian"`:
 ///   `"geometric"` (default) or `"numerical"` (central differences).
 /// - `drag`: one drag frame (`drag_step`: drag settings, moves at most
 ///   `max_joint_change`, default 0.1 rad, per call).
@@ -383,7 +380,7 @@ fn ik_settings(value: &Value, drag: bool) -> Result<crate::kinematics::IkSetting
 /// for the closed form, `solutions` (every branch: `{q, label, within_limits, singular,
 /// exact}`) with `family`.
 pub fn ik(request: &str) -> Result<String, ApiError> {
-    use crate::kinematics::{IkMethod, IkSolver, closed_form_solutions, tool_pose};
+    use crate::kinematics::{IkSolver, closed_form_solutions, tool_pose};
     let req = parse_request(request)?;
     let task = task_of(&req.value)?;
     let target = ik_target(&req.robot, req.value.get("target"))?;
@@ -400,8 +397,7 @@ pub fn ik(request: &str) -> Result<String, ApiError> {
         solver.drag_step(&req.robot, &req.q, &target, task, method, &settings)
     } else {
         solver.solve(&req.robot, &target, task, &req.q, method, &settings)
-    }
-    .map_err(ik_error)?;
+    }?;
     let trace: Vec<Value> = r
         .trace
         .iter()
@@ -415,7 +411,7 @@ pub fn ik(request: &str) -> Result<String, ApiError> {
         .collect();
     let mut out = json!({
         "robot": req.robot.name,
-        "method": method.name(),
+        "method": method.id(),
         "q": r.q,
         "success": r.success,
         "unreachable": r.unreachable,
@@ -430,7 +426,7 @@ pub fn ik(request: &str) -> Result<String, ApiError> {
         "trace": trace,
     });
     if method == IkMethod::ClosedForm {
-        let set = closed_form_solutions(&req.robot, &target, &req.q).map_err(ik_error)?;
+        let set = closed_form_solutions(&req.robot, &target, &req.q)?;
         if let Some(obj) = out.as_object_mut() {
             obj.insert("family".into(), json!(set.family.name()));
             obj.insert(

@@ -23,7 +23,7 @@ fn main() -> eframe::Result {
         options,
         Box::new(move |cc| {
             let mut app = armlab::app::ArmLabApp::new(cc, &hash);
-            app.session_file = session_file;
+            app.set_session_file(session_file);
             Ok(Box::new(app))
         }),
     )

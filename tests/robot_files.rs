@@ -12,8 +12,8 @@ use wasm_bindgen_test::wasm_bindgen_test as test;
 mod common;
 
 use armlab::kinematics::{
-    Convention, JointKind, LengthUnit, PRESETS, Place, RobotError, robot_from_json, robot_to_json,
-    tool_pose,
+    Convention, Field, JointKind, LengthUnit, PRESETS, Place, RobotError, robot_from_json,
+    robot_to_json, tool_pose,
 };
 
 /// A valid one-joint robot with `joint` as its joint and `top` spliced into the object.
@@ -121,7 +121,15 @@ fn malformed_files_each_give_their_own_typed_error() {
         (
             "no name",
             r#"{ "convention": "standard", "length_unit": "mm", "joints": [] }"#.to_string(),
-            |e| matches!(e, RobotError::MissingField { place: Place::Robot, field } if field == "name"),
+            |e| {
+                matches!(
+                    e,
+                    RobotError::MissingField {
+                        place: Place::Robot,
+                        field: Field::Name
+                    }
+                )
+            },
         ),
         (
             "unknown convention",
@@ -156,7 +164,15 @@ fn malformed_files_each_give_their_own_typed_error() {
                     r#"{GOOD_JOINT}, {{ "type": "revolute", "theta_deg": 0, "a": 0, "alpha_deg": 0 }}"#
                 ),
             ),
-            |e| matches!(e, RobotError::MissingField { place: Place::Joint(2), field } if field == "d"),
+            |e| {
+                matches!(
+                    e,
+                    RobotError::MissingField {
+                        place: Place::Joint(2),
+                        field: Field::D
+                    }
+                )
+            },
         ),
         (
             "misspelt field",
@@ -172,7 +188,16 @@ fn malformed_files_each_give_their_own_typed_error() {
                 "",
                 r#"{ "type": "revolute", "theta_deg": 0, "d": "NaN", "a": 0, "alpha_deg": 0 }"#,
             ),
-            |e| matches!(e, RobotError::WrongType { place: Place::Joint(1), field, .. } if field == "d"),
+            |e| {
+                matches!(
+                    e,
+                    RobotError::WrongType {
+                        place: Place::Joint(1),
+                        field: Field::D,
+                        ..
+                    }
+                )
+            },
         ),
         (
             "infinite number",
@@ -204,7 +229,16 @@ fn malformed_files_each_give_their_own_typed_error() {
                 "",
                 r#"{ "type": "revolute", "theta_deg": 0, "d": 0, "a": 2e6, "alpha_deg": 0 }"#,
             ),
-            |e| matches!(e, RobotError::TooLarge { place: Place::Joint(1), field, .. } if field == "a"),
+            |e| {
+                matches!(
+                    e,
+                    RobotError::TooLarge {
+                        place: Place::Joint(1),
+                        field: Field::A,
+                        ..
+                    }
+                )
+            },
         ),
         ("too many joints", robot_text("", &many_joints), |e| {
             matches!(e, RobotError::TooManyJoints { count: 65, max: 64 })
@@ -212,12 +246,30 @@ fn malformed_files_each_give_their_own_typed_error() {
         (
             "negative part size",
             robot_text(r#", "base_size": [600, -300, 340]"#, GOOD_JOINT),
-            |e| matches!(e, RobotError::NegativeSize { place: Place::Robot, field, .. } if field == "base_size"),
+            |e| {
+                matches!(
+                    e,
+                    RobotError::NegativeSize {
+                        place: Place::Robot,
+                        field: Field::BaseSize,
+                        ..
+                    }
+                )
+            },
         ),
         (
             "bad tool",
             robot_text(r#", "tool": { "xyz": [1, 2] }"#, GOOD_JOINT),
-            |e| matches!(e, RobotError::WrongType { place: Place::Tool, field, .. } if field == "xyz"),
+            |e| {
+                matches!(
+                    e,
+                    RobotError::WrongType {
+                        place: Place::Tool,
+                        field: Field::Xyz,
+                        ..
+                    }
+                )
+            },
         ),
     ];
     let mut seen = std::collections::HashSet::new();

@@ -5,9 +5,15 @@
 
 use egui::accesskit::Role;
 use egui_kittest::Harness;
-use egui_kittest::kittest::Queryable;
+use egui_kittest::kittest::{NodeT, Queryable};
 
-use armlab::app::ArmLabApp;
+use armlab::app::hook::ScreenPoints;
+use armlab::app::ik_panel::IkPanel;
+use armlab::app::joints::JointsPanel;
+use armlab::app::model::{MessageKind, Model};
+use armlab::app::session::Session;
+use armlab::app::{ArmLabApp, Panel};
+use armlab::kinematics::ik::Reach;
 
 const SIZE: [f32; 2] = [1400.0, 860.0];
 
@@ -22,13 +28,13 @@ fn harness(hash: &str) -> Harness<'static, ArmLabApp> {
 }
 
 fn tool_x(h: &Harness<'_, ArmLabApp>) -> f64 {
-    h.state().fk.tool_position().x
+    h.state().model().fk().tool_position().x
 }
 
 #[test]
 fn moving_a_slider_changes_q_and_the_tool_pose_numbers() {
     let mut h = harness("#robot=ur10&q=0,-1,1,-0.5,0.8,0.3");
-    let before_q = h.state().session.q.clone();
+    let before_q = h.state().model().q().to_vec();
     let before_x = tool_x(&h);
     let shown = format!("{:.3}", before_x);
     assert!(
@@ -42,7 +48,7 @@ fn moving_a_slider_changes_q_and_the_tool_pose_numbers() {
         h.key_press(egui::Key::ArrowRight);
         h.run_steps(1);
     }
-    let after_q = h.state().session.q.clone();
+    let after_q = h.state().model().q().to_vec();
     assert!(
         after_q[0] > before_q[0] + 1e-3,
         "θ1 grew: {} → {}",
@@ -62,17 +68,34 @@ fn moving_a_slider_changes_q_and_the_tool_pose_numbers() {
 #[test]
 fn choosing_a_preset_swaps_the_robot() {
     let mut h = harness("");
-    assert_eq!(h.state().session.robot.name, "UR10");
+    assert_eq!(h.state().model().robot().name, "UR10");
     h.get_by_label("Robot").click();
     h.run_steps(2);
     h.get_by_label("Puma 560").click();
     h.run_steps(2);
-    let app = h.state();
-    assert_eq!(app.session.robot.name, "Puma 560");
-    assert_eq!(app.session.q.len(), 6);
-    // The target moved onto the new gripper and the matrices are the Puma's.
-    assert!(app.ik.reached);
-    assert!(h.query_by_label_contains("A_6").is_some());
+    let model = h.state().model();
+    assert_eq!(model.robot().name, "Puma 560");
+    assert_eq!(model.q().len(), 6);
+    // The target moved onto the new gripper and the matrices are the Puma's: its T_06
+    // at home (q = 0) has p = (0.4521, −0.15005, 1.10363) m with R = I.
+    assert_eq!(model.ik().reach, Reach::Reached);
+    assert_eq!(model.q(), &[0.0; 6]);
+    let p = model.fk().tool_position();
+    assert!((p - nalgebra::Vector3::new(0.4521, -0.15005, 1.10363)).norm() < 1e-5);
+    let spec: [[f64; 4]; 3] = [
+        [1.0, 0.0, 0.0, 0.4521],
+        [0.0, 1.0, 0.0, -0.15005],
+        [0.0, 0.0, 1.0, 1.10363],
+    ];
+    // The matrix's text: each entry right-aligned in 10 characters, 3 decimals.
+    let rows = spec.map(|row| row.map(|v| format!("{v:>10.3}")).join(" "));
+    assert!(
+        h.query_all_by_label_contains(&rows[0]).any(|node| {
+            let label = node.accesskit_node().value().unwrap_or_default();
+            rows.iter().all(|row| label.contains(row))
+        }),
+        "T_06 shows the Puma's pose, row by row"
+    );
 }
 
 #[test]
@@ -80,8 +103,8 @@ fn a_bad_dh_cell_shows_the_message_and_keeps_the_robot() {
     let mut h = harness("#robot=rrr");
     h.get_by_label("DH table (editable)").click();
     h.run_steps(2);
-    let robot_before = h.state().session.robot.clone();
-    let q_before = h.state().session.q.clone();
+    let robot_before = h.state().model().robot().clone();
+    let q_before = h.state().model().q().to_vec();
     // The cells are text inputs in table order: θ, d, a, α, min, max per joint.
     let cells: Vec<_> = h.query_all_by_role(Role::TextInput).collect();
     assert!(
@@ -102,11 +125,11 @@ fn a_bad_dh_cell_shows_the_message_and_keeps_the_robot() {
         "the message sits beside the cell"
     );
     assert_eq!(
-        h.state().session.robot,
-        robot_before,
+        h.state().model().robot(),
+        &robot_before,
         "the last valid robot stays"
     );
-    assert_eq!(h.state().session.q, q_before);
+    assert_eq!(h.state().model().q(), q_before.as_slice());
 
     // A number the core rejects (reversed limits) gives the core's sentence.
     let cells: Vec<_> = h.query_all_by_role(Role::TextInput).collect();
@@ -117,22 +140,18 @@ fn a_bad_dh_cell_shows_the_message_and_keeps_the_robot() {
     h.event(egui::Event::Text("300".into()));
     h.run_steps(3);
     assert_eq!(
-        h.state().editor.first_error(),
+        h.state().robot_panel().editor().first_error(),
         None,
         "a valid cell applies live"
     );
-    assert!((h.state().session.robot.joints[1].dh.a - 300.0).abs() < 1e-12);
+    assert!((h.state().model().robot().joints[1].dh.a - 300.0).abs() < 1e-12);
 }
 
 #[test]
 fn dragging_the_target_moves_the_arm_toward_it() {
     let mut h = harness("#robot=ur10&q=0,-1,1.2,-1.5,-1.2,0.3&task=position");
-    let start = h
-        .state()
-        .viewport
-        .point("target")
-        .expect("target on screen");
-    let tool_before = h.state().fk.tool_position();
+    let start = h.state().points().get("target").expect("target on screen");
+    let tool_before = h.state().model().fk().tool_position();
     let from = egui::pos2(start[0], start[1]);
     h.event(egui::Event::PointerMoved(from));
     h.run_steps(1);
@@ -144,7 +163,7 @@ fn dragging_the_target_moves_the_arm_toward_it() {
     });
     h.run_steps(1);
     // Toward the base by a quarter of the way: a target the arm can reach.
-    let base = h.state().viewport.point("base").expect("base on screen");
+    let base = h.state().points().get("base").expect("base on screen");
     let step = (egui::pos2(base[0], base[1]) - from) / 80.0;
     let mut pos = from;
     for _ in 0..20 {
@@ -152,7 +171,7 @@ fn dragging_the_target_moves_the_arm_toward_it() {
         h.event(egui::Event::PointerMoved(pos));
         h.run_steps(1);
     }
-    assert!(h.state().viewport.dragging(), "the ball was grabbed");
+    assert!(h.state().viewport().dragging(), "the ball was grabbed");
     // Hold still: the IK keeps converging while the button is down.
     h.run_steps(30);
     h.event(egui::Event::PointerButton {
@@ -162,9 +181,9 @@ fn dragging_the_target_moves_the_arm_toward_it() {
         modifiers: egui::Modifiers::NONE,
     });
     h.run_steps(2);
-    let app = h.state();
-    let target = app.target.translation.vector;
-    let tool = app.fk.tool_position();
+    let model = h.state().model();
+    let target = model.target().translation.vector;
+    let tool = model.fk().tool_position();
     assert!(
         (target - tool_before).norm() > 30.0,
         "the target moved ({:?})",
@@ -176,15 +195,17 @@ fn dragging_the_target_moves_the_arm_toward_it() {
         tool,
         target
     );
-    assert!(app.ik.reached);
-    assert!(!app.viewport.dragging());
+    assert_eq!(model.ik().reach, Reach::Reached);
+    assert!(!h.state().viewport().dragging());
 }
 
 #[test]
 fn a_garbage_link_gives_a_message_and_the_default_robot() {
     let h = harness("#robot=ur10&q=1,2,banana");
-    assert_eq!(h.state().session.robot.name, "UR10");
-    let message = h.state().message.clone().expect("a message");
+    assert_eq!(h.state().model().robot().name, "UR10");
+    let message = h.state().model().message().expect("a message").clone();
+    assert_eq!(message.kind, MessageKind::Warning);
+    let message = message.text;
     assert!(
         message.contains("\"banana\", which is not a number"),
         "{message}"
@@ -200,7 +221,7 @@ fn ur10_snapshot_on_the_software_vulkan_adapter() {
     let mut h = harness("#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2");
     h.run_steps(2);
     assert!(
-        h.state().viewport.rendered,
+        h.state().viewport().rendered(),
         "the wgpu scene renderer drew the viewport"
     );
     h.snapshot("ur10");
@@ -211,10 +232,10 @@ fn metrover_snapshot_with_its_part_sizes() {
     let mut h = harness("#robot=metrover&q=0.5,0.9,0.6,0.3,0.2&task=position");
     h.run_steps(2);
     assert_eq!(
-        h.state().session.robot.parts.base,
+        h.state().model().robot().parts.base,
         Some([600.0, 300.0, 340.0])
     );
-    assert!(h.state().viewport.rendered);
+    assert!(h.state().viewport().rendered());
     h.snapshot("metrover");
 }
 
@@ -224,26 +245,48 @@ fn the_native_file_dialog_saves_and_opens_a_robot_file() {
     let dir = std::env::temp_dir().join(format!("armlab-ui-files-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp folder");
     let mut h = harness("#robot=scara");
-    h.state_mut().file_dialog = Some(FileDialog::new(Mode::Save, "my scara", dir.clone()));
+    h.state_mut()
+        .robot_panel_mut()
+        .open_file_dialog(FileDialog::new(Mode::Save, "my scara", dir.clone()));
     h.run_steps(2);
     h.get_by_label("Save").click();
     h.run_steps(2);
     let saved = dir.join("my scara.json");
     let text = std::fs::read_to_string(&saved).expect("the dialog wrote the file");
     let robot = armlab::kinematics::robot_from_json(&text).expect("a valid robot file");
-    assert_eq!(robot.name, h.state().session.robot.name);
-    assert!(h.state().file_dialog.is_none(), "the dialog closed");
+    assert_eq!(
+        &robot,
+        h.state().model().robot(),
+        "the file holds the whole robot"
+    );
+    assert!(
+        h.state().robot_panel().file_dialog().is_none(),
+        "the dialog closed"
+    );
+    let saved_message = h.state().model().message().expect("a message").clone();
+    assert_eq!(
+        saved_message.kind,
+        MessageKind::Info,
+        "{}",
+        saved_message.text
+    );
 
     // Open it again from another robot: pick the file in the listing, then Open.
     let mut h = harness("#robot=ur10");
-    h.state_mut().file_dialog = Some(FileDialog::new(Mode::Open, "", dir.clone()));
+    h.state_mut()
+        .robot_panel_mut()
+        .open_file_dialog(FileDialog::new(Mode::Open, "", dir.clone()));
     h.run_steps(2);
     h.get_by_label("my scara.json").click();
     h.run_steps(2);
     h.get_by_label("Open").click();
     h.run_steps(2);
-    assert_eq!(h.state().session.robot.name, robot.name);
-    assert_eq!(h.state().session.robot.dof(), robot.dof());
+    assert_eq!(
+        h.state().model().robot(),
+        &robot,
+        "the reopened robot is the saved one, whole"
+    );
+    assert_eq!(h.state().model().q(), robot.home().as_slice());
     std::fs::remove_dir_all(&dir).expect("clean up");
 }
 
@@ -252,15 +295,122 @@ fn the_native_app_keeps_its_session_when_it_closes() {
     let file =
         std::env::temp_dir().join(format!("armlab-ui-session-{}/session", std::process::id()));
     let mut h = harness("#robot=puma560&q=0.1,0.2,0.3,0.4,0.5,0.6");
-    h.state_mut().session_file = Some(file.clone());
+    h.state_mut().set_session_file(Some(file.clone()));
     eframe::App::on_exit(h.state_mut());
     let hash = std::fs::read_to_string(&file).expect("the session was written");
     let reopened = armlab::app::session::Session::from_hash(&hash)
         .expect("a valid hash")
         .expect("a non-empty hash");
     assert_eq!(reopened.robot.name, "Puma 560");
-    assert_eq!(reopened.q, h.state().session.q);
+    assert_eq!(reopened.q, h.state().model().q());
     if let Some(dir) = file.parent() {
         std::fs::remove_dir_all(dir).expect("clean up");
     }
+}
+
+/// A panel drawn alone over a model, as egui's demo app tests each demo alone.
+struct Alone<P> {
+    model: Model,
+    panel: P,
+    points: ScreenPoints,
+}
+
+fn alone<P: Panel + 'static>(preset: &str, panel: P) -> Harness<'static, Alone<P>> {
+    let model = Model::new(Session::for_preset(preset).expect("a preset"));
+    let mut h = Harness::builder()
+        .with_size([420.0, 520.0])
+        .with_context_setup(armlab::app::style::install_fonts)
+        .build_ui_state(
+            |ui, s: &mut Alone<P>| {
+                s.points.clear();
+                s.panel.ui(&mut s.model, ui, &mut s.points);
+            },
+            Alone {
+                model,
+                panel,
+                points: ScreenPoints::default(),
+            },
+        );
+    h.run_steps(2);
+    h
+}
+
+#[test]
+fn the_joints_panel_alone_changes_only_the_models_q() {
+    let mut h = alone("rrr", JointsPanel);
+    let before = h.state().model.q().to_vec();
+    let tool_before = h.state().model.fk().tool_position();
+    h.get_by_role_and_label(Role::Slider, "θ2").focus();
+    h.run_steps(1);
+    for _ in 0..4 {
+        h.key_press(egui::Key::ArrowRight);
+        h.run_steps(1);
+    }
+    let model = &h.state().model;
+    assert!(model.q()[1] > before[1] + 1e-3, "θ2 grew");
+    assert_eq!(model.q()[0], before[0]);
+    assert_eq!(model.q()[2], before[2]);
+    let fresh = armlab::kinematics::tool_pose(model.robot(), model.q());
+    assert_eq!(
+        model.fk().base_from_tool,
+        fresh,
+        "the model recomputed FK at the new q"
+    );
+    assert!((model.fk().tool_position() - tool_before).norm() > 1e-3);
+    assert!(
+        h.state().points.get("slider-2-min").is_some(),
+        "the rail's ends are in the registry"
+    );
+    h.get_by_label("Home").click();
+    h.run_steps(2);
+    assert_eq!(
+        h.state().model.q(),
+        h.state().model.robot().home().as_slice()
+    );
+}
+
+#[test]
+fn the_ik_panel_alone_solves_and_replays_its_run() {
+    let mut h = alone("ur10", IkPanel::default());
+    let start = h.state().model.q().to_vec();
+    let mut target = *h.state().model.target();
+    target.translation.vector += nalgebra::Vector3::new(-120.0, 80.0, 60.0);
+    h.state_mut().model.set_target(target);
+    h.run_steps(1);
+    assert_eq!(h.state().model.ik().reach, Reach::Pending);
+    h.get_by_label("Solve").click();
+    h.run_steps(2);
+    let model = &h.state().model;
+    assert_eq!(model.ik().reach, Reach::Reached);
+    let tool = armlab::kinematics::tool_pose(model.robot(), model.q());
+    assert!((tool.translation.vector - target.translation.vector).norm() < 1e-3);
+    let run = h
+        .state()
+        .panel
+        .replay()
+        .run
+        .clone()
+        .expect("the run is kept for replay");
+    assert!(
+        run.trace.len() > 2,
+        "{} iterations recorded",
+        run.trace.len()
+    );
+    // Back to the first iteration: the arm shows the q of that step.
+    h.get_by_role_and_label(Role::Slider, "iteration").focus();
+    h.run_steps(1);
+    for _ in 0..run.trace.len() {
+        h.key_press(egui::Key::ArrowLeft);
+        h.run_steps(1);
+    }
+    h.run_steps(1);
+    let q = h.state().model.q().to_vec();
+    assert_eq!(h.state().panel.replay().step, 0);
+    let first: Vec<f64> = run.trace[0].q.clone();
+    for (a, b) in q.iter().zip(&first) {
+        assert!((a - b).abs() < 1e-12, "{q:?} vs {first:?}");
+    }
+    let last = run.trace.last().expect("a trace").q.clone();
+    assert_ne!(q, last, "the replay moved the arm away from the answer");
+    assert_eq!(start.len(), q.len());
 }

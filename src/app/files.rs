@@ -131,6 +131,19 @@ impl FileDialog {
     }
 
     fn contents(&mut self, ui: &mut egui::Ui) -> Option<Choice> {
+        let mut go_to = self.folder_bar(ui);
+        ui.separator();
+        let (entered, pick) = self.listing(ui);
+        go_to = go_to.or(entered);
+        if let Some(folder) = go_to {
+            self.enter(folder);
+        }
+        ui.separator();
+        self.confirm_row(ui, pick)
+    }
+
+    /// The folder's path with an "Up" button; returns the folder to go to.
+    fn folder_bar(&self, ui: &mut egui::Ui) -> Option<PathBuf> {
         let mut go_to = None;
         ui.horizontal(|ui| {
             if ui
@@ -142,8 +155,13 @@ impl FileDialog {
             }
             ui.label(egui::RichText::new(self.folder.display().to_string()).monospace());
         });
-        ui.separator();
-        let mut pick = None;
+        go_to
+    }
+
+    /// Folders and .json files: a click on a folder enters it, on a file takes its name,
+    /// a double click on a file picks it. Returns (folder to enter, file picked).
+    fn listing(&mut self, ui: &mut egui::Ui) -> (Option<PathBuf>, Option<String>) {
+        let (mut go_to, mut pick) = (None, None);
         egui::ScrollArea::vertical()
             .max_height(240.0)
             .auto_shrink([false, true])
@@ -174,10 +192,12 @@ impl FileDialog {
                     }
                 }
             });
-        if let Some(folder) = go_to {
-            self.enter(folder);
-        }
-        ui.separator();
+        (go_to, pick)
+    }
+
+    /// The name field, the overwrite warning and the Open/Save button; returns the
+    /// choice once confirmed.
+    fn confirm_row(&mut self, ui: &mut egui::Ui, pick: Option<String>) -> Option<Choice> {
         let mut confirm = pick.is_some();
         ui.horizontal(|ui| {
             let label = ui.label("File name");

@@ -3,8 +3,10 @@
 
 use serde_json::json;
 
+use crate::kinematics::ik::Reach;
+
 use super::ArmLabApp;
-use super::session::{RobotSource, task_id};
+use super::session::RobotSource;
 
 /// Milliseconds from an arbitrary origin, for the app's own frame timing (the core has
 /// no clock). `performance.now()` on the web, `Instant` natively.
@@ -43,39 +45,75 @@ pub fn share_link(hash: &str) -> String {
     }
 }
 
-/// `window.armlab.state()`: robot, q, target pose, reached/unreachable, task, method.
+/// Named screen points (egui points, window coordinates) for
+/// `window.armlab.screenPoint` and the UI tests: every panel writes the points it draws
+/// into this one registry, which is emptied at the start of each frame.
+#[derive(Debug, Clone, Default)]
+pub struct ScreenPoints {
+    points: Vec<(String, [f32; 2])>,
+}
+
+impl ScreenPoints {
+    /// Forgets last frame's points.
+    pub fn clear(&mut self) {
+        self.points.clear();
+    }
+
+    /// Records a point by name.
+    pub fn insert(&mut self, name: impl Into<String>, at: egui::Pos2) {
+        self.points.push((name.into(), [at.x, at.y]));
+    }
+
+    /// A named point drawn this frame, if visible.
+    pub fn get(&self, name: &str) -> Option<[f32; 2]> {
+        self.points.iter().find(|(n, _)| n == name).map(|(_, p)| *p)
+    }
+
+    /// Every point, in the order drawn.
+    pub fn all(&self) -> &[(String, [f32; 2])] {
+        &self.points
+    }
+}
+
+/// `window.armlab.state()`: robot, q, target pose, reach, task, method, settings, the
+/// message and the DH editor's error, the link hash, and the viewport's frame facts.
 pub fn state_json(app: &ArmLabApp) -> String {
-    let t = &app.target;
+    let model = app.model();
+    let t = model.target();
     let p = t.translation.vector;
     let e = crate::kinematics::EulerParameters::from_rotation(t.rotation.matrix());
-    let tool = app.fk.tool_position();
+    let tool = model.fk().tool_position();
     let r = t.rotation.matrix();
+    let robot = model.robot();
+    let ik = model.ik();
     json!({
-        "robot": app.session.robot.name,
-        "preset": match &app.session.source { RobotSource::Preset(id) => Some(id.clone()), RobotSource::Custom => None },
-        "dof": app.session.robot.dof(),
-        "length_unit": app.session.robot.length_unit.symbol(),
-        "q": app.session.q,
+        "robot": robot.name,
+        "preset": match model.source() { RobotSource::Preset(id) => Some(id.clone()), RobotSource::Custom => None },
+        "dof": robot.dof(),
+        "length_unit": robot.length_unit.symbol(),
+        "q": model.q(),
         "tool": [tool.x, tool.y, tool.z],
         "target": {
             "position": [p.x, p.y, p.z],
             "quaternion": [e.e1, e.e2, e.e3, e.e4],
             "rotation": (0..3).map(|i| (0..3).map(|j| r[(i, j)]).collect::<Vec<_>>()).collect::<Vec<_>>(),
         },
-        "reached": app.ik.reached,
-        "unreachable": app.ik.unreachable,
-        "position_error": app.ik.position_error,
-        "orientation_error": app.ik.orientation_error,
-        "task": task_id(app.session.task),
-        "method": app.session.method.id(),
-        "degrees": app.settings.degrees,
-        "presentation": app.settings.presentation,
-        "message": app.message,
-        "editor_error": app.editor.first_error(),
-        "hash": app.hash(),
-        "dragging": app.viewport.dragging(),
-        "frame": app.frame,
-        "rendered": app.viewport.rendered,
+        "reach": ik.reach.id(),
+        "reached": ik.reach == Reach::Reached,
+        "unreachable": ik.reach == Reach::OutOfReach,
+        "position_error": ik.position_error,
+        "orientation_error": ik.orientation_error,
+        "task": model.task().id(),
+        "method": model.method().id(),
+        "degrees": model.settings().degrees,
+        "presentation": model.settings().presentation,
+        "hovered_link": model.hovered_link(),
+        "message": model.message().map(|m| m.text.clone()),
+        "editor_error": app.robot_panel().editor().first_error(),
+        "hash": model.hash(),
+        "dragging": app.viewport().dragging(),
+        "frame": app.frame(),
+        "rendered": app.viewport().rendered(),
     })
     .to_string()
 }

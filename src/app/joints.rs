@@ -1,88 +1,101 @@
 //! The joint panel: a slider and a number field per joint within its limits, degrees or
 //! radians, prismatic joints in length units; zero and home.
 
-use crate::kinematics::JointKind;
+use crate::kinematics::{Joint, JointKind};
 
-use super::ArmLabApp;
+use super::Panel;
+use super::hook::ScreenPoints;
+use super::model::Model;
 
-/// Shows the joint sliders. Changing one moves the arm at once.
-pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui) {
-    ui.horizontal(|ui| {
-        ui.strong("Joints");
-        if ui
-            .button("Zero")
-            .on_hover_text("All joints to 0 (or the nearest limit)")
-            .clicked()
-        {
-            let zero = vec![0.0; app.session.robot.dof()];
-            app.set_q_exact(zero);
-        }
-        if ui
-            .button("Home")
-            .on_hover_text("The robot's home pose")
-            .clicked()
-        {
-            let home = app.session.robot.home();
-            app.set_q_exact(home);
-        }
-    });
-    let degrees = app.settings.degrees;
-    let unit = app.session.robot.length_unit.symbol();
-    let mut q = app.session.q.clone();
-    let mut changed = false;
-    egui::Grid::new("joint_sliders")
-        .num_columns(2)
-        .striped(true)
-        .show(ui, |ui| {
-            for (i, joint) in app.session.robot.joints.iter().enumerate() {
-                let symbol = match joint.kind {
-                    JointKind::Revolute => format!("θ{}", i + 1),
-                    JointKind::Prismatic => format!("d{}", i + 1),
-                };
-                let label = ui.label(symbol).on_hover_text(&joint.name);
-                let (lo, hi) = (joint.limits.min, joint.limits.max);
-                let response = match joint.kind {
-                    JointKind::Revolute if degrees => {
-                        let mut v = q[i].to_degrees();
-                        let r = ui.add(
-                            egui::Slider::new(&mut v, lo.to_degrees()..=hi.to_degrees())
-                                .suffix("°")
-                                .fixed_decimals(1)
-                                .clamping(egui::SliderClamping::Never),
-                        );
-                        if r.changed() {
-                            q[i] = v.to_radians();
-                        }
-                        r
-                    }
-                    JointKind::Revolute => ui.add(
-                        egui::Slider::new(&mut q[i], lo..=hi)
-                            .suffix(" rad")
-                            .fixed_decimals(3)
-                            .clamping(egui::SliderClamping::Never),
-                    ),
-                    JointKind::Prismatic => ui.add(
-                        egui::Slider::new(&mut q[i], lo..=hi)
-                            .suffix(format!(" {unit}"))
-                            .clamping(egui::SliderClamping::Never),
-                    ),
-                };
-                let response = response.labelled_by(label.id);
-                // The rail's ends, for the browser tests.
-                let r = response.rect;
-                let rail = ui.spacing().slider_width;
-                app.viewport
-                    .points
-                    .push((format!("slider-{}-min", i + 1), [r.left(), r.center().y]));
-                app.viewport.points.push((
-                    format!("slider-{}-max", i + 1),
-                    [r.left() + rail, r.center().y],
-                ));
-                changed |= response.changed();
-                ui.end_row();
+/// The joint sliders. It keeps no state of its own: every value is the model's q.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct JointsPanel;
+
+impl Panel for JointsPanel {
+    /// Draws the sliders; a change moves the arm at once.
+    fn ui(&mut self, model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
+        ui.horizontal(|ui| {
+            ui.strong("Joints");
+            if ui
+                .button("Zero")
+                .on_hover_text("All joints to 0 (or the nearest limit)")
+                .clicked()
+            {
+                model.set_q_exact(vec![0.0; model.robot().dof()]);
+            }
+            if ui
+                .button("Home")
+                .on_hover_text("The robot's home pose")
+                .clicked()
+            {
+                model.set_q_exact(model.robot().home());
             }
         });
-    if changed {
-        app.set_q_exact(q);
+        let mut q = model.q().to_vec();
+        let mut changed = false;
+        egui::Grid::new("joint_sliders")
+            .num_columns(2)
+            .striped(true)
+            .show(ui, |ui| {
+                for (i, joint) in model.robot().joints.iter().enumerate() {
+                    let response = joint_slider(ui, model, i, joint, &mut q[i]);
+                    // The rail's ends, for the browser tests.
+                    let r = response.rect;
+                    let rail = ui.spacing().slider_width;
+                    points.insert(format!("slider-{}-min", i + 1), r.left_center());
+                    points.insert(
+                        format!("slider-{}-max", i + 1),
+                        egui::pos2(r.left() + rail, r.center().y),
+                    );
+                    changed |= response.changed();
+                    ui.end_row();
+                }
+            });
+        if changed {
+            model.set_q_exact(q);
+        }
     }
+}
+
+/// One joint's label and slider (degrees or radians, or the length unit).
+fn joint_slider(
+    ui: &mut egui::Ui,
+    model: &Model,
+    i: usize,
+    joint: &Joint,
+    value: &mut f64,
+) -> egui::Response {
+    let symbol = match joint.kind {
+        JointKind::Revolute => format!("θ{}", i + 1),
+        JointKind::Prismatic => format!("d{}", i + 1),
+    };
+    let label = ui.label(symbol).on_hover_text(&joint.name);
+    let (lo, hi) = (joint.limits.min, joint.limits.max);
+    let response = match joint.kind {
+        JointKind::Revolute if model.settings().degrees => {
+            let mut v = value.to_degrees();
+            let r = ui.add(
+                egui::Slider::new(&mut v, lo.to_degrees()..=hi.to_degrees())
+                    .suffix("°")
+                    .fixed_decimals(1)
+                    .clamping(egui::SliderClamping::Never),
+            );
+            if r.changed() {
+                *value = v.to_radians();
+            }
+            r
+        }
+        JointKind::Revolute => ui.add(
+            egui::Slider::new(value, lo..=hi)
+                .suffix(" rad")
+                .fixed_decimals(3)
+                .clamping(egui::SliderClamping::Never),
+        ),
+        JointKind::Prismatic => ui.add(
+            egui::Slider::new(value, lo..=hi)
+                .suffix(format!(" {}", model.robot().length_unit.symbol()))
+                .clamping(egui::SliderClamping::Never),
+        ),
+    };
+    response.labelled_by(label.id)
 }

@@ -4,11 +4,13 @@
 
 use nalgebra::DMatrix;
 
-use crate::kinematics::{
-    Convention, JointKind, NUMERIC_EPSILON, Orientation, jacobian_measures, numerical_jacobian,
-};
+use crate::kinematics::{Convention, JacobianAnalysis, JacobianMeasures, JointKind, Orientation};
 
-use super::{ArmLabApp, style};
+use super::Panel;
+use super::format::number;
+use super::hook::ScreenPoints;
+use super::model::{HoverSource, Model};
+use super::style;
 
 /// Plain text rows, space-aligned.
 pub fn to_plain(m: &DMatrix<f64>, decimals: usize) -> String {
@@ -138,33 +140,11 @@ fn number_table(ui: &mut egui::Ui, m: &DMatrix<f64>, decimals: usize) -> egui::R
     let Some(row) = glyphs.rows.first() else {
         return ui.label(plain_text(m, decimals));
     };
-    // For each of NUMBER_CHARS: its glyph and the vertices of its quad in the row's mesh.
-    let quads: Vec<(&egui::epaint::text::Glyph, std::ops::Range<usize>)> = (0..row.glyphs.len())
-        .map(|i| {
-            let end = row
-                .glyphs
-                .get(i + 1)
-                .map_or(row.visuals.glyph_vertex_range.end, |next| {
-                    next.first_vertex as usize
-                });
-            (&row.glyphs[i], row.glyphs[i].first_vertex as usize..end)
-        })
-        .collect();
-    // Each number (column-major, as nalgebra stores them) as its quads and its width.
-    let mut cells = Vec::with_capacity(m.len());
-    for v in m.iter() {
-        let text = format!("{:.p$}", clean(*v, decimals), p = decimals);
-        let Some(chars) = text
-            .chars()
-            .map(|c| quads.iter().find(|(g, _)| g.chr == c))
-            .collect::<Option<Vec<_>>>()
-        else {
-            // A number this table cannot draw (NaN, infinity): plain text instead.
-            return ui.label(plain_text(m, decimals));
-        };
-        let width: f32 = chars.iter().map(|(g, _)| g.advance_width).sum();
-        cells.push((chars, width));
-    }
+    let quads = glyph_quads(row);
+    let Some(cells) = number_cells(m, decimals, &quads) else {
+        // A number this table cannot draw (NaN, infinity): plain text instead.
+        return ui.label(plain_text(m, decimals));
+    };
     let gap = quads
         .iter()
         .find(|(g, _)| g.chr == '0')
@@ -185,13 +165,93 @@ fn number_table(ui: &mut egui::Ui, m: &DMatrix<f64>, decimals: usize) -> egui::R
     if !ui.is_rect_visible(rect) {
         return response;
     }
-    let ppp = ui.ctx().pixels_per_point();
+    let layout = TableLayout {
+        rect,
+        row_height,
+        gap,
+        rows: m.nrows().max(1),
+        column_widths: &column_widths,
+    };
+    let mesh = numbers_mesh(
+        &row.visuals.mesh,
+        &cells,
+        &layout,
+        ui.ctx().pixels_per_point(),
+    );
+    let painter = ui.painter().clone();
+    let place = painter.add(egui::Shape::Noop);
+    ui.ctx().data_mut(|d| {
+        d.get_temp_mut_or_default::<PendingNumbers>(pending_numbers_id())
+            .0
+            .push((painter, place, mesh));
+    });
+    response
+}
+
+/// A glyph of [`NUMBER_CHARS`] and the vertices of its quad in the laid-out row's mesh.
+type GlyphQuad<'a> = (&'a egui::epaint::text::Glyph, std::ops::Range<usize>);
+
+/// A number as its characters' glyph quads, and its width.
+type NumberCell<'a, 'b> = (Vec<&'b GlyphQuad<'a>>, f32);
+
+/// For each of [`NUMBER_CHARS`]: its glyph and its quad's vertex range in the row's mesh.
+fn glyph_quads(row: &egui::epaint::text::Row) -> Vec<GlyphQuad<'_>> {
+    (0..row.glyphs.len())
+        .map(|i| {
+            let end = row
+                .glyphs
+                .get(i + 1)
+                .map_or(row.visuals.glyph_vertex_range.end, |next| {
+                    next.first_vertex as usize
+                });
+            (&row.glyphs[i], row.glyphs[i].first_vertex as usize..end)
+        })
+        .collect()
+}
+
+/// Each number (column-major, as nalgebra stores them) as its quads and its width; none
+/// when a number has a character outside [`NUMBER_CHARS`].
+fn number_cells<'a, 'b>(
+    m: &DMatrix<f64>,
+    decimals: usize,
+    quads: &'b [GlyphQuad<'a>],
+) -> Option<Vec<NumberCell<'a, 'b>>> {
+    m.iter()
+        .map(|v| {
+            let text = format!("{:.p$}", clean(*v, decimals), p = decimals);
+            let chars = text
+                .chars()
+                .map(|c| quads.iter().find(|(g, _)| g.chr == c))
+                .collect::<Option<Vec<_>>>()?;
+            let width: f32 = chars.iter().map(|(g, _)| g.advance_width).sum();
+            Some((chars, width))
+        })
+        .collect()
+}
+
+/// Where a table's numbers go.
+struct TableLayout<'a> {
+    rect: egui::Rect,
+    row_height: f32,
+    gap: f32,
+    rows: usize,
+    column_widths: &'a [f32],
+}
+
+/// One mesh of every number's glyph quads, copied from the laid-out row and moved into
+/// place, each column right-aligned.
+fn numbers_mesh(
+    source: &egui::Mesh,
+    cells: &[NumberCell<'_, '_>],
+    layout: &TableLayout<'_>,
+    ppp: f32,
+) -> egui::Mesh {
     let mut mesh = egui::Mesh::default();
-    let mut left = rect.left();
-    for (column, column_width) in cells.chunks(m.nrows().max(1)).zip(&column_widths) {
+    let mut left = layout.rect.left();
+    for (column, column_width) in cells.chunks(layout.rows).zip(layout.column_widths) {
         for (r, (chars, width)) in column.iter().enumerate() {
             let mut x = left + column_width - width;
-            let y = rect.top() + row_height * r as f32;
+            let y = layout.rect.top() + layout.row_height * r as f32;
             for (glyph, vertices) in chars {
                 // The row's mesh is relative to the row's top left and the glyph's pen
                 // position is `glyph.pos.x`; whole pixels keep the copy as crisp as the text.
@@ -201,7 +261,7 @@ fn number_table(ui: &mut egui::Ui, m: &DMatrix<f64>, decimals: usize) -> egui::R
                 );
                 let first = mesh.vertices.len() as u32;
                 mesh.vertices
-                    .extend(row.visuals.mesh.vertices[vertices.clone()].iter().map(|v| {
+                    .extend(source.vertices[vertices.clone()].iter().map(|v| {
                         egui::epaint::Vertex {
                             pos: v.pos + shift,
                             ..*v
@@ -214,16 +274,9 @@ fn number_table(ui: &mut egui::Ui, m: &DMatrix<f64>, decimals: usize) -> egui::R
                 x += glyph.advance_width;
             }
         }
-        left += column_width + gap;
+        left += column_width + layout.gap;
     }
-    let painter = ui.painter().clone();
-    let place = painter.add(egui::Shape::Noop);
-    ui.ctx().data_mut(|d| {
-        d.get_temp_mut_or_default::<PendingNumbers>(pending_numbers_id())
-            .0
-            .push((painter, place, mesh));
-    });
-    response
+    mesh
 }
 
 /// The matrix as one monospace text, for what [`number_table`] cannot draw.
@@ -260,98 +313,109 @@ pub fn finish_numbers(ctx: &egui::Context) {
 }
 
 fn homogeneous(pose: &nalgebra::IsometryMatrix3<f64>) -> DMatrix<f64> {
-    let h = pose.to_homogeneous();
+    let h = crate::kinematics::fk::homogeneous(pose);
     DMatrix::from_fn(4, 4, |r, c| h[(r, c)])
 }
 
-/// Shows the panel.
-pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui) {
-    let decimals = app.settings.precision;
-    ui.horizontal(|ui| {
-        ui.strong("Matrices");
-        let label = ui.label("decimals:");
-        ui.add(egui::DragValue::new(&mut app.settings.precision).range(0..=8))
-            .labelled_by(label.id);
-    });
-    let n = app.session.robot.dof();
-    let unit = app.session.robot.length_unit.symbol();
-    let mut hovered = None;
+/// The matrices panel. Its layout caches (each block's size while scrolled out of sight,
+/// the glyph quads of the numbers) live in egui's memory for the frame.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct MatricesPanel;
 
-    let tool = homogeneous(&app.fk.base_from_tool);
-    matrix_block(
-        ui,
-        &format!("T_0{n}  (tool pose, {unit})"),
-        "The tool frame in the base frame: the product of every A_i",
-        &tool,
-        decimals,
-        false,
-    );
-    orientation_block(
-        ui,
-        &Orientation::from_rotation(app.fk.tool_rotation()),
-        app.settings.degrees,
-        decimals,
-    );
-
-    egui::CollapsingHeader::new("Jacobian")
-        .default_open(true)
-        .show(ui, |ui| jacobian_block(app, ui, decimals));
-
-    let convention = match app.session.robot.convention {
-        Convention::Standard => "standard DH: A_i = Rz(θ)·Tz(d)·Tx(a)·Rx(α)",
-        Convention::Modified => "modified DH: A_i = Rx(α_{i−1})·Tx(a_{i−1})·Rz(θ)·Tz(d)",
-    };
-    egui::CollapsingHeader::new("Link transforms A_i and running products T_0i")
-        .default_open(true)
-        .show(ui, |ui| {
-            ui.label(convention);
-            for i in 0..n {
-                let highlighted = app.hovered_link == Some(i + 1);
-                let joint = &app.session.robot.joints[i];
-                let variable = match joint.kind {
-                    JointKind::Revolute => "θ",
-                    JointKind::Prismatic => "d",
-                };
-                let a = homogeneous(&app.fk.link_transforms[i]);
-                if matrix_block(
-                    ui,
-                    &format!(
-                        "A_{}  ({}, {variable}{} variable)",
-                        i + 1,
-                        joint.name,
-                        i + 1
-                    ),
-                    "Frame i in frame i−1",
-                    &a,
-                    decimals,
-                    highlighted,
-                ) {
-                    hovered = Some(i + 1);
-                }
-                let t = homogeneous(&app.fk.base_from_frames[i]);
-                if matrix_block(
-                    ui,
-                    &format!("T_0{}", i + 1),
-                    "Frame i in the base frame: A_1·…·A_i",
-                    &t,
-                    decimals,
-                    highlighted,
-                ) {
-                    hovered = Some(i + 1);
-                }
-            }
-        });
-    if hovered.is_some() {
-        app.hovered_link = hovered;
-        app.viewport.link_hover_from_panel = true;
-    } else if app.viewport.link_hover_from_panel {
-        app.hovered_link = None;
-        app.viewport.link_hover_from_panel = false;
+impl Panel for MatricesPanel {
+    fn ui(&mut self, model: &mut Model, ui: &mut egui::Ui, _points: &mut ScreenPoints) {
+        precision_row(model, ui);
+        let decimals = model.settings().precision;
+        let n = model.robot().dof();
+        let unit = model.robot().length_unit.symbol();
+        matrix_block(
+            ui,
+            &format!("T_0{n}  (tool pose, {unit})"),
+            "The tool frame in the base frame: the product of every A_i",
+            &homogeneous(&model.fk().base_from_tool),
+            decimals,
+            false,
+        );
+        orientation_block(
+            ui,
+            &Orientation::from_rotation(model.fk().tool_rotation()),
+            model.settings().degrees,
+            decimals,
+        );
+        egui::CollapsingHeader::new("Jacobian")
+            .default_open(true)
+            .show(ui, |ui| jacobian_block(model, ui, decimals));
+        let hovered = egui::CollapsingHeader::new("Link transforms A_i and running products T_0i")
+            .default_open(true)
+            .show(ui, |ui| link_blocks(model, ui, decimals))
+            .body_returned
+            .flatten();
+        model.set_hovered_link(hovered, HoverSource::Matrices);
     }
 }
 
-fn jacobian_block(app: &ArmLabApp, ui: &mut egui::Ui, decimals: usize) {
-    let j = &app.jacobian;
+fn precision_row(model: &mut Model, ui: &mut egui::Ui) {
+    ui.horizontal(|ui| {
+        ui.strong("Matrices");
+        let label = ui.label("decimals:");
+        let mut precision = model.settings().precision;
+        if ui
+            .add(egui::DragValue::new(&mut precision).range(0..=8))
+            .labelled_by(label.id)
+            .changed()
+        {
+            let mut settings = model.settings().clone();
+            settings.precision = precision;
+            model.set_settings(settings);
+        }
+    });
+}
+
+/// Every A_i and T_0i; returns the link whose matrix is under the pointer.
+fn link_blocks(model: &Model, ui: &mut egui::Ui, decimals: usize) -> Option<usize> {
+    let convention = match model.robot().convention {
+        Convention::Standard => "standard DH: A_i = Rz(θ)·Tz(d)·Tx(a)·Rx(α)",
+        Convention::Modified => "modified DH: A_i = Rx(α_{i−1})·Tx(a_{i−1})·Rz(θ)·Tz(d)",
+    };
+    ui.label(convention);
+    let mut hovered = None;
+    for (i, joint) in model.robot().joints.iter().enumerate() {
+        let highlighted = model.hovered_link() == Some(i + 1);
+        let variable = match joint.kind {
+            JointKind::Revolute => "θ",
+            JointKind::Prismatic => "d",
+        };
+        let a = homogeneous(&model.fk().link_transforms[i]);
+        let title = format!(
+            "A_{}  ({}, {variable}{} variable)",
+            i + 1,
+            joint.name,
+            i + 1
+        );
+        if matrix_block(
+            ui,
+            &title,
+            "Frame i in frame i−1",
+            &a,
+            decimals,
+            highlighted,
+        ) {
+            hovered = Some(i + 1);
+        }
+        let t = homogeneous(&model.fk().base_from_frames[i]);
+        let title = format!("T_0{}", i + 1);
+        let hover = "Frame i in the base frame: A_1·…·A_i";
+        if matrix_block(ui, &title, hover, &t, decimals, highlighted) {
+            hovered = Some(i + 1);
+        }
+    }
+    hovered
+}
+
+fn jacobian_block(model: &Model, ui: &mut egui::Ui, decimals: usize) {
+    let robot = model.robot();
+    let analysis = JacobianAnalysis::new(robot, model.fk(), model.q(), model.task());
+    let j = &analysis.geometric;
     let jm = DMatrix::from_fn(6, j.ncols(), |r, c| j[(r, c)]);
     matrix_block(
         ui,
@@ -361,51 +425,49 @@ fn jacobian_block(app: &ArmLabApp, ui: &mut egui::Ui, decimals: usize) {
         decimals,
         false,
     );
-    let robot = &app.session.robot;
-    let numeric = numerical_jacobian(robot, &app.session.q, NUMERIC_EPSILON);
-    let diff = (j - &numeric).abs().max();
-    let tol = 1e-5 * j.norm().max(1.0);
-    let text = format!("central differences (ε = 1e−6) agree to {diff:.1e}");
-    if diff <= tol {
+    let text = format!(
+        "central differences (ε = 1e−6) agree to {}",
+        number(analysis.max_difference, 1)
+    );
+    if analysis.agrees {
         ui.label(text);
     } else {
         ui.colored_label(
             style::ERROR,
-            format!("{text}: above the tolerance {tol:.1e}"),
+            format!(
+                "{text}: above the tolerance {}",
+                number(analysis.tolerance, 1)
+            ),
         );
     }
-    let m = jacobian_measures(j, app.session.task, app.fk.tool_rotation(), robot.reach());
-    let sv: Vec<String> = m
-        .singular_values
-        .iter()
-        .map(|s| format!("{s:.4}"))
-        .collect();
+    measures_grid(model, &analysis.measures, ui);
+}
+
+fn measures_grid(model: &Model, m: &JacobianMeasures, ui: &mut egui::Ui) {
+    let sv: Vec<String> = m.singular_values.iter().map(|s| number(*s, 4)).collect();
     egui::Grid::new("measures").num_columns(2).show(ui, |ui| {
         ui.label("task rows")
             .on_hover_text("The rows the IK task uses");
-        ui.label(format!("{}", app.session.task.rows()));
+        ui.label(format!("{}", model.task().rows()));
         ui.end_row();
         ui.label("singular values").on_hover_text(format!(
-            "Of the task Jacobian with the linear rows divided by the reach ({:.0} {})",
-            m.length_scale,
-            robot.length_unit.symbol()
+            "Of the task Jacobian with the linear rows divided by the reach ({} {})",
+            number(m.length_scale, 0),
+            model.robot().length_unit.symbol()
         ));
         ui.monospace(sv.join("  "));
         ui.end_row();
         ui.label("manipulability")
             .on_hover_text("√det(J Jᵀ): the product of the singular values");
-        ui.monospace(format!("{:.5}", m.manipulability));
+        ui.monospace(number(m.manipulability, 5));
         ui.end_row();
         if let Some(det) = m.determinant {
             ui.label("det J");
-            ui.monospace(format!("{det:.5}"));
+            ui.monospace(number(det, 5));
             ui.end_row();
         }
         ui.label("condition number");
-        ui.monospace(
-            m.condition_number
-                .map_or("∞".to_string(), |c| format!("{c:.2}")),
-        );
+        ui.monospace(m.condition_number.map_or("∞".to_string(), |c| number(c, 2)));
         ui.end_row();
     });
     if m.near_singular {

@@ -1,67 +1,39 @@
-//! The eframe/egui application. One panel per file; the state lives in [`ArmLabApp`] and
-//! every number comes from the core ([`crate::kinematics`]). Data flow per frame: panels
-//! change `q`, the robot or the target → the core recomputes FK, the Jacobian and IK → the
-//! viewport builds a [`crate::render::Scene`] and the panels show the matrices.
+//! The eframe/egui application.
+//!
+//! - [`model::Model`] holds the session (robot, q, target, task, method), the display
+//!   settings and what is derived from them; its methods are the only writers.
+//! - Each panel is a type that owns its own state and has one `ui` method that reads the
+//!   model and calls its methods: [`top_bar`], [`joints::JointsPanel`],
+//!   [`ik_panel::IkPanel`], [`robot_panel::RobotPanel`], [`matrices::MatricesPanel`] and
+//!   the 3D [`viewport::Viewport`]. Panels never write each other's state; the
+//!   highlighted link is a value in the model.
+//! - Screen points for the test hook go to one registry, [`hook::ScreenPoints`].
+//!
+//! Data flow per frame: panels ask the model for changes → the model recomputes FK, the
+//! Jacobian and the IK status → the viewport builds a [`crate::render::Scene`] from the
+//! model's frames and the renderer draws it.
+#![deny(clippy::too_many_lines)]
 
 #[cfg(not(target_arch = "wasm32"))]
 pub mod files;
+pub mod format;
 pub mod hook;
 pub mod ik_panel;
 pub mod joints;
 pub mod matrices;
+pub mod model;
 pub mod robot_panel;
 pub mod scene;
 pub mod session;
 pub mod style;
+pub mod top_bar;
 pub mod viewport;
 #[cfg(target_arch = "wasm32")]
 pub mod web;
 
-use nalgebra::{IsometryMatrix3, Matrix6xX};
-
-use crate::kinematics::{ForwardKinematics, Robot, ZyxEuler, geometric_jacobian_into};
-use crate::render::SceneRenderer;
-use crate::render::camera::OrbitCamera;
-use session::{RobotSource, Session};
-
-/// Display preferences.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Settings {
-    /// Angles in degrees (true) or radians.
-    pub degrees: bool,
-    /// Draw the DH frames (x red, y green, z blue).
-    pub show_frames: bool,
-    /// Decimals in the matrices.
-    pub precision: usize,
-    /// Large fonts and high contrast for projectors.
-    pub presentation: bool,
-}
-
-impl Default for Settings {
-    fn default() -> Self {
-        Settings {
-            degrees: true,
-            show_frames: true,
-            precision: 3,
-            presentation: false,
-        }
-    }
-}
-
-/// The state of the IK as the user last saw it.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct IkStatus {
-    /// The tool is at the target (within tolerance).
-    pub reached: bool,
-    /// The last solve found the target out of reach.
-    pub unreachable: bool,
-    /// Position error (robot units).
-    pub position_error: f64,
-    /// Orientation error (radians) for the task's rows.
-    pub orientation_error: f64,
-    /// Iterations of the last solve.
-    pub iterations: usize,
-}
+use hook::ScreenPoints;
+use model::{Message, Model};
+use session::Session;
 
 /// Main-thread milliseconds of one frame of the app, in parts.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -78,47 +50,25 @@ pub struct FrameTime {
     pub render_ms: f64,
 }
 
-/// The whole app.
+/// How many recent frames' times are kept.
+const RECENT_FRAMES: usize = 600;
+
+/// The whole app: the model, the panels, and the frame's bookkeeping.
 pub struct ArmLabApp {
-    /// Robot, joints, target and IK mode: what a link carries.
-    pub session: Session,
-    /// Forward kinematics at `session.q`.
-    pub fk: ForwardKinematics,
-    /// Geometric Jacobian at `session.q`.
-    pub jacobian: Matrix6xX<f64>,
-    /// The IK target in the base frame.
-    pub target: IsometryMatrix3<f64>,
-    /// IK state shown by the marker colour and the IK panel.
-    pub ik: IkStatus,
-    /// The 3D camera.
-    pub camera: OrbitCamera,
-    /// Display preferences.
-    pub settings: Settings,
-    /// A sentence for the user (bad link, bad file), shown in the top bar until dismissed.
-    pub message: Option<String>,
-    /// The DH editor's cell texts and errors.
-    pub editor: robot_panel::DhEditor,
-    /// The joint (1-based link) whose frame and matrix are highlighted.
-    pub hovered_link: Option<usize>,
-    /// The viewport's interaction state.
-    pub viewport: viewport::ViewportState,
-    /// Main-thread time of recent frames, split into its parts.
-    pub frame_ms: std::collections::VecDeque<FrameTime>,
+    model: Model,
+    joints: joints::JointsPanel,
+    ik_panel: ik_panel::IkPanel,
+    robot_panel: robot_panel::RobotPanel,
+    matrices: matrices::MatricesPanel,
+    viewport: viewport::Viewport,
+    points: ScreenPoints,
     /// The parts of the frame being drawn, filled in as they run.
-    pub timing: FrameTime,
-    /// Frames drawn so far.
-    pub frame: u64,
-    /// The IK solver with its reusable workspaces.
-    pub solver: crate::kinematics::ik::IkSolver,
-    /// The last full solve, for replay.
-    pub replay: ik_panel::Replay,
-    /// The native file dialog, while it is open.
-    #[cfg(not(target_arch = "wasm32"))]
-    pub file_dialog: Option<files::FileDialog>,
+    timing: FrameTime,
+    frame_ms: std::collections::VecDeque<FrameTime>,
+    frame: u64,
     /// Where the native app keeps the last session (set by `main`; none in tests).
     #[cfg(not(target_arch = "wasm32"))]
-    pub session_file: Option<std::path::PathBuf>,
-    renderer: Option<SceneRenderer>,
+    session_file: Option<std::path::PathBuf>,
 }
 
 impl ArmLabApp {
@@ -126,159 +76,95 @@ impl ArmLabApp {
     pub fn new(cc: &eframe::CreationContext<'_>, hash: &str) -> Self {
         style::install_fonts(&cc.egui_ctx);
         style::install(&cc.egui_ctx, false);
-        let renderer = cc.wgpu_render_state.as_ref().map(SceneRenderer::new);
         let mut app = ArmLabApp::with_session(Session::default_session());
-        app.renderer = renderer;
+        app.viewport = viewport::Viewport::new(cc.wgpu_render_state.as_ref());
         app.open_hash(hash);
         app
     }
 
     /// An app without a renderer (for headless tests of the logic).
     pub fn with_session(session: Session) -> Self {
-        let mut app = ArmLabApp {
-            fk: ForwardKinematics::default(),
-            jacobian: Matrix6xX::zeros(session.robot.dof()),
-            target: IsometryMatrix3::identity(),
-            ik: IkStatus::default(),
-            camera: OrbitCamera::default(),
-            settings: Settings::default(),
-            message: None,
-            editor: robot_panel::DhEditor::default(),
-            hovered_link: None,
-            viewport: viewport::ViewportState::default(),
-            frame_ms: std::collections::VecDeque::new(),
+        let model = Model::new(session);
+        ArmLabApp {
+            robot_panel: robot_panel::RobotPanel::new(model.robot()),
+            model,
+            joints: joints::JointsPanel,
+            ik_panel: ik_panel::IkPanel::default(),
+            matrices: matrices::MatricesPanel,
+            viewport: viewport::Viewport::new(None),
+            points: ScreenPoints::default(),
             timing: FrameTime::default(),
+            frame_ms: std::collections::VecDeque::new(),
             frame: 0,
-            solver: crate::kinematics::ik::IkSolver::new(),
-            replay: ik_panel::Replay::default(),
-            #[cfg(not(target_arch = "wasm32"))]
-            file_dialog: None,
             #[cfg(not(target_arch = "wasm32"))]
             session_file: None,
-            renderer: None,
-            session,
-        };
-        app.load_session(app.session.clone());
-        app
+        }
     }
 
-    /// Opens a URL hash; on garbage, shows the reason and keeps (or falls back to) the
-    /// default robot. An empty hash changes nothing.
+    /// Opens a URL hash; on garbage, shows the reason and falls back to the default
+    /// robot. An empty hash changes nothing.
     pub fn open_hash(&mut self, hash: &str) {
         match Session::from_hash(hash) {
-            Ok(Some(session)) => self.load_session(session),
+            Ok(Some(session)) => self.model.open(session),
             Ok(None) => {}
             Err(reason) => {
-                self.load_session(Session::default_session());
-                self.message = Some(format!(
+                self.model.open(Session::default_session());
+                self.model.set_message(Message::warning(format!(
                     "This link could not be opened ({reason}); showing the default robot instead."
-                ));
+                )));
             }
         }
     }
 
-    /// Replaces the whole state.
-    pub fn load_session(&mut self, session: Session) {
-        self.session = session;
-        self.editor = robot_panel::DhEditor::from_robot(&self.session.robot);
-        self.refresh();
-        self.target = match self.session.target {
-            Some(t) => target_from_array(&t),
-            None => self.fk.base_from_tool,
-        };
-        self.ik = IkStatus::default();
-        self.update_reached();
-        self.fit_camera();
+    /// The model: the session and what is derived from it.
+    pub fn model(&self) -> &Model {
+        &self.model
     }
 
-    /// Swaps in a new robot (a preset or an edited table), keeping what can be kept.
-    pub fn set_robot(&mut self, robot: Robot, source: RobotSource) {
-        let same_shape = robot.dof() == self.session.robot.dof();
-        let q = if same_shape {
-            let mut q = self.session.q.clone();
-            let current = q.clone();
-            robot.keep_q(&mut q, &current);
-            q
-        } else {
-            robot.home()
-        };
-        let reframe = robot.reach() / self.session.robot.reach();
-        self.session.robot = robot;
-        self.session.source = source;
-        self.session.q = q;
-        self.refresh();
-        if !same_shape || !(0.5..2.0).contains(&reframe) {
-            self.snap_target();
-            self.fit_camera();
-        }
-        self.update_reached();
+    /// The model, to change it as a panel would (tests, the page's hooks).
+    pub fn model_mut(&mut self) -> &mut Model {
+        &mut self.model
     }
 
-    /// Sets the joint vector (kept as SPEC §2 says) and recomputes FK and the Jacobian.
-    pub fn set_q(&mut self, mut q: Vec<f64>) {
-        q.resize(self.session.robot.dof(), 0.0);
-        let current = self.session.q.clone();
-        self.session.robot.keep_q(&mut q, &current);
-        self.session.q = q;
-        self.refresh();
-        self.update_reached();
+    /// The 3D view.
+    pub fn viewport(&self) -> &viewport::Viewport {
+        &self.viewport
     }
 
-    /// Sets the joint vector as typed or slid: each value clamped to its joint's limits,
-    /// not re-mapped to another turn (a slider at 216° stays at 216°).
-    pub fn set_q_exact(&mut self, mut q: Vec<f64>) {
-        q.resize(self.session.robot.dof(), 0.0);
-        for (v, joint) in q.iter_mut().zip(&self.session.robot.joints) {
-            *v = joint.limits.clamp(*v);
-        }
-        self.session.q = q;
-        self.refresh();
-        self.update_reached();
+    /// The robot panel (its DH editor and file dialog).
+    pub fn robot_panel(&self) -> &robot_panel::RobotPanel {
+        &self.robot_panel
     }
 
-    /// Recomputes forward kinematics and the Jacobian at the current q.
-    pub fn refresh(&mut self) {
-        self.fk.update(&self.session.robot, &self.session.q);
-        geometric_jacobian_into(&self.fk, &mut self.jacobian);
+    /// The robot panel, to open its file dialog (tests).
+    pub fn robot_panel_mut(&mut self) -> &mut robot_panel::RobotPanel {
+        &mut self.robot_panel
     }
 
-    /// Moves the target onto the gripper.
-    pub fn snap_target(&mut self) {
-        self.target = self.fk.base_from_tool;
-        self.session.target = Some(target_to_array(&self.target));
-        self.ik = IkStatus::default();
-        self.update_reached();
+    /// The IK panel (its replay).
+    pub fn ik_panel(&self) -> &ik_panel::IkPanel {
+        &self.ik_panel
     }
 
-    /// Sets the target pose (from a drag or a typed value).
-    pub fn set_target(&mut self, target: IsometryMatrix3<f64>) {
-        self.target = target;
-        self.session.target = Some(target_to_array(&target));
+    /// The named screen points drawn last frame.
+    pub fn points(&self) -> &ScreenPoints {
+        &self.points
     }
 
-    /// Recomputes whether the tool is at the target for the current task.
-    pub fn update_reached(&mut self) {
-        let (pos, rot) = ik_panel::task_errors(
-            &self.session.robot,
-            &self.session.q,
-            &self.target,
-            self.session.task,
-        );
-        self.ik.position_error = pos;
-        self.ik.orientation_error = rot;
-        let tol = ik_panel::position_tolerance(&self.session.robot);
-        self.ik.reached = pos <= tol && rot <= ik_panel::ORIENTATION_TOLERANCE;
-        if self.ik.reached {
-            self.ik.unreachable = false;
-        }
+    /// Frames drawn so far.
+    pub fn frame(&self) -> u64 {
+        self.frame
     }
 
-    /// Frames the robot in the viewport.
-    pub fn fit_camera(&mut self) {
-        let reach = self.session.robot.reach();
-        let base = self.session.robot.world_from_base.translation.vector;
-        let centre = nalgebra::Point3::from(base + nalgebra::Vector3::new(0.0, 0.0, reach * 0.35));
-        self.camera.fit(centre, reach * 0.85);
+    /// Main-thread times of recent frames, oldest first.
+    pub fn frame_times(&self) -> &std::collections::VecDeque<FrameTime> {
+        &self.frame_ms
+    }
+
+    /// Where the native app keeps the last session when it closes.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn set_session_file(&mut self, path: Option<std::path::PathBuf>) {
+        self.session_file = path;
     }
 
     /// The state the browser tests read (`window.armlab.state()`), as JSON.
@@ -288,14 +174,12 @@ impl ArmLabApp {
 
     /// The current link hash (without `#`).
     pub fn hash(&self) -> String {
-        let mut s = self.session.clone();
-        s.target = Some(target_to_array(&self.target));
-        s.to_hash()
+        self.model.hash()
     }
 
     /// Takes the app's own time for a frame.
     fn record_frame_time(&mut self, total_ms: f64) {
-        if self.frame_ms.len() >= 600 {
+        if self.frame_ms.len() >= RECENT_FRAMES {
             self.frame_ms.pop_front();
         }
         let mut t = std::mem::take(&mut self.timing);
@@ -303,7 +187,7 @@ impl ArmLabApp {
         self.frame_ms.push_back(t);
     }
 
-    /// Draws the whole UI: top bar, joint and IK panel, matrices, viewport.
+    /// Draws the whole UI: top bar, joint, IK and robot panel, matrices, viewport.
     pub fn show(
         &mut self,
         ui: &mut egui::Ui,
@@ -311,37 +195,46 @@ impl ArmLabApp {
     ) {
         let start = hook::now_ms();
         self.frame += 1;
-        self.viewport.points.clear();
-        style::install(ui.ctx(), self.settings.presentation);
-        egui::Panel::top("armlab_top").show(ui, |ui| self.top_bar(ui));
+        self.points.clear();
+        style::install(ui.ctx(), self.model.settings().presentation);
+        egui::Panel::top("armlab_top").show(ui, |ui| {
+            if let Some(action) = top_bar::ui(&mut self.model, ui) {
+                self.viewport.apply(action, &self.model, ui.ctx());
+            }
+        });
         egui::Panel::left("armlab_left")
             .default_size(330.0)
             .resizable(true)
             .show(ui, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| {
-                    joints::show(self, ui);
+                    self.joints.ui(&mut self.model, ui, &mut self.points);
                     ui.separator();
-                    ik_panel::show(self, ui);
+                    self.ik_panel.ui(&mut self.model, ui, &mut self.points);
                     ui.separator();
-                    robot_panel::show(self, ui);
+                    self.robot_panel.ui(&mut self.model, ui, &mut self.points);
                 });
             });
         egui::Panel::right("armlab_right")
             .default_size(460.0)
             .resizable(true)
             .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| matrices::show(self, ui));
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    self.matrices.ui(&mut self.model, ui, &mut self.points);
+                });
             });
         egui::CentralPanel::default()
-            .frame(egui::Frame::NONE.fill(style::background(self.settings.presentation)))
+            .frame(egui::Frame::NONE.fill(style::background(self.model.settings().presentation)))
             .show(ui, |ui| {
-                // Lent to the viewport for the frame (it also borrows the app).
-                let mut renderer = self.renderer.take();
-                viewport::show(self, ui, render_state, renderer.as_mut());
-                self.renderer = renderer;
+                self.viewport.ui(
+                    &mut self.model,
+                    ui,
+                    &mut self.points,
+                    render_state,
+                    &mut self.timing,
+                );
             });
         #[cfg(not(target_arch = "wasm32"))]
-        robot_panel::show_file_dialog(self, ui.ctx());
+        self.robot_panel.show_file_dialog(&mut self.model, ui.ctx());
         // Last, once every text of the frame has its glyphs in the font atlas.
         matrices::finish_numbers(ui.ctx());
         #[cfg(target_arch = "wasm32")]
@@ -351,52 +244,13 @@ impl ArmLabApp {
         }
         self.record_frame_time(hook::now_ms() - start);
     }
+}
 
-    fn top_bar(&mut self, ui: &mut egui::Ui) {
-        ui.horizontal_wrapped(|ui| {
-            ui.heading("ArmLab");
-            ui.label(egui::RichText::new(&self.session.robot.name).strong());
-            ui.separator();
-            ui.toggle_value(&mut self.settings.degrees, "Degrees")
-                .on_hover_text("Show angles in degrees (off: radians)");
-            ui.toggle_value(&mut self.settings.show_frames, "DH frames")
-                .on_hover_text("Draw every DH frame: x red, y green, z blue");
-            ui.toggle_value(&mut self.settings.presentation, "Presentation")
-                .on_hover_text("Large fonts and high contrast for a projector");
-            ui.separator();
-            if ui.button("Fit").on_hover_text("Frame the robot").clicked() {
-                self.fit_camera();
-            }
-            use crate::render::camera::StandardView;
-            for (label, view) in [
-                ("Top", StandardView::Top),
-                ("Front", StandardView::Front),
-                ("Side", StandardView::Side),
-                ("3D", StandardView::Iso),
-            ] {
-                if ui.button(label).clicked() {
-                    self.camera.set_view(view);
-                }
-            }
-            ui.separator();
-            if ui
-                .button("Copy link")
-                .on_hover_text("A link that opens this robot, pose and target")
-                .clicked()
-            {
-                let link = hook::share_link(&self.hash());
-                ui.ctx().copy_text(link);
-            }
-        });
-        if let Some(message) = self.message.clone() {
-            ui.horizontal(|ui| {
-                ui.colored_label(style::ERROR, format!("⚠ {message}"));
-                if ui.small_button("Dismiss").clicked() {
-                    self.message = None;
-                }
-            });
-        }
-    }
+/// A side panel: a type that owns its own state and draws itself from the model, asking
+/// the model's methods for every change.
+pub trait Panel {
+    /// Draws the panel; named points go to `points` for the test hook.
+    fn ui(&mut self, model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints);
 }
 
 impl eframe::App for ArmLabApp {
@@ -412,7 +266,7 @@ impl eframe::App for ArmLabApp {
             let written = path
                 .parent()
                 .map_or(Ok(()), std::fs::create_dir_all)
-                .and_then(|()| std::fs::write(path, self.hash()));
+                .and_then(|()| std::fs::write(path, self.model.hash()));
             if let Err(e) = written {
                 log::warn!("could not keep the session in {}: {e}", path.display());
             }
@@ -421,33 +275,11 @@ impl eframe::App for ArmLabApp {
 
     fn clear_color(&self, _visuals: &egui::Visuals) -> [f32; 4] {
         // Opaque: eframe's default is translucent, which lets the page show through.
-        style::background(self.settings.presentation).to_normalized_gamma_f32()
+        style::background(self.model.settings().presentation).to_normalized_gamma_f32()
     }
 
     #[cfg(target_arch = "wasm32")]
     fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
         Some(&mut *self)
     }
-}
-
-/// A target pose from `[x, y, z, α, β, γ]` (Z-Y-X Euler angles, radians).
-pub fn target_from_array(t: &[f64; 6]) -> IsometryMatrix3<f64> {
-    let r = ZyxEuler {
-        alpha: t[3],
-        beta: t[4],
-        gamma: t[5],
-        degenerate: false,
-    }
-    .to_rotation();
-    IsometryMatrix3::from_parts(
-        nalgebra::Translation3::new(t[0], t[1], t[2]),
-        nalgebra::Rotation3::from_matrix_unchecked(r),
-    )
-}
-
-/// `[x, y, z, α, β, γ]` of a pose.
-pub fn target_to_array(pose: &IsometryMatrix3<f64>) -> [f64; 6] {
-    let e = ZyxEuler::from_rotation(pose.rotation.matrix());
-    let p = pose.translation.vector;
-    [p.x, p.y, p.z, e.alpha, e.beta, e.gamma]
 }

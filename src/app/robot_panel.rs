@@ -1,14 +1,22 @@
 //! Robots: the preset chooser, a DH table editor that applies live (an invalid cell shows
 //! the core's sentence beside it and the last valid robot stays drawn), and saving and
-//! loading robot files.
+//! loading robot files. Every way of loading a robot goes through
+//! [`RobotPanel::load_robot`].
 
 use crate::kinematics::{
-    Convention, DhRow, Joint, JointKind, JointLimits, PRESETS, Robot, preset, robot_from_json,
-    robot_to_json,
+    Convention, DhRow, Joint, JointKind, JointLimits, Robot, RobotError, preset, preset_names,
+    robot_from_json, robot_to_json,
 };
 
+use super::Panel;
+use super::format::number;
+use super::hook::ScreenPoints;
+use super::model::{Message, Model};
 use super::session::RobotSource;
-use super::{ArmLabApp, style};
+use super::style;
+
+/// Decimals of a DH cell: enough to show every preset's value whole.
+const CELL_DECIMALS: usize = 6;
 
 /// Column names of the editable DH cells.
 pub const COLUMNS: [&str; 6] = ["θ (°)", "d", "a", "α (°)", "min", "max"];
@@ -35,9 +43,7 @@ pub struct DhEditor {
 }
 
 fn fmt(v: f64) -> String {
-    let s = format!("{v:.6}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" { "0".into() } else { s.into() }
+    number(v, CELL_DECIMALS)
 }
 
 impl DhEditor {
@@ -135,154 +141,222 @@ impl DhEditor {
 }
 
 /// Which cell a core error points at (row, column), for placing the message.
-fn locate(e: &crate::kinematics::RobotError) -> (usize, usize) {
-    use crate::kinematics::{Place, RobotError};
-    let column = |field: &str| match field {
-        "theta" => 0,
-        "d" => 1,
-        "a" => 2,
-        "alpha" => 3,
-        "min" => 4,
-        _ => 5,
-    };
-    match e {
-        RobotError::NotFinite {
-            place: Place::Joint(n),
-            field,
-            ..
-        }
-        | RobotError::TooLarge {
-            place: Place::Joint(n),
-            field,
-            ..
-        } => (n - 1, column(field)),
-        RobotError::LimitsReversed { joint, .. } => (joint - 1, 4),
-        _ => (0, 0),
-    }
+fn locate(e: &RobotError) -> (usize, usize) {
+    e.dh_cell()
+        .map_or((0, 0), |(row, column)| (row, column.index()))
 }
 
-/// Shows the robot chooser, the DH editor and file buttons.
-pub fn show(app: &mut ArmLabApp, ui: &mut egui::Ui) {
-    let current = match &app.session.source {
-        RobotSource::Preset(id) => id.clone(),
-        RobotSource::Custom => "custom".to_string(),
-    };
-    let mut chosen = None;
-    egui::ComboBox::new("preset_chooser", "Robot")
-        .selected_text(if current == "custom" {
-            format!("{} (edited)", app.session.robot.name)
-        } else {
-            app.session.robot.name.clone()
-        })
-        .width(230.0)
-        .show_ui(ui, |ui| {
-            for (id, _) in PRESETS {
-                let name = preset(id)
-                    .map(|r| r.name)
-                    .unwrap_or_else(|_| id.to_string());
-                if ui.selectable_label(current == *id, name).clicked() {
-                    chosen = Some(id.to_string());
+/// The robot panel: the preset chooser, the DH editor's texts and, natively, the file
+/// dialog while it is open.
+pub struct RobotPanel {
+    editor: DhEditor,
+    /// The model's robot-load count the editor's texts were taken at.
+    editor_loads: u64,
+    /// The native file dialog, while it is open.
+    #[cfg(not(target_arch = "wasm32"))]
+    file_dialog: Option<super::files::FileDialog>,
+}
+
+impl RobotPanel {
+    /// The panel for a robot: the editor holds its table.
+    pub fn new(robot: &Robot) -> Self {
+        RobotPanel {
+            editor: DhEditor::from_robot(robot),
+            editor_loads: 0,
+            #[cfg(not(target_arch = "wasm32"))]
+            file_dialog: None,
+        }
+    }
+
+    /// The DH editor's texts and error.
+    pub fn editor(&self) -> &DhEditor {
+        &self.editor
+    }
+
+    /// The native file dialog, while it is open.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn file_dialog(&self) -> Option<&super::files::FileDialog> {
+        self.file_dialog.as_ref()
+    }
+
+    /// Opens the native file dialog (the buttons do; tests too).
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn open_file_dialog(&mut self, dialog: super::files::FileDialog) {
+        self.file_dialog = Some(dialog);
+    }
+
+    /// The one way a robot is loaded (a preset, a file): the model starts it at its home
+    /// pose with the target on its tool, and the editor takes its table.
+    pub fn load_robot(&mut self, model: &mut Model, robot: Robot, source: RobotSource) {
+        model.load_robot(robot, source);
+        self.sync_editor(model);
+    }
+
+    /// Loads a robot file's text; a bad file leaves the robot as it is and says why.
+    pub fn load_robot_text(&mut self, model: &mut Model, text: &str) {
+        match robot_from_json(text) {
+            Ok(robot) => {
+                self.load_robot(model, robot, RobotSource::Custom);
+                model.dismiss_message();
+            }
+            Err(e) => model.set_message(Message::error(format!(
+                "That robot file was not loaded: {e}"
+            ))),
+        }
+    }
+
+    /// Takes the model's table when a robot was loaded from elsewhere (a link).
+    fn sync_editor(&mut self, model: &Model) {
+        if self.editor_loads != model.robot_loads() {
+            self.editor = DhEditor::from_robot(model.robot());
+            self.editor_loads = model.robot_loads();
+        }
+    }
+
+    fn preset_chooser(&mut self, model: &mut Model, ui: &mut egui::Ui) {
+        let current = match model.source() {
+            RobotSource::Preset(id) => Some(id.clone()),
+            RobotSource::Custom => None,
+        };
+        let mut chosen = None;
+        egui::ComboBox::new("preset_chooser", "Robot")
+            .selected_text(match current {
+                Some(_) => model.robot().name.clone(),
+                None => format!("{} (edited)", model.robot().name),
+            })
+            .width(230.0)
+            .show_ui(ui, |ui| {
+                for (id, name) in preset_names() {
+                    if ui
+                        .selectable_label(current.as_deref() == Some(*id), name.as_str())
+                        .clicked()
+                    {
+                        chosen = Some(*id);
+                    }
+                }
+            });
+        if let Some(id) = chosen {
+            match preset(id) {
+                Ok(robot) => self.load_robot(model, robot, RobotSource::Preset(id.to_string())),
+                Err(e) => model.set_message(Message::error(e.to_string())),
+            }
+        }
+    }
+
+    fn file_buttons(&mut self, model: &mut Model, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            #[cfg(target_arch = "wasm32")]
+            {
+                if ui.button("Save robot file").clicked() {
+                    let text = robot_to_json(model.robot());
+                    let name = robot_file_name(model.robot());
+                    model.set_message(match super::web::download(&name, &text) {
+                        Ok(()) => Message::info(format!("Saved the robot as a download ({name}).")),
+                        Err(e) => Message::error(format!("Could not save the robot file: {e}.")),
+                    });
+                }
+                if ui.button("Load robot file…").clicked() {
+                    super::web::open_file_chooser();
+                }
+            }
+            #[cfg(not(target_arch = "wasm32"))]
+            {
+                use super::files::{FileDialog, Mode};
+                let here = || std::env::current_dir().unwrap_or_else(|_| ".".into());
+                if ui.button("Save robot file…").clicked() {
+                    let name = robot_file_name(model.robot());
+                    self.file_dialog = Some(FileDialog::new(Mode::Save, &name, here()));
+                }
+                if ui.button("Open robot file…").clicked() {
+                    self.file_dialog = Some(FileDialog::new(Mode::Open, "", here()));
                 }
             }
         });
-    if let Some(id) = chosen {
-        match preset(&id) {
-            Ok(robot) => {
-                let home = robot.home();
-                app.editor = DhEditor::from_robot(&robot);
-                app.set_robot(robot, RobotSource::Preset(id));
-                app.set_q(home);
-                app.snap_target();
-                app.fit_camera();
+        ui.label(egui::RichText::new("Or drop a robot file (.json) onto the window.").small());
+    }
+
+    /// Robot files dropped on the window or picked in the browser's chooser.
+    fn receive_files(&mut self, model: &mut Model, ui: &mut egui::Ui) {
+        let dropped = ui.ctx().input(|i| i.raw.dropped_files.clone());
+        for file in dropped {
+            #[cfg(not(target_arch = "wasm32"))]
+            match file.bytes() {
+                Ok(bytes) => self.load_robot_text(model, &String::from_utf8_lossy(&bytes)),
+                Err(e) => model.set_message(Message::error(format!(
+                    "Could not read the dropped file: {e}."
+                ))),
             }
-            Err(e) => app.message = Some(e.to_string()),
+            #[cfg(target_arch = "wasm32")]
+            super::web::read_dropped_file(file);
+        }
+        #[cfg(target_arch = "wasm32")]
+        if let Some(text) = super::web::take_uploaded_file() {
+            self.load_robot_text(model, &text);
         }
     }
-    if !app.session.robot.description.is_empty() {
-        ui.label(egui::RichText::new(&app.session.robot.description).small());
-    }
-    let header = egui::CollapsingHeader::new("DH table (editable)")
-        .id_salt("dh_editor")
-        .default_open(false)
-        .show(ui, |ui| dh_table(app, ui));
-    let c = header.header_response.rect.center();
-    app.viewport.points.push(("dh-header".into(), [c.x, c.y]));
-    ui.horizontal(|ui| {
-        #[cfg(target_arch = "wasm32")]
-        {
-            if ui.button("Save robot file").clicked() {
-                let text = robot_to_json(&app.session.robot);
-                let name = robot_file_name(&app.session.robot);
-                app.message = Some(match super::web::download(&name, &text) {
-                    Ok(()) => format!("Saved the robot as a download ({name})."),
-                    Err(e) => format!("Could not save the robot file: {e}."),
+
+    /// Shows the native file dialog while it is open, and loads or saves what it chose.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn show_file_dialog(&mut self, model: &mut Model, ctx: &egui::Context) {
+        use super::files::Choice;
+        let Some(dialog) = self.file_dialog.as_mut() else {
+            return;
+        };
+        let mut open = true;
+        let choice = dialog.show(ctx, &mut open);
+        if !open {
+            self.file_dialog = None;
+        }
+        match choice {
+            Some(Choice::Open(path)) => match std::fs::read_to_string(&path) {
+                Ok(text) => self.load_robot_text(model, &text),
+                Err(e) => model.set_message(Message::error(format!(
+                    "Could not read {}: {e}.",
+                    path.display()
+                ))),
+            },
+            Some(Choice::Save(path)) => {
+                let text = robot_to_json(model.robot());
+                model.set_message(match std::fs::write(&path, text) {
+                    Ok(()) => Message::info(format!("Saved the robot as {}.", path.display())),
+                    Err(e) => Message::error(format!(
+                        "Could not save the robot file {}: {e}.",
+                        path.display()
+                    )),
                 });
             }
-            if ui.button("Load robot file…").clicked() {
-                super::web::open_file_chooser();
-            }
+            None => {}
         }
-        #[cfg(not(target_arch = "wasm32"))]
-        {
-            use super::files::{FileDialog, Mode};
-            let here = || std::env::current_dir().unwrap_or_else(|_| ".".into());
-            if ui.button("Save robot file…").clicked() {
-                let name = robot_file_name(&app.session.robot);
-                app.file_dialog = Some(FileDialog::new(Mode::Save, &name, here()));
-            }
-            if ui.button("Open robot file…").clicked() {
-                app.file_dialog = Some(FileDialog::new(Mode::Open, "", here()));
-            }
-        }
-    });
-    ui.label(egui::RichText::new("Or drop a robot file (.json) onto the window.").small());
-    let dropped = ui.ctx().input(|i| i.raw.dropped_files.clone());
-    for file in dropped {
-        #[cfg(not(target_arch = "wasm32"))]
-        match file.bytes() {
-            Ok(bytes) => load_robot_text(app, &String::from_utf8_lossy(&bytes)),
-            Err(e) => app.message = Some(format!("Could not read the dropped file: {e}.")),
-        }
-        #[cfg(target_arch = "wasm32")]
-        super::web::read_dropped_file(file);
-    }
-    #[cfg(target_arch = "wasm32")]
-    if let Some(text) = super::web::take_uploaded_file() {
-        load_robot_text(app, &text);
     }
 }
 
-/// Loads a robot file's text; a bad file leaves the robot as it is and says why.
-pub fn load_robot_text(app: &mut ArmLabApp, text: &str) {
-    match robot_from_json(text) {
-        Ok(robot) => {
-            app.editor = DhEditor::from_robot(&robot);
-            let home = robot.home();
-            app.set_robot(robot, RobotSource::Custom);
-            app.set_q(home);
-            app.snap_target();
-            app.fit_camera();
-            app.message = None;
+impl Panel for RobotPanel {
+    fn ui(&mut self, model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
+        self.sync_editor(model);
+        self.preset_chooser(model, ui);
+        if !model.robot().description.is_empty() {
+            ui.label(egui::RichText::new(&model.robot().description).small());
         }
-        Err(e) => app.message = Some(format!("That robot file was not loaded: {e}")),
+        let header = egui::CollapsingHeader::new("DH table (editable)")
+            .id_salt("dh_editor")
+            .default_open(false)
+            .show(ui, |ui| dh_table(&mut self.editor, model, ui, points));
+        points.insert("dh-header", header.header_response.rect.center());
+        self.file_buttons(model, ui);
+        self.receive_files(model, ui);
     }
 }
 
-fn dh_table(app: &mut ArmLabApp, ui: &mut egui::Ui) {
-    let mut editor = app.editor.clone();
-    let mut changed = false;
-    ui.horizontal(|ui| {
-        ui.label("Convention:");
-        let mut conv = editor.convention.unwrap_or(app.session.robot.convention);
-        changed |= ui
-            .radio_value(&mut conv, Convention::Standard, "standard (Spong)")
-            .changed();
-        changed |= ui
-            .radio_value(&mut conv, Convention::Modified, "modified (Craig)")
-            .changed();
-        editor.convention = Some(conv);
-    });
-    let unit = app.session.robot.length_unit.symbol();
+/// The editor: convention, the table, add a joint; applies a valid table live.
+fn dh_table(
+    editor: &mut DhEditor,
+    model: &mut Model,
+    ui: &mut egui::Ui,
+    points: &mut ScreenPoints,
+) {
+    let mut edited = editor.clone();
+    let mut changed = convention_row(&mut edited, model.robot().convention, ui);
+    let unit = model.robot().length_unit.symbol();
     ui.label(
         egui::RichText::new(format!(
             "Lengths in {unit}; revolute limits in degrees, prismatic in {unit}."
@@ -301,95 +375,29 @@ fn dh_table(app: &mut ArmLabApp, ui: &mut egui::Ui) {
             }
             ui.label("");
             ui.end_row();
-            for (i, row) in editor.rows.iter_mut().enumerate() {
-                let number = ui.label(format!("{}", i + 1));
-                let kind_before = row.kind;
-                egui::ComboBox::from_id_salt(("kind", i))
-                    .selected_text(if row.kind == JointKind::Revolute {
-                        "R"
-                    } else {
-                        "P"
-                    })
-                    .width(36.0)
-                    .show_ui(ui, |ui| {
-                        ui.selectable_value(&mut row.kind, JointKind::Revolute, "R  revolute");
-                        ui.selectable_value(&mut row.kind, JointKind::Prismatic, "P  prismatic");
-                    })
-                    .response
-                    .labelled_by(number.id);
-                if row.kind != kind_before {
-                    changed = true;
-                    // Limits change meaning: give the new type sensible ones.
-                    let (lo, hi) = match row.kind {
-                        JointKind::Revolute => ("-180", "180"),
-                        JointKind::Prismatic => ("0", "100"),
-                    };
-                    row.cells[4] = lo.into();
-                    row.cells[5] = hi.into();
-                }
-                for (c, cell) in row.cells.iter_mut().enumerate() {
-                    let bad =
-                        matches!(&app.editor.error, Some((r, col, _)) if *r == i && *col == c);
-                    let mut edit = egui::TextEdit::singleline(cell)
-                        .desired_width(52.0)
-                        .id_salt(("dh", i, c))
-                        .hint_text(COLUMNS[c]);
-                    if bad {
-                        edit = edit.text_color(style::ERROR);
-                    }
-                    let cell_response = ui.add(edit);
-                    changed |= cell_response.changed();
-                    let mid = cell_response.rect.center();
-                    app.viewport
-                        .points
-                        .push((format!("dh-{}-{}", i + 1, c + 1), [mid.x, mid.y]));
-                }
-                if ui
-                    .small_button("×")
-                    .on_hover_text("Remove this joint")
-                    .clicked()
-                {
+            for (i, row) in edited.rows.iter_mut().enumerate() {
+                let row_edit = dh_row(ui, i, row, editor.error.as_ref(), points);
+                changed |= row_edit.changed;
+                if row_edit.remove {
                     remove = Some(i);
-                }
-                ui.end_row();
-                if let Some((r, _, message)) = &app.editor.error
-                    && *r == i
-                {
-                    ui.label("");
-                    ui.label("");
-                    ui.colored_label(style::ERROR, message);
-                    ui.end_row();
                 }
             }
         });
     if let Some(i) = remove {
-        editor.rows.remove(i);
+        edited.rows.remove(i);
         changed = true;
     }
     if ui.button("+ Add joint").clicked() {
-        editor.rows.push(RowText {
+        edited.rows.push(RowText {
             kind: JointKind::Revolute,
             cells: ["0", "0", "0", "0", "-180", "180"].map(String::from),
         });
         changed = true;
     }
     if changed {
-        match editor.to_robot(&app.session.robot) {
-            Ok(robot) => {
-                editor.error = None;
-                app.editor = editor;
-                if robot != app.session.robot {
-                    app.set_robot(robot, RobotSource::Custom);
-                }
-            }
-            Err(err) => {
-                // Keep the texts (so the user can fix them) and the last good robot.
-                editor.error = Some(err);
-                app.editor = editor;
-            }
-        }
+        apply_edit(editor, edited, model);
     }
-    if app.editor.rows.is_empty() {
+    if editor.rows.is_empty() {
         ui.colored_label(
             style::ERROR,
             "The robot has no joints: a chain needs at least one.",
@@ -397,37 +405,118 @@ fn dh_table(app: &mut ArmLabApp, ui: &mut egui::Ui) {
     }
 }
 
-/// The file name a robot is saved under: its name in lower case, spaces as dashes.
-pub fn robot_file_name(robot: &crate::kinematics::Robot) -> String {
-    format!("{}.json", robot.name.to_lowercase().replace(' ', "-"))
+/// The convention's radio buttons; returns whether it changed.
+fn convention_row(editor: &mut DhEditor, robot_convention: Convention, ui: &mut egui::Ui) -> bool {
+    let mut changed = false;
+    ui.horizontal(|ui| {
+        ui.label("Convention:");
+        let mut conv = editor.convention.unwrap_or(robot_convention);
+        changed |= ui
+            .radio_value(&mut conv, Convention::Standard, "standard (Spong)")
+            .changed();
+        changed |= ui
+            .radio_value(&mut conv, Convention::Modified, "modified (Craig)")
+            .changed();
+        editor.convention = Some(conv);
+    });
+    changed
 }
 
-/// Shows the native file dialog while it is open, and loads or saves what it chose.
-#[cfg(not(target_arch = "wasm32"))]
-pub fn show_file_dialog(app: &mut ArmLabApp, ctx: &egui::Context) {
-    use super::files::Choice;
-    let Some(dialog) = app.file_dialog.as_mut() else {
-        return;
-    };
-    let mut open = true;
-    let choice = dialog.show(ctx, &mut open);
-    if !open {
-        app.file_dialog = None;
-    }
-    match choice {
-        Some(Choice::Open(path)) => match std::fs::read_to_string(&path) {
-            Ok(text) => load_robot_text(app, &text),
-            Err(e) => {
-                app.message = Some(format!("Could not read {}: {e}.", path.display()));
-            }
-        },
-        Some(Choice::Save(path)) => {
-            let text = robot_to_json(&app.session.robot);
-            app.message = Some(match std::fs::write(&path, text) {
-                Ok(()) => format!("Saved the robot as {}.", path.display()),
-                Err(e) => format!("Could not save the robot file {}: {e}.", path.display()),
-            });
+/// What the user did in one row of the table.
+struct RowEdit {
+    changed: bool,
+    remove: bool,
+}
+
+/// One joint's row: number, type, six cells, remove button, and its error beneath.
+fn dh_row(
+    ui: &mut egui::Ui,
+    i: usize,
+    row: &mut RowText,
+    error: Option<&(usize, usize, String)>,
+    points: &mut ScreenPoints,
+) -> RowEdit {
+    let number = ui.label(format!("{}", i + 1));
+    let mut changed = kind_menu(ui, i, row, number.id);
+    for (c, cell) in row.cells.iter_mut().enumerate() {
+        let bad = matches!(error, Some((r, col, _)) if *r == i && *col == c);
+        let mut edit = egui::TextEdit::singleline(cell)
+            .desired_width(52.0)
+            .id_salt(("dh", i, c))
+            .hint_text(COLUMNS[c]);
+        if bad {
+            edit = edit.text_color(style::ERROR);
         }
-        None => {}
+        let cell_response = ui.add(edit);
+        changed |= cell_response.changed();
+        points.insert(
+            format!("dh-{}-{}", i + 1, c + 1),
+            cell_response.rect.center(),
+        );
     }
+    let remove = ui
+        .small_button("×")
+        .on_hover_text("Remove this joint")
+        .clicked();
+    ui.end_row();
+    if let Some((r, _, message)) = error
+        && *r == i
+    {
+        ui.label("");
+        ui.label("");
+        ui.colored_label(style::ERROR, message);
+        ui.end_row();
+    }
+    RowEdit { changed, remove }
+}
+
+/// The R/P menu of a row; a new type gets limits that make sense for it.
+fn kind_menu(ui: &mut egui::Ui, i: usize, row: &mut RowText, label: egui::Id) -> bool {
+    let before = row.kind;
+    egui::ComboBox::from_id_salt(("kind", i))
+        .selected_text(if row.kind == JointKind::Revolute {
+            "R"
+        } else {
+            "P"
+        })
+        .width(36.0)
+        .show_ui(ui, |ui| {
+            ui.selectable_value(&mut row.kind, JointKind::Revolute, "R  revolute");
+            ui.selectable_value(&mut row.kind, JointKind::Prismatic, "P  prismatic");
+        })
+        .response
+        .labelled_by(label);
+    if row.kind == before {
+        return false;
+    }
+    let (lo, hi) = match row.kind {
+        JointKind::Revolute => ("-180", "180"),
+        JointKind::Prismatic => ("0", "100"),
+    };
+    row.cells[4] = lo.into();
+    row.cells[5] = hi.into();
+    true
+}
+
+/// Applies edited texts: a valid table becomes the robot; otherwise the texts stay (so
+/// the user can fix them) with the sentence, and the last good robot stays.
+fn apply_edit(editor: &mut DhEditor, mut edited: DhEditor, model: &mut Model) {
+    match edited.to_robot(model.robot()) {
+        Ok(robot) => {
+            edited.error = None;
+            *editor = edited;
+            if &robot != model.robot() {
+                model.edit_robot(robot, RobotSource::Custom);
+            }
+        }
+        Err(err) => {
+            edited.error = Some(err);
+            *editor = edited;
+        }
+    }
+}
+
+/// The file name a robot is saved under: its name in lower case, spaces as dashes.
+pub fn robot_file_name(robot: &Robot) -> String {
+    format!("{}.json", robot.name.to_lowercase().replace(' ', "-"))
 }

@@ -37,7 +37,7 @@ pub struct MarkerLook {
     /// Draw the rotation rings (5D and full-pose tasks).
     pub rings: bool,
     /// The handle under the pointer or being dragged.
-    pub active: Option<super::viewport::Handle>,
+    pub active: Option<super::viewport::marker::Handle>,
 }
 
 /// A unit-shape instance stretched from `a` to `b` with this cross-section.
@@ -129,290 +129,42 @@ pub struct SceneInput<'a> {
     pub background: [u8; 3],
 }
 
+/// Sizes of the drawn parts that have no size in the robot file, from the arm's reach.
+struct Proportions {
+    reach: f64,
+    link_w: f64,
+    joint_d: f64,
+    joint_len: f64,
+}
+
+impl Proportions {
+    fn of(robot: &Robot) -> Self {
+        let reach = robot.reach();
+        Proportions {
+            reach,
+            link_w: reach * 0.035,
+            joint_d: reach * 0.07,
+            joint_len: reach * 0.09,
+        }
+    }
+}
+
 /// The robot, frames and grid, plus the target marker; also returns the grid spacing.
 pub fn build(input: &SceneInput<'_>) -> (Scene, f64) {
-    let SceneInput {
-        robot,
-        fk,
-        camera,
-        viewport_px,
-        show_frames,
-        highlighted_link,
-        target,
-        marker,
-        background,
-    } = *input;
-    let reach = robot.reach();
+    let sizes = Proportions::of(input.robot);
     let mut instances = Vec::with_capacity(64);
-    let link_w = reach * 0.035;
-    let joint_d = reach * 0.07;
-    let joint_len = reach * 0.09;
-
-    // Base: a block under frame 0 with its top at z = 0 of the base frame.
-    let base = &robot.world_from_base;
-    let base_size = robot.parts.base.map_or(
-        Vector3::new(reach * 0.22, reach * 0.22, reach * 0.06),
-        Vector3::from,
-    );
-    let centre = base * Point3::new(0.0, 0.0, -base_size.z * 0.5);
-    instances.push(instance(
-        Shape::Box,
-        &centre,
-        &base.rotation,
-        base_size,
-        BASE,
-    ));
-
-    // Links along the DH offsets between consecutive frame origins.
-    let mut prev = *base;
-    for (i, joint) in robot.joints.iter().enumerate() {
-        let frame = fk.base_from_frames[i];
-        let color = if highlighted_link == Some(i + 1) {
-            HIGHLIGHT
-        } else {
-            LINK
-        };
-        let o_prev = Point3::from(prev.translation.vector);
-        let o = Point3::from(frame.translation.vector);
-        // The corner: standard DH goes d along z_{i−1} then a along x_i; modified DH goes a
-        // along x_{i−1} then d along z_i.
-        let corner = match robot.convention {
-            Convention::Standard => {
-                let z_prev = prev.rotation.matrix().column(2).into_owned();
-                o_prev + z_prev * (z_prev.dot(&(o - o_prev)))
-            }
-            Convention::Modified => {
-                let x_prev = prev.rotation.matrix().column(0).into_owned();
-                o_prev + x_prev * (x_prev.dot(&(o - o_prev)))
-            }
-        };
-        let (first, second) = ((o_prev, corner), (corner, o));
-        match joint.parts.link {
-            // A link of given size: a box along the longer DH offset, centred on it.
-            Some([l, w, h]) => {
-                let (long, short) = if (first.1 - first.0).norm() >= (second.1 - second.0).norm() {
-                    (first, second)
-                } else {
-                    (second, first)
-                };
-                let dir = long.1 - long.0;
-                if dir.norm() > 1e-9 {
-                    let mid = long.0 + dir * 0.5;
-                    instances.push(instance(
-                        Shape::Box,
-                        &mid,
-                        &rotation_to(&dir.normalize()),
-                        Vector3::new(w, h, l),
-                        color,
-                    ));
-                }
-                instances.extend(segment(Shape::Cylinder, &short.0, &short.1, link_w, color));
-            }
-            None => {
-                instances.extend(segment(Shape::Cylinder, &first.0, &first.1, link_w, color));
-                instances.extend(segment(
-                    Shape::Cylinder,
-                    &second.0,
-                    &second.1,
-                    link_w,
-                    color,
-                ));
-            }
-        }
-        // The joint housing along its axis.
-        let axis = fk.joint_axes[i];
-        let at = Point3::from(fk.joint_origins[i]);
-        let rot = rotation_to(&axis);
-        match joint.kind {
-            JointKind::Revolute => {
-                let c = if highlighted_link == Some(i + 1) {
-                    HIGHLIGHT
-                } else {
-                    JOINT
-                };
-                instances.push(instance(
-                    Shape::Cylinder,
-                    &at,
-                    &rot,
-                    Vector3::new(joint_d, joint_d, joint_len),
-                    c,
-                ));
-            }
-            JointKind::Prismatic => {
-                let c = if highlighted_link == Some(i + 1) {
-                    HIGHLIGHT
-                } else {
-                    PRISMATIC
-                };
-                instances.push(instance(
-                    Shape::Box,
-                    &at,
-                    &rot,
-                    Vector3::new(joint_d * 0.8, joint_d * 0.8, joint_len),
-                    c,
-                ));
-            }
-        }
-        prev = frame;
+    instances.push(base_block(input.robot, &sizes));
+    for i in 0..input.robot.dof() {
+        link_parts(input, i, &sizes, &mut instances);
     }
-    // Tool: a flange disc and a two-finger gripper around the tool point.
-    let tool = fk.base_from_tool;
-    let last = prev;
-    let o_last = Point3::from(last.translation.vector);
-    let o_tool = Point3::from(tool.translation.vector);
-    instances.extend(segment(
-        Shape::Cylinder,
-        &o_last,
-        &o_tool,
-        link_w * 0.8,
-        LINK,
-    ));
-    // A U-shaped gripper around the tool point: a palm behind it and two fingers
-    // reaching past it (outer size from the robot file when given).
-    let [hand_l, hand_w, hand_h] =
-        robot
-            .parts
-            .hand
-            .unwrap_or([link_w * 0.9, reach * 0.065, reach * 0.1]);
-    let finger = hand_h * 0.5;
-    let z = tool.rotation.matrix().column(2).into_owned();
-    let y = tool.rotation.matrix().column(1).into_owned();
-    let palm = o_tool - z * finger;
-    instances.push(instance(
-        Shape::Box,
-        &palm,
-        &tool.rotation,
-        Vector3::new(hand_l, hand_w, hand_h * 0.2),
-        GRIPPER,
-    ));
-    let thickness = hand_w * 0.18;
-    for side in [-1.0, 1.0] {
-        let a = palm + y * (side * (hand_w - thickness) * 0.5);
-        let b = a + z * (finger * 1.4);
-        instances.extend(segment(Shape::Box, &a, &b, thickness, GRIPPER));
+    gripper(input, &sizes, &mut instances);
+    if input.show_frames {
+        dh_frames(input, &sizes, &mut instances);
     }
-
-    // DH frames.
-    if show_frames {
-        let len = reach * 0.09;
-        let mut frames = vec![*base];
-        frames.extend(fk.base_from_frames.iter().copied());
-        frames.push(tool);
-        for (k, f) in frames.iter().enumerate() {
-            let width = if highlighted_link == Some(k) {
-                len * 0.08
-            } else {
-                len * 0.045
-            };
-            let o = Point3::from(f.translation.vector);
-            for (c, color) in AXIS.iter().enumerate() {
-                let dir = f.rotation.matrix().column(c).into_owned();
-                instances.extend(segment(
-                    Shape::Cylinder,
-                    &o,
-                    &(o + dir * len),
-                    width,
-                    *color,
-                ));
-            }
-        }
-    }
-
-    // Ground grid at z = 0 with a "nice" spacing; returned for the scale label.
-    let step = nice_step(reach / 4.0);
-    let half = (reach * 1.3 / step).ceil() as i32;
-    let mut lines = Vec::with_capacity((4 * half + 4) as usize);
-    let extent = half as f64 * step;
-    for k in -half..=half {
-        let v = k as f64 * step;
-        let color = if k == 0 {
-            [120, 124, 132, 255]
-        } else {
-            [70, 74, 82, 255]
-        };
-        lines.push(Line {
-            ends: [
-                [v as f32, -extent as f32, 0.0],
-                [v as f32, extent as f32, 0.0],
-            ],
-            color,
-        });
-        lines.push(Line {
-            ends: [
-                [-extent as f32, v as f32, 0.0],
-                [extent as f32, v as f32, 0.0],
-            ],
-            color,
-        });
-    }
-
-    // Target marker: constant size on screen.
-    let px = camera.world_per_pixel(viewport_px[1])
-        * (camera.eye() - Point3::from(target.translation.vector)).norm()
-        / camera.distance;
-    let centre = Point3::from(target.translation.vector);
-    let mut ball = instance(
-        Shape::Sphere,
-        &centre,
-        &Rotation3::identity(),
-        Vector3::repeat(2.0 * handle_px::BALL * px),
-        marker.color,
-    );
-    ball.on_top = true;
-    instances.push(ball);
-    use super::viewport::Handle;
-    for (c, dir) in marker.axes.iter().enumerate() {
-        let active = marker.active == Some(Handle::Axis(c));
-        let color = if active { HIGHLIGHT } else { AXIS[c] };
-        let tip = centre + dir * (handle_px::ARROW * px);
-        let cone_len = 16.0 * px;
-        let shaft_end = tip - dir * cone_len;
-        if let Some(mut s) = segment(
-            Shape::Cylinder,
-            &(centre + dir * (handle_px::BALL * px)),
-            &shaft_end,
-            if active { 6.0 * px } else { 4.0 * px },
-            color,
-        ) {
-            s.on_top = true;
-            instances.push(s);
-        }
-        let mut cone = instance(
-            Shape::Cone,
-            &shaft_end,
-            &rotation_to(dir),
-            Vector3::new(12.0 * px, 12.0 * px, cone_len),
-            color,
-        );
-        cone.on_top = true;
-        instances.push(cone);
-        if marker.rings {
-            let active = marker.active == Some(Handle::Ring(c));
-            let color = if active { HIGHLIGHT } else { AXIS[c] };
-            let (u, w) = perpendiculars(dir);
-            let n = 48;
-            let pts: Vec<Point3<f64>> = (0..=n)
-                .map(|k| {
-                    let t = std::f64::consts::TAU * k as f64 / n as f64;
-                    centre + (u * t.cos() + w * t.sin()) * (handle_px::RING * px)
-                })
-                .collect();
-            for pair in pts.windows(2) {
-                if let Some(mut s) = segment(
-                    Shape::Cylinder,
-                    &pair[0],
-                    &pair[1],
-                    if active { 5.0 * px } else { 3.0 * px },
-                    color,
-                ) {
-                    s.on_top = true;
-                    instances.push(s);
-                }
-            }
-        }
-    }
-
-    let aspect = viewport_px[0] / viewport_px[1].max(1.0);
+    let (lines, step) = ground_grid(sizes.reach);
+    marker(input, &mut instances);
+    let camera = input.camera;
+    let aspect = input.viewport_px[0] / input.viewport_px[1].max(1.0);
     let eye = camera.eye();
     let forward = (camera.focus - eye).normalize();
     // Key light from above, over the viewer's shoulder.
@@ -423,12 +175,256 @@ pub fn build(input: &SceneInput<'_>) -> (Scene, f64) {
             view_proj: camera.view_projection(aspect).cast::<f32>(),
             eye: [eye.x as f32, eye.y as f32, eye.z as f32],
             light_dir: [light.x as f32, light.y as f32, light.z as f32],
-            background,
+            background: input.background,
             instances,
             lines,
         },
         step,
     )
+}
+
+/// The base: a block under frame 0 with its top at z = 0 of the base frame.
+fn base_block(robot: &Robot, sizes: &Proportions) -> Instance {
+    let base = &robot.world_from_base;
+    let reach = sizes.reach;
+    let base_size = robot.parts.base.map_or(
+        Vector3::new(reach * 0.22, reach * 0.22, reach * 0.06),
+        Vector3::from,
+    );
+    let centre = base * Point3::new(0.0, 0.0, -base_size.z * 0.5);
+    instance(Shape::Box, &centre, &base.rotation, base_size, BASE)
+}
+
+/// Link `i`'s parts (0-based): the link along its DH offsets from the previous frame's
+/// origin, and its joint's housing along the joint axis.
+fn link_parts(input: &SceneInput<'_>, i: usize, sizes: &Proportions, out: &mut Vec<Instance>) {
+    let (robot, fk) = (input.robot, input.fk);
+    let joint = &robot.joints[i];
+    let highlighted = input.highlighted_link == Some(i + 1);
+    let color = if highlighted { HIGHLIGHT } else { LINK };
+    let prev = if i == 0 {
+        robot.world_from_base
+    } else {
+        fk.base_from_frames[i - 1]
+    };
+    let frame = fk.base_from_frames[i];
+    let o_prev = Point3::from(prev.translation.vector);
+    let o = Point3::from(frame.translation.vector);
+    // The corner: standard DH goes d along z_{i−1} then a along x_i; modified DH goes a
+    // along x_{i−1} then d along z_i.
+    let column = match robot.convention {
+        Convention::Standard => 2,
+        Convention::Modified => 0,
+    };
+    let along = prev.rotation.matrix().column(column).into_owned();
+    let corner = o_prev + along * along.dot(&(o - o_prev));
+    let (first, second) = ((o_prev, corner), (corner, o));
+    match joint.parts.link {
+        // A link of given size: a box along the longer DH offset, centred on it.
+        Some([l, w, h]) => {
+            let (long, short) = if (first.1 - first.0).norm() >= (second.1 - second.0).norm() {
+                (first, second)
+            } else {
+                (second, first)
+            };
+            let dir = long.1 - long.0;
+            if dir.norm() > 1e-9 {
+                let mid = long.0 + dir * 0.5;
+                let rot = rotation_to(&dir.normalize());
+                out.push(instance(
+                    Shape::Box,
+                    &mid,
+                    &rot,
+                    Vector3::new(w, h, l),
+                    color,
+                ));
+            }
+            out.extend(segment(
+                Shape::Cylinder,
+                &short.0,
+                &short.1,
+                sizes.link_w,
+                color,
+            ));
+        }
+        None => {
+            out.extend(segment(
+                Shape::Cylinder,
+                &first.0,
+                &first.1,
+                sizes.link_w,
+                color,
+            ));
+            out.extend(segment(
+                Shape::Cylinder,
+                &second.0,
+                &second.1,
+                sizes.link_w,
+                color,
+            ));
+        }
+    }
+    // The joint housing along its axis: a cylinder for revolute, a box for prismatic.
+    let at = Point3::from(fk.joint_origins[i]);
+    let rot = rotation_to(&fk.joint_axes[i]);
+    let (shape, width, own) = match joint.kind {
+        JointKind::Revolute => (Shape::Cylinder, sizes.joint_d, JOINT),
+        JointKind::Prismatic => (Shape::Box, sizes.joint_d * 0.8, PRISMATIC),
+    };
+    let c = if highlighted { HIGHLIGHT } else { own };
+    out.push(instance(
+        shape,
+        &at,
+        &rot,
+        Vector3::new(width, width, sizes.joint_len),
+        c,
+    ));
+}
+
+/// The flange and a U-shaped gripper around the tool point: a palm behind it and two
+/// fingers reaching past it (outer size from the robot file when given).
+fn gripper(input: &SceneInput<'_>, sizes: &Proportions, out: &mut Vec<Instance>) {
+    let (robot, fk) = (input.robot, input.fk);
+    let tool = fk.base_from_tool;
+    let last = fk
+        .base_from_frames
+        .last()
+        .copied()
+        .unwrap_or(robot.world_from_base);
+    let o_last = Point3::from(last.translation.vector);
+    let o_tool = Point3::from(tool.translation.vector);
+    out.extend(segment(
+        Shape::Cylinder,
+        &o_last,
+        &o_tool,
+        sizes.link_w * 0.8,
+        LINK,
+    ));
+    let [hand_l, hand_w, hand_h] =
+        robot
+            .parts
+            .hand
+            .unwrap_or([sizes.link_w * 0.9, sizes.reach * 0.065, sizes.reach * 0.1]);
+    let finger = hand_h * 0.5;
+    let z = tool.rotation.matrix().column(2).into_owned();
+    let y = tool.rotation.matrix().column(1).into_owned();
+    let palm = o_tool - z * finger;
+    out.push(instance(
+        Shape::Box,
+        &palm,
+        &tool.rotation,
+        Vector3::new(hand_l, hand_w, hand_h * 0.2),
+        GRIPPER,
+    ));
+    let thickness = hand_w * 0.18;
+    for side in [-1.0, 1.0] {
+        let a = palm + y * (side * (hand_w - thickness) * 0.5);
+        let b = a + z * (finger * 1.4);
+        out.extend(segment(Shape::Box, &a, &b, thickness, GRIPPER));
+    }
+}
+
+/// Every DH frame (base, each joint's, tool) as three axis cylinders; the highlighted
+/// link's frame drawn thicker.
+fn dh_frames(input: &SceneInput<'_>, sizes: &Proportions, out: &mut Vec<Instance>) {
+    let len = sizes.reach * 0.09;
+    let fk = input.fk;
+    let frames = std::iter::once(input.robot.world_from_base)
+        .chain(fk.base_from_frames.iter().copied())
+        .chain(std::iter::once(fk.base_from_tool));
+    for (k, f) in frames.enumerate() {
+        let width = if input.highlighted_link == Some(k) {
+            len * 0.08
+        } else {
+            len * 0.045
+        };
+        let o = Point3::from(f.translation.vector);
+        for (c, color) in AXIS.iter().enumerate() {
+            let dir = f.rotation.matrix().column(c).into_owned();
+            out.extend(segment(
+                Shape::Cylinder,
+                &o,
+                &(o + dir * len),
+                width,
+                *color,
+            ));
+        }
+    }
+}
+
+/// The ground grid at z = 0 with a "nice" spacing, and that spacing (for the scale label).
+fn ground_grid(reach: f64) -> (Vec<Line>, f64) {
+    let step = nice_step(reach / 4.0);
+    let half = (reach * 1.3 / step).ceil() as i32;
+    let mut lines = Vec::with_capacity((4 * half + 4) as usize);
+    let extent = (half as f64 * step) as f32;
+    for k in -half..=half {
+        let v = (k as f64 * step) as f32;
+        let color = if k == 0 {
+            [120, 124, 132, 255]
+        } else {
+            [70, 74, 82, 255]
+        };
+        lines.push(Line {
+            ends: [[v, -extent, 0.0], [v, extent, 0.0]],
+            color,
+        });
+        lines.push(Line {
+            ends: [[-extent, v, 0.0], [extent, v, 0.0]],
+            color,
+        });
+    }
+    (lines, step)
+}
+
+/// The target marker, drawn on top at a constant size on screen: the ball, an arrow per
+/// axis and, for tasks with an orientation, a ring per axis.
+fn marker(input: &SceneInput<'_>, out: &mut Vec<Instance>) {
+    use super::viewport::marker::Handle;
+    let (camera, target, marker) = (input.camera, input.target, input.marker);
+    let centre = Point3::from(target.translation.vector);
+    let px = camera.world_per_pixel(input.viewport_px[1]) * (camera.eye() - centre).norm()
+        / camera.distance;
+    let on_top = |mut inst: Instance| {
+        inst.on_top = true;
+        inst
+    };
+    let ball_size = Vector3::repeat(2.0 * handle_px::BALL * px);
+    let ball = instance(
+        Shape::Sphere,
+        &centre,
+        &Rotation3::identity(),
+        ball_size,
+        marker.color,
+    );
+    out.push(on_top(ball));
+    for (c, dir) in marker.axes.iter().enumerate() {
+        let active = marker.active == Some(Handle::Axis(c));
+        let color = if active { HIGHLIGHT } else { AXIS[c] };
+        let tip = centre + dir * (handle_px::ARROW * px);
+        let cone_len = 16.0 * px;
+        let shaft_end = tip - dir * cone_len;
+        let shaft_start = centre + dir * (handle_px::BALL * px);
+        let shaft_w = if active { 6.0 * px } else { 4.0 * px };
+        out.extend(segment(Shape::Cylinder, &shaft_start, &shaft_end, shaft_w, color).map(on_top));
+        let cone_size = Vector3::new(12.0 * px, 12.0 * px, cone_len);
+        out.push(on_top(instance(
+            Shape::Cone,
+            &shaft_end,
+            &rotation_to(dir),
+            cone_size,
+            color,
+        )));
+        if marker.rings {
+            let active = marker.active == Some(Handle::Ring(c));
+            let color = if active { HIGHLIGHT } else { AXIS[c] };
+            let width = if active { 5.0 * px } else { 3.0 * px };
+            let pts = super::viewport::marker::ring_points(&centre, dir, handle_px::RING * px);
+            for pair in pts.windows(2) {
+                out.extend(segment(Shape::Cylinder, &pair[0], &pair[1], width, color).map(on_top));
+            }
+        }
+    }
 }
 
 /// Two unit vectors perpendicular to `dir` and to each other.

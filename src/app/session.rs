@@ -9,67 +9,60 @@
 //! - `task`: `position`, `axis-x`, `axis-y`, `axis-z` or `full`;
 //! - `method`: `dls`, `pinv`, `gradient` or `closed`.
 
-use crate::api::parse_task;
+use nalgebra::IsometryMatrix3;
+use thiserror::Error;
+
 use crate::kinematics::{
-    Robot, RobotError, Task, ToolAxis, preset, robot_from_json, robot_to_json,
+    IkMethod, Robot, RobotError, Task, ZyxEuler, preset, robot_from_json, robot_to_json,
 };
 
-/// Which IK method the drag uses.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Method {
-    /// Damped least squares (Levenberg–Marquardt): the default.
-    DampedLeastSquares,
-    /// Newton with the Moore–Penrose pseudo-inverse.
-    PseudoInverse,
-    /// Jacobian transpose / gradient descent.
-    Gradient,
-    /// The robot's closed-form solver, where it has one.
-    ClosedForm,
-}
+use super::format::number_list;
 
-impl Method {
-    /// Every method, in menu order.
-    pub const ALL: [Method; 4] = [
-        Method::DampedLeastSquares,
-        Method::PseudoInverse,
-        Method::Gradient,
-        Method::ClosedForm,
-    ];
+/// Decimals of the numbers a link writes (1e-6 rad, 1e-6 of a length unit).
+const LINK_DECIMALS: usize = 6;
 
-    /// The short name used in links.
-    pub fn id(self) -> &'static str {
-        match self {
-            Method::DampedLeastSquares => "dls",
-            Method::PseudoInverse => "pinv",
-            Method::Gradient => "gradient",
-            Method::ClosedForm => "closed",
-        }
-    }
-
-    /// The name shown in the UI.
-    pub fn label(self) -> &'static str {
-        match self {
-            Method::DampedLeastSquares => "Damped least squares",
-            Method::PseudoInverse => "Pseudo-inverse (Newton)",
-            Method::Gradient => "Jacobian transpose (gradient)",
-            Method::ClosedForm => "Closed form",
-        }
-    }
-
-    fn from_id(id: &str) -> Option<Method> {
-        Method::ALL.into_iter().find(|m| m.id() == id)
-    }
-}
-
-/// The short name of a task used in links.
-pub fn task_id(task: Task) -> &'static str {
-    match task {
-        Task::Position => "position",
-        Task::PositionAndAxis(ToolAxis::X) => "axis-x",
-        Task::PositionAndAxis(ToolAxis::Y) => "axis-y",
-        Task::PositionAndAxis(ToolAxis::Z) => "axis-z",
-        Task::FullPose => "full",
-    }
+/// What is wrong with a link; each reads as the middle of the sentence "This link could
+/// not be opened (…)".
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum LinkError {
+    /// A `key=value` part without `=`.
+    #[error("the link part \"{0}\" has no '='")]
+    NoEquals(String),
+    /// A key the format does not have.
+    #[error("the link has an unknown part \"{0}\"")]
+    UnknownPart(String),
+    /// A broken `%XX` escape.
+    #[error("the link has a broken %-escape")]
+    BrokenEscape,
+    /// Escapes that do not decode to UTF-8 text.
+    #[error("the link's text is not valid UTF-8")]
+    NotUtf8,
+    /// A list item that is not a finite number.
+    #[error("the link's {field} has \"{text}\", which is not a number")]
+    NotANumber {
+        /// `q` or `target`.
+        field: &'static str,
+        /// The item as written.
+        text: String,
+    },
+    /// A target that is not six numbers.
+    #[error("the link's target needs six numbers (x, y, z, α, β, γ)")]
+    TargetLength,
+    /// A task id that is not known.
+    #[error("the link's task \"{0}\" is not known")]
+    UnknownTask(String),
+    /// A method id that is not known.
+    #[error("the link's method \"{0}\" is not known")]
+    UnknownMethod(String),
+    /// `robot=` is missing.
+    #[error("the link names no robot (robot=...)")]
+    NoRobot,
+    /// `robot=custom` without its table.
+    #[error("the link says robot=custom but carries no dh= table")]
+    CustomWithoutTable,
+    /// The robot (a preset id, a table) or the joint vector is not valid.
+    #[error("{0}")]
+    Robot(#[from] RobotError),
 }
 
 /// Where the robot came from.
@@ -90,12 +83,12 @@ pub struct Session {
     pub source: RobotSource,
     /// Joint values.
     pub q: Vec<f64>,
-    /// Target position (robot units) and Z-Y-X Euler angles (radians); `None` = at the tool.
-    pub target: Option<[f64; 6]>,
+    /// The target pose in the base frame; `None` = at the tool.
+    pub target: Option<IsometryMatrix3<f64>>,
     /// IK task.
     pub task: Task,
     /// IK method.
-    pub method: Method,
+    pub method: IkMethod,
 }
 
 /// The preset the app opens with, and falls back to when a link is broken.
@@ -111,7 +104,7 @@ impl Session {
             source: RobotSource::Preset(id.to_string()),
             target: None,
             task: Task::FullPose,
-            method: Method::DampedLeastSquares,
+            method: IkMethod::DampedLeastSquares,
         })
     }
 
@@ -139,105 +132,131 @@ impl Session {
                 parts.push(format!("dh={}", percent_encode(&compact)));
             }
         }
-        parts.push(format!("q={}", join_numbers(&self.q)));
+        parts.push(format!("q={}", number_list(&self.q, LINK_DECIMALS)));
         if let Some(t) = &self.target {
-            parts.push(format!("target={}", join_numbers(t)));
+            parts.push(format!(
+                "target={}",
+                number_list(&target_to_array(t), LINK_DECIMALS)
+            ));
         }
-        parts.push(format!("task={}", task_id(self.task)));
+        parts.push(format!("task={}", self.task.id()));
         parts.push(format!("method={}", self.method.id()));
         parts.join("&")
     }
 
     /// Reads a URL hash (with or without `#`). An empty hash gives `Ok(None)`.
-    pub fn from_hash(hash: &str) -> Result<Option<Session>, String> {
+    pub fn from_hash(hash: &str) -> Result<Option<Session>, LinkError> {
         let hash = hash.trim().trim_start_matches('#');
         if hash.is_empty() {
             return Ok(None);
         }
-        let mut robot_id = None;
-        let mut dh = None;
-        let mut q = None;
-        let mut target = None;
-        let mut task = Task::FullPose;
-        let mut method = Method::DampedLeastSquares;
-        for part in hash.split('&').filter(|p| !p.is_empty()) {
-            let (key, value) = part
-                .split_once('=')
-                .ok_or_else(|| format!("the link part \"{part}\" has no '='"))?;
-            match key {
-                "robot" => robot_id = Some(value.to_string()),
-                "dh" => dh = Some(percent_decode(value)?),
-                "q" => q = Some(parse_numbers(value, "q")?),
-                "target" => {
-                    let t = parse_numbers(value, "target")?;
-                    let arr: [f64; 6] = t.try_into().map_err(|_| {
-                        "the link's target needs six numbers (x, y, z, α, β, γ)".to_string()
-                    })?;
-                    target = Some(arr);
-                }
-                "task" => {
-                    task = parse_task(value)
-                        .ok_or_else(|| format!("the link's task \"{value}\" is not known"))?;
-                }
-                "method" => {
-                    method = Method::from_id(value)
-                        .ok_or_else(|| format!("the link's method \"{value}\" is not known"))?;
-                }
-                other => return Err(format!("the link has an unknown part \"{other}\"")),
-            }
-        }
-        let mut session = match robot_id.as_deref() {
+        let parts = LinkParts::parse(hash)?;
+        let mut session = match parts.robot.as_deref() {
             Some("custom") => {
-                let text = dh.ok_or("the link says robot=custom but carries no dh= table")?;
-                let robot = robot_from_json(&text).map_err(|e| e.to_string())?;
+                let text = parts.dh.ok_or(LinkError::CustomWithoutTable)?;
+                let robot = robot_from_json(&text)?;
                 Session {
                     q: robot.home(),
                     robot,
                     source: RobotSource::Custom,
                     target: None,
-                    task,
-                    method,
+                    task: parts.task,
+                    method: parts.method,
                 }
             }
-            Some(id) => Session::for_preset(id).map_err(|e| e.to_string())?,
-            None => return Err("the link names no robot (robot=...)".into()),
+            Some(id) => Session::for_preset(id)?,
+            None => return Err(LinkError::NoRobot),
         };
-        if let Some(q) = q {
-            session.robot.check_q(&q).map_err(|e| e.to_string())?;
+        if let Some(q) = parts.q {
+            session.robot.check_q(&q)?;
             session.q = q;
         }
-        session.target = target;
-        session.task = task;
-        session.method = method;
+        session.target = parts.target.as_ref().map(target_from_array);
+        session.task = parts.task;
+        session.method = parts.method;
         Ok(Some(session))
     }
 }
 
-fn join_numbers(values: &[f64]) -> String {
-    values
-        .iter()
-        .map(|v| {
-            let s = format!("{v:.6}");
-            let s = s.trim_end_matches('0').trim_end_matches('.');
-            if s == "-0" {
-                "0".to_string()
-            } else {
-                s.to_string()
-            }
-        })
-        .collect::<Vec<_>>()
-        .join(",")
+/// The parts of a link, read but not yet checked against the robot.
+struct LinkParts {
+    robot: Option<String>,
+    dh: Option<String>,
+    q: Option<Vec<f64>>,
+    target: Option<[f64; 6]>,
+    task: Task,
+    method: IkMethod,
 }
 
-fn parse_numbers(text: &str, what: &str) -> Result<Vec<f64>, String> {
+impl LinkParts {
+    fn parse(hash: &str) -> Result<LinkParts, LinkError> {
+        let mut parts = LinkParts {
+            robot: None,
+            dh: None,
+            q: None,
+            target: None,
+            task: Task::FullPose,
+            method: IkMethod::DampedLeastSquares,
+        };
+        for part in hash.split('&').filter(|p| !p.is_empty()) {
+            let (key, value) = part
+                .split_once('=')
+                .ok_or_else(|| LinkError::NoEquals(part.to_string()))?;
+            match key {
+                "robot" => parts.robot = Some(value.to_string()),
+                "dh" => parts.dh = Some(percent_decode(value)?),
+                "q" => parts.q = Some(parse_numbers(value, "q")?),
+                "target" => {
+                    let t = parse_numbers(value, "target")?;
+                    parts.target = Some(t.try_into().map_err(|_| LinkError::TargetLength)?);
+                }
+                "task" => {
+                    parts.task = Task::from_id(value)
+                        .ok_or_else(|| LinkError::UnknownTask(value.to_string()))?;
+                }
+                "method" => {
+                    parts.method = IkMethod::from_id(value)
+                        .ok_or_else(|| LinkError::UnknownMethod(value.to_string()))?;
+                }
+                other => return Err(LinkError::UnknownPart(other.to_string())),
+            }
+        }
+        Ok(parts)
+    }
+}
+
+fn parse_numbers(text: &str, field: &'static str) -> Result<Vec<f64>, LinkError> {
     text.split(',')
         .map(|s| match s.trim().parse::<f64>() {
             Ok(v) if v.is_finite() => Ok(v),
-            _ => Err(format!(
-                "the link's {what} has \"{s}\", which is not a number"
-            )),
+            _ => Err(LinkError::NotANumber {
+                field,
+                text: s.to_string(),
+            }),
         })
         .collect()
+}
+
+/// A target pose from `[x, y, z, α, β, γ]` (Z-Y-X Euler angles, radians).
+pub fn target_from_array(t: &[f64; 6]) -> IsometryMatrix3<f64> {
+    let r = ZyxEuler {
+        alpha: t[3],
+        beta: t[4],
+        gamma: t[5],
+        degenerate: false,
+    }
+    .to_rotation();
+    IsometryMatrix3::from_parts(
+        nalgebra::Translation3::new(t[0], t[1], t[2]),
+        nalgebra::Rotation3::from_matrix_unchecked(r),
+    )
+}
+
+/// `[x, y, z, α, β, γ]` of a pose.
+pub fn target_to_array(pose: &IsometryMatrix3<f64>) -> [f64; 6] {
+    let e = ZyxEuler::from_rotation(pose.rotation.matrix());
+    let p = pose.translation.vector;
+    [p.x, p.y, p.z, e.alpha, e.beta, e.gamma]
 }
 
 /// Percent-encodes everything but unreserved characters (RFC 3986).
@@ -254,7 +273,7 @@ pub fn percent_encode(text: &str) -> String {
 }
 
 /// Decodes `%XX` escapes (and `+` as space); fails on broken escapes or invalid UTF-8.
-pub fn percent_decode(text: &str) -> Result<String, String> {
+pub fn percent_decode(text: &str) -> Result<String, LinkError> {
     let bytes = text.as_bytes();
     let mut out = Vec::with_capacity(bytes.len());
     let mut i = 0;
@@ -264,7 +283,7 @@ pub fn percent_decode(text: &str) -> Result<String, String> {
                 let hex = text
                     .get(i + 1..i + 3)
                     .and_then(|h| u8::from_str_radix(h, 16).ok())
-                    .ok_or("the link has a broken %-escape")?;
+                    .ok_or(LinkError::BrokenEscape)?;
                 out.push(hex);
                 i += 3;
             }
@@ -278,7 +297,7 @@ pub fn percent_decode(text: &str) -> Result<String, String> {
             }
         }
     }
-    String::from_utf8(out).map_err(|_| "the link's text is not valid UTF-8".to_string())
+    String::from_utf8(out).map_err(|_| LinkError::NotUtf8)
 }
 
 /// Where the native app keeps the last session's link hash:

@@ -2,8 +2,14 @@
 
 use egui::Color32;
 
+use crate::kinematics::ik::Reach;
+
 /// Error text.
 pub const ERROR: Color32 = Color32::from_rgb(255, 130, 110);
+/// Warning text (done, but not as asked).
+pub const WARNING: Color32 = Color32::from_rgb(240, 190, 80);
+/// Information text (done as asked).
+pub const INFO: Color32 = Color32::from_rgb(140, 200, 240);
 /// "Reached" green, used for the target marker and status text.
 pub const REACHED: Color32 = Color32::from_rgb(60, 200, 90);
 /// "Out of reach" red.
@@ -12,6 +18,16 @@ pub const UNREACHABLE: Color32 = Color32::from_rgb(230, 60, 50);
 pub const PENDING: Color32 = Color32::from_rgb(235, 180, 40);
 /// Highlight of the hovered link and matrix.
 pub const HIGHLIGHT: Color32 = Color32::from_rgb(255, 210, 60);
+
+/// The one colour table of the IK status: the marker's ball, the viewport's status line
+/// and the IK panel all draw a [`Reach`] in its colour.
+pub fn reach_color(reach: Reach) -> Color32 {
+    match reach {
+        Reach::Reached => REACHED,
+        Reach::OutOfReach => UNREACHABLE,
+        Reach::Pending => PENDING,
+    }
+}
 
 /// The viewport and window background (opaque).
 pub fn background(presentation: bool) -> Color32 {

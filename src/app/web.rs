@@ -40,6 +40,13 @@ thread_local! {
     static FIRST_FRAME: RefCell<Option<f64>> = const { RefCell::new(None) };
 }
 
+/// Logs a failed browser call as a console warning (the app goes on without it).
+fn warn_on_failure<T>(result: Result<T, JsValue>, what: &str) {
+    if let Err(e) = result {
+        log::warn!("{what} failed: {e:?}");
+    }
+}
+
 fn wake() {
     CTX.with(|c| {
         if let Some(ctx) = c.borrow().as_ref() {
@@ -56,9 +63,11 @@ fn set_message(text: &str, error: bool) {
         el.set_text_content(Some(text));
         el.set_class_name(if error { "error" } else { "" });
         if let Some(el) = el.dyn_ref::<web_sys::HtmlElement>() {
-            let _ = el
-                .style()
-                .set_property("display", if text.is_empty() { "none" } else { "flex" });
+            warn_on_failure(
+                el.style()
+                    .set_property("display", if text.is_empty() { "none" } else { "flex" }),
+                "showing the page's message",
+            );
         }
     }
 }
@@ -169,11 +178,20 @@ fn write_hash(hash: &str) {
     let Some(window) = web_sys::window() else {
         return;
     };
-    if let Ok(history) = window.history() {
-        let _ = history.replace_state_with_url(&JsValue::NULL, "", Some(&format!("#{hash}")));
+    match window.history() {
+        Ok(history) => warn_on_failure(
+            history.replace_state_with_url(&JsValue::NULL, "", Some(&format!("#{hash}"))),
+            "writing the link into the address bar",
+        ),
+        Err(e) => warn_on_failure::<()>(Err(e), "reaching the browser history"),
     }
-    if let Ok(Some(storage)) = window.local_storage() {
-        let _ = storage.set_item(STORAGE_KEY, hash);
+    match window.local_storage() {
+        Ok(Some(storage)) => warn_on_failure(
+            storage.set_item(STORAGE_KEY, hash),
+            "keeping the session in localStorage",
+        ),
+        Ok(None) => log::warn!("keeping the session failed: this browser has no localStorage"),
+        Err(e) => warn_on_failure::<()>(Err(e), "reaching localStorage"),
     }
 }
 
@@ -194,16 +212,16 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
     HOOK.with(|h| {
         *h.borrow_mut() = Published {
             state,
-            points: app.viewport.points.clone(),
+            points: app.points().all().to_vec(),
             css_per_point,
         }
     });
     FIRST_FRAME.with(|f| {
-        if f.borrow().is_none() && app.viewport.rendered {
+        if f.borrow().is_none() && app.viewport().rendered() {
             *f.borrow_mut() = Some(super::hook::now_ms());
         }
     });
-    if let Some(t) = app.frame_ms.back().copied() {
+    if let Some(t) = app.frame_times().back().copied() {
         FRAMES.with(|f| {
             let mut f = f.borrow_mut();
             if f.len() >= 5000 {
@@ -224,8 +242,8 @@ fn install_hook(window: &web_sys::Window) {
                 Some((_, p)) => {
                     let o = js_sys::Object::new();
                     let k = h.css_per_point;
-                    let _ = js_sys::Reflect::set(&o, &"x".into(), &((p[0] * k) as f64).into());
-                    let _ = js_sys::Reflect::set(&o, &"y".into(), &((p[1] * k) as f64).into());
+                    set_field(&o, "x", &((p[0] * k) as f64).into());
+                    set_field(&o, "y", &((p[1] * k) as f64).into());
                     o.into()
                 }
                 None => JsValue::NULL,
@@ -244,7 +262,7 @@ fn install_hook(window: &web_sys::Window) {
                     ("scene", t.scene_ms),
                     ("render", t.render_ms),
                 ] {
-                    let _ = js_sys::Reflect::set(&o, &key.into(), &ms.into());
+                    set_field(&o, key, &ms.into());
                 }
                 JsValue::from(o)
             })
@@ -254,15 +272,23 @@ fn install_hook(window: &web_sys::Window) {
         PENDING_HASH.with(|p| *p.borrow_mut() = Some(hash));
         wake();
     });
-    let _ = js_sys::Reflect::set(&obj, &"state".into(), &state.into_js_value());
-    let _ = js_sys::Reflect::set(&obj, &"screenPoint".into(), &point.into_js_value());
-    let _ = js_sys::Reflect::set(&obj, &"frameTimes".into(), &frames.into_js_value());
-    let _ = js_sys::Reflect::set(&obj, &"open".into(), &open.into_js_value());
+    set_field(&obj, "state", &state.into_js_value());
+    set_field(&obj, "screenPoint", &point.into_js_value());
+    set_field(&obj, "frameTimes", &frames.into_js_value());
+    set_field(&obj, "open", &open.into_js_value());
     let first = Closure::<dyn Fn() -> JsValue>::new(|| {
         FIRST_FRAME.with(|f| f.borrow().map_or(JsValue::NULL, JsValue::from))
     });
-    let _ = js_sys::Reflect::set(&obj, &"firstFrameAt".into(), &first.into_js_value());
-    let _ = js_sys::Reflect::set(window, &"armlab".into(), &obj);
+    set_field(&obj, "firstFrameAt", &first.into_js_value());
+    set_field(window, "armlab", &obj);
+}
+
+/// Sets `object[key] = value`, logging a failure.
+fn set_field(object: &JsValue, key: &str, value: &JsValue) {
+    warn_on_failure(
+        js_sys::Reflect::set(object, &key.into(), value),
+        &format!("setting {key} on a page object"),
+    );
 }
 
 /// Opens links the page navigates to (back/forward, an edited address) and writes a
@@ -274,15 +300,20 @@ fn install_hashchange(window: &web_sys::Window) {
             wake();
         }
     });
-    let _ =
-        window.add_event_listener_with_callback("hashchange", on_change.as_ref().unchecked_ref());
+    warn_on_failure(
+        window.add_event_listener_with_callback("hashchange", on_change.as_ref().unchecked_ref()),
+        "listening for link changes",
+    );
     on_change.forget();
     let on_leave = Closure::<dyn Fn()>::new(|| {
         if let Some(hash) = PENDING_STORE.with(|p| p.borrow_mut().take()) {
             write_hash(&hash);
         }
     });
-    let _ = window.add_event_listener_with_callback("pagehide", on_leave.as_ref().unchecked_ref());
+    warn_on_failure(
+        window.add_event_listener_with_callback("pagehide", on_leave.as_ref().unchecked_ref()),
+        "listening for the page being left",
+    );
     on_leave.forget();
 }
 
@@ -304,7 +335,10 @@ pub fn download(name: &str, text: &str) -> Result<(), String> {
     a.set_href(&url);
     a.set_download(name);
     a.click();
-    let _ = web_sys::Url::revoke_object_url(&url);
+    warn_on_failure(
+        web_sys::Url::revoke_object_url(&url),
+        "releasing the download's address",
+    );
     Ok(())
 }
 

@@ -8,7 +8,7 @@
 use std::time::Instant;
 
 use armlab::app::session::Session;
-use armlab::app::{ArmLabApp, ik_panel, style};
+use armlab::app::{ArmLabApp, style};
 
 fn percentile(sorted: &[f64], p: f64) -> f64 {
     sorted
@@ -39,8 +39,8 @@ fn main() {
     style::install_fonts(&ctx);
     style::install(&ctx, false);
     let mut app = ArmLabApp::with_session(session);
-    let start = app.target;
-    let radius = app.session.robot.reach() * 0.25;
+    let start = *app.model().target();
+    let radius = app.model().robot().reach() * 0.25;
     let screen = egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1280.0, 800.0));
     let (mut ui_ms, mut tessellate_ms) = (Vec::new(), Vec::new());
     for frame in 0..frames + 60 {
@@ -55,8 +55,8 @@ fn main() {
             ..Default::default()
         };
         let t0 = Instant::now();
-        app.set_target(target);
-        ik_panel::drag_solve(&mut app);
+        app.model_mut().set_target(target);
+        app.model_mut().drag_step();
         let output = ctx.run_ui(input, |ui| app.show(ui, None));
         let t1 = Instant::now();
         let meshes = ctx.tessellate(output.shapes, output.pixels_per_point);
@@ -68,7 +68,7 @@ fn main() {
         }
     }
     let report = serde_json::json!({
-        "robot": app.session.robot.name,
+        "robot": app.model().robot().name,
         "frames": frames,
         "window": [screen.width(), screen.height()],
         "app (IK + egui layout of every panel)": summary(ui_ms),

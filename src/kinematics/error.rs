@@ -27,6 +27,178 @@ impl std::fmt::Display for Place {
     }
 }
 
+/// A field of a robot description: each names its JSON key, so messages print exactly
+/// the word a person wrote in the file or sees as a DH column.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Field {
+    /// `format`: the file format version.
+    Format,
+    /// `name`: a name.
+    Name,
+    /// `description`: the description.
+    Description,
+    /// `convention`: the DH convention.
+    Convention,
+    /// `length_unit`: the length unit.
+    LengthUnit,
+    /// `joints`: the list of joints.
+    Joints,
+    /// `base`: the base transform.
+    Base,
+    /// `tool`: the tool transform.
+    Tool,
+    /// `base_size`: the drawn base block's size.
+    BaseSize,
+    /// `hand_size`: the drawn hand's size.
+    HandSize,
+    /// `robot`: the robot object itself.
+    Robot,
+    /// `joint`: a joint object itself.
+    Joint,
+    /// `transform`: a transform object itself.
+    Transform,
+    /// `type`: the joint type.
+    Type,
+    /// `theta_deg`: θ in degrees (file).
+    ThetaDeg,
+    /// `theta`: θ (checked in degrees).
+    Theta,
+    /// `d`: d.
+    D,
+    /// `a`: a.
+    A,
+    /// `alpha_deg`: α in degrees (file).
+    AlphaDeg,
+    /// `alpha`: α (checked in degrees).
+    Alpha,
+    /// `min_deg`: a revolute lower limit in degrees (file).
+    MinDeg,
+    /// `max_deg`: a revolute upper limit in degrees (file).
+    MaxDeg,
+    /// `min`: the lower limit.
+    Min,
+    /// `max`: the upper limit.
+    Max,
+    /// `home`: the home value.
+    Home,
+    /// `max_speed`: the speed limit.
+    MaxSpeed,
+    /// `housing_size`: the joint housing's size (file).
+    HousingSize,
+    /// `housing`: the joint housing's size.
+    Housing,
+    /// `link_size`: the link's size (file).
+    LinkSize,
+    /// `link`: the link's size.
+    Link,
+    /// `xyz`: a transform's translation.
+    Xyz,
+    /// `rpy_deg`: a transform's roll-pitch-yaw angles.
+    RpyDeg,
+    /// `x`: a translation's x.
+    X,
+    /// `y`: a translation's y.
+    Y,
+    /// `z`: a translation's z.
+    Z,
+    /// `rotation`: a rotation matrix entry.
+    Rotation,
+}
+
+impl Field {
+    /// The JSON key (or DH column) as written.
+    pub fn name(self) -> &'static str {
+        match self {
+            Field::Format => "format",
+            Field::Name => "name",
+            Field::Description => "description",
+            Field::Convention => "convention",
+            Field::LengthUnit => "length_unit",
+            Field::Joints => "joints",
+            Field::Base => "base",
+            Field::Tool => "tool",
+            Field::BaseSize => "base_size",
+            Field::HandSize => "hand_size",
+            Field::Robot => "robot",
+            Field::Joint => "joint",
+            Field::Transform => "transform",
+            Field::Type => "type",
+            Field::ThetaDeg => "theta_deg",
+            Field::Theta => "theta",
+            Field::D => "d",
+            Field::A => "a",
+            Field::AlphaDeg => "alpha_deg",
+            Field::Alpha => "alpha",
+            Field::MinDeg => "min_deg",
+            Field::MaxDeg => "max_deg",
+            Field::Min => "min",
+            Field::Max => "max",
+            Field::Home => "home",
+            Field::MaxSpeed => "max_speed",
+            Field::HousingSize => "housing_size",
+            Field::Housing => "housing",
+            Field::LinkSize => "link_size",
+            Field::Link => "link",
+            Field::Xyz => "xyz",
+            Field::RpyDeg => "rpy_deg",
+            Field::X => "x",
+            Field::Y => "y",
+            Field::Z => "z",
+            Field::Rotation => "rotation",
+        }
+    }
+
+    /// The DH editor's column of this field, for the fields that have one.
+    pub fn dh_column(self) -> Option<DhColumn> {
+        match self {
+            Field::Theta | Field::ThetaDeg => Some(DhColumn::Theta),
+            Field::D => Some(DhColumn::D),
+            Field::A => Some(DhColumn::A),
+            Field::Alpha | Field::AlphaDeg => Some(DhColumn::Alpha),
+            Field::Min | Field::MinDeg => Some(DhColumn::Min),
+            Field::Max | Field::MaxDeg => Some(DhColumn::Max),
+            _ => None,
+        }
+    }
+}
+
+impl std::fmt::Display for Field {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A column of the DH table as the editor shows it: θ, d, a, α, and the limits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum DhColumn {
+    /// θ (the offset of a revolute joint, the value of a prismatic one's fixed angle).
+    Theta,
+    /// d.
+    D,
+    /// a.
+    A,
+    /// α.
+    Alpha,
+    /// The lower limit.
+    Min,
+    /// The upper limit.
+    Max,
+}
+
+impl DhColumn {
+    /// The column's position in the editor (0 = θ … 5 = max).
+    pub fn index(self) -> usize {
+        match self {
+            DhColumn::Theta => 0,
+            DhColumn::D => 1,
+            DhColumn::A => 2,
+            DhColumn::Alpha => 3,
+            DhColumn::Min => 4,
+            DhColumn::Max => 5,
+        }
+    }
+}
+
 /// Everything that can be wrong with a robot description or with a request on it.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum RobotError {
@@ -46,7 +218,7 @@ pub enum RobotError {
         /// Where.
         place: Place,
         /// Which field.
-        field: String,
+        field: Field,
     },
     /// A field that the format does not know (often a typo).
     #[error("In {place}, the field \"{field}\" is not known; the known fields are: {known}.")]
@@ -64,7 +236,7 @@ pub enum RobotError {
         /// Where.
         place: Place,
         /// Which field.
-        field: String,
+        field: Field,
         /// What it should be, in words ("a number", "a list of 3 numbers").
         expected: String,
     },
@@ -90,7 +262,7 @@ pub enum RobotError {
         /// Where.
         place: Place,
         /// Which field.
-        field: String,
+        field: Field,
         /// The offending value, printed.
         value: f64,
     },
@@ -111,7 +283,7 @@ pub enum RobotError {
         /// Where.
         place: Place,
         /// Which field.
-        field: String,
+        field: Field,
         /// The value.
         value: f64,
         /// The largest allowed magnitude.
@@ -123,7 +295,7 @@ pub enum RobotError {
         /// Where.
         place: Place,
         /// Which field.
-        field: String,
+        field: Field,
         /// The value.
         value: f64,
     },
@@ -167,6 +339,36 @@ pub enum RobotError {
 }
 
 impl RobotError {
+    /// The DH table cell an error is about: (joint, 0-based; column), for the editor to
+    /// place its sentence beside the cell without reading the text.
+    pub fn dh_cell(&self) -> Option<(usize, DhColumn)> {
+        match self {
+            RobotError::NotFinite {
+                place: Place::Joint(n),
+                field,
+                ..
+            }
+            | RobotError::TooLarge {
+                place: Place::Joint(n),
+                field,
+                ..
+            }
+            | RobotError::MissingField {
+                place: Place::Joint(n),
+                field,
+            }
+            | RobotError::WrongType {
+                place: Place::Joint(n),
+                field,
+                ..
+            } => field.dh_column().map(|c| (n.saturating_sub(1), c)),
+            RobotError::LimitsReversed { joint, .. } => {
+                Some((joint.saturating_sub(1), DhColumn::Min))
+            }
+            _ => None,
+        }
+    }
+
     /// Turns a serde_json error into a `Syntax` error with its position.
     pub fn from_json(err: &serde_json::Error) -> Self {
         let text = err.to_string();

@@ -16,7 +16,7 @@
 
 use serde_json::{Map, Value, json};
 
-use super::error::{Place, RobotError};
+use super::error::{Field, Place, RobotError};
 use super::orientation::ZyxEuler;
 use super::robot::{
     Convention, DhRow, Joint, JointKind, JointLimits, LengthUnit, MAX_JOINTS, PartSizes, Robot,
@@ -62,27 +62,33 @@ pub fn robot_from_json(text: &str) -> Result<Robot, RobotError> {
 
 /// Reads a robot from an already parsed JSON value (used by the JS API and URLs).
 pub fn robot_from_value(value: &Value) -> Result<Robot, RobotError> {
-    let obj = object(value, &Place::Robot, "robot", "a JSON object { ... }")?;
+    let obj = object(value, &Place::Robot, Field::Robot, "a JSON object { ... }")?;
     check_fields(obj, &Place::Robot, ROBOT_FIELDS)?;
     let place = Place::Robot;
-    let name = string(obj, &place, "name")?.ok_or_else(|| missing(&place, "name"))?;
-    let description = string(obj, &place, "description")?.unwrap_or_default();
-    let convention = match string(obj, &place, "convention")?.as_deref() {
+    let name = string(obj, &place, Field::Name)?.ok_or_else(|| missing(&place, Field::Name))?;
+    let description = string(obj, &place, Field::Description)?.unwrap_or_default();
+    let convention = match string(obj, &place, Field::Convention)?.as_deref() {
         Some("standard") => Convention::Standard,
         Some("modified") => Convention::Modified,
         Some(other) => return Err(RobotError::UnknownConvention(other.to_string())),
-        None => return Err(missing(&place, "convention")),
+        None => return Err(missing(&place, Field::Convention)),
     };
-    let length_unit = match string(obj, &place, "length_unit")?.as_deref() {
+    let length_unit = match string(obj, &place, Field::LengthUnit)?.as_deref() {
         Some("mm") => LengthUnit::Millimetre,
         Some("m") => LengthUnit::Metre,
         Some(other) => return Err(RobotError::UnknownLengthUnit(other.to_string())),
-        None => return Err(missing(&place, "length_unit")),
+        None => return Err(missing(&place, Field::LengthUnit)),
     };
-    let list = match obj.get("joints") {
-        None => return Err(missing(&place, "joints")),
+    let list = match obj.get(Field::Joints.name()) {
+        None => return Err(missing(&place, Field::Joints)),
         Some(Value::Array(list)) => list,
-        Some(_) => return Err(wrong(&place, "joints", "a list of joints [ {...}, ... ]")),
+        Some(_) => {
+            return Err(wrong(
+                &place,
+                Field::Joints,
+                "a list of joints [ {...}, ... ]",
+            ));
+        }
     };
     if list.is_empty() {
         return Err(RobotError::EmptyChain);
@@ -98,11 +104,11 @@ pub fn robot_from_value(value: &Value) -> Result<Robot, RobotError> {
         .enumerate()
         .map(|(i, v)| joint_from_value(i + 1, v))
         .collect::<Result<Vec<_>, _>>()?;
-    let world_from_base = transform_from_value(obj.get("base"), Place::Base)?;
-    let flange_from_tool = transform_from_value(obj.get("tool"), Place::Tool)?;
+    let world_from_base = transform_from_value(obj.get(Field::Base.name()), Place::Base)?;
+    let flange_from_tool = transform_from_value(obj.get(Field::Tool.name()), Place::Tool)?;
     let parts = RobotParts {
-        base: triple(obj, &place, "base_size")?,
-        hand: triple(obj, &place, "hand_size")?,
+        base: triple(obj, &place, Field::BaseSize)?,
+        hand: triple(obj, &place, Field::HandSize)?,
     };
     Robot {
         name,
@@ -119,9 +125,9 @@ pub fn robot_from_value(value: &Value) -> Result<Robot, RobotError> {
 
 fn joint_from_value(n: usize, value: &Value) -> Result<Joint, RobotError> {
     let place = Place::Joint(n);
-    let obj = object(value, &place, "joint", "a JSON object { ... }")?;
+    let obj = object(value, &place, Field::Joint, "a JSON object { ... }")?;
     check_fields(obj, &place, JOINT_FIELDS)?;
-    let kind = match string(obj, &place, "type")?.as_deref() {
+    let kind = match string(obj, &place, Field::Type)?.as_deref() {
         Some("revolute") => JointKind::Revolute,
         Some("prismatic") => JointKind::Prismatic,
         Some(other) => {
@@ -130,14 +136,14 @@ fn joint_from_value(n: usize, value: &Value) -> Result<Joint, RobotError> {
                 found: other.to_string(),
             });
         }
-        None => return Err(missing(&place, "type")),
+        None => return Err(missing(&place, Field::Type)),
     };
-    let required = |field: &str| number(obj, &place, field)?.ok_or_else(|| missing(&place, field));
+    let required = |field: Field| number(obj, &place, field)?.ok_or_else(|| missing(&place, field));
     let dh = DhRow {
-        theta: required("theta_deg")?.to_radians(),
-        d: required("d")?,
-        a: required("a")?,
-        alpha: required("alpha_deg")?.to_radians(),
+        theta: required(Field::ThetaDeg)?.to_radians(),
+        d: required(Field::D)?,
+        a: required(Field::A)?,
+        alpha: required(Field::AlphaDeg)?.to_radians(),
     };
     let (limits, home, max_speed) = match kind {
         JointKind::Revolute => {
@@ -150,14 +156,14 @@ fn joint_from_value(n: usize, value: &Value) -> Result<Joint, RobotError> {
                     });
                 }
             }
-            let min = number(obj, &place, "min_deg")?.map(f64::to_radians);
-            let max = number(obj, &place, "max_deg")?.map(f64::to_radians);
+            let min = number(obj, &place, Field::MinDeg)?.map(f64::to_radians);
+            let max = number(obj, &place, Field::MaxDeg)?.map(f64::to_radians);
             let limits = JointLimits {
                 min: min.unwrap_or(JointLimits::FULL_TURN.min),
                 max: max.unwrap_or(JointLimits::FULL_TURN.max),
             };
-            let home = number(obj, &place, "home")?.map_or(0.0, f64::to_radians);
-            let speed = number(obj, &place, "max_speed")?.map(f64::to_radians);
+            let home = number(obj, &place, Field::Home)?.map_or(0.0, f64::to_radians);
+            let speed = number(obj, &place, Field::MaxSpeed)?.map(f64::to_radians);
             (limits, home, speed)
         }
         JointKind::Prismatic => {
@@ -172,19 +178,21 @@ fn joint_from_value(n: usize, value: &Value) -> Result<Joint, RobotError> {
                     });
                 }
             }
-            let (Some(min), Some(max)) = (number(obj, &place, "min")?, number(obj, &place, "max")?)
-            else {
+            let (Some(min), Some(max)) = (
+                number(obj, &place, Field::Min)?,
+                number(obj, &place, Field::Max)?,
+            ) else {
                 return Err(RobotError::PrismaticWithoutLimits { joint: n });
             };
-            let home = number(obj, &place, "home")?.unwrap_or(min);
-            let speed = number(obj, &place, "max_speed")?;
+            let home = number(obj, &place, Field::Home)?.unwrap_or(min);
+            let speed = number(obj, &place, Field::MaxSpeed)?;
             (JointLimits { min, max }, home, speed)
         }
     };
-    let name = string(obj, &place, "name")?.unwrap_or_else(|| format!("joint {n}"));
+    let name = string(obj, &place, Field::Name)?.unwrap_or_else(|| format!("joint {n}"));
     let parts = PartSizes {
-        housing: triple(obj, &place, "housing_size")?,
-        link: triple(obj, &place, "link_size")?,
+        housing: triple(obj, &place, Field::HousingSize)?,
+        link: triple(obj, &place, Field::LinkSize)?,
     };
     Ok(Joint {
         name,
@@ -207,12 +215,12 @@ fn transform_from_value(
     let obj = object(
         value,
         &place,
-        "transform",
+        Field::Transform,
         "an object { \"xyz\": [..], \"rpy_deg\": [..] }",
     )?;
     check_fields(obj, &place, TRANSFORM_FIELDS)?;
-    let xyz = triple(obj, &place, "xyz")?.unwrap_or([0.0; 3]);
-    let rpy = triple(obj, &place, "rpy_deg")?.unwrap_or([0.0; 3]);
+    let xyz = triple(obj, &place, Field::Xyz)?.unwrap_or([0.0; 3]);
+    let rpy = triple(obj, &place, Field::RpyDeg)?.unwrap_or([0.0; 3]);
     Ok(isometry_from_xyz_rpy(
         xyz,
         [
@@ -308,17 +316,17 @@ fn tidy(deg: f64) -> f64 {
     if (deg - r).abs() < 1e-9 { r } else { deg }
 }
 
-fn missing(place: &Place, field: &str) -> RobotError {
+fn missing(place: &Place, field: Field) -> RobotError {
     RobotError::MissingField {
         place: place.clone(),
-        field: field.to_string(),
+        field,
     }
 }
 
-fn wrong(place: &Place, field: &str, expected: &str) -> RobotError {
+fn wrong(place: &Place, field: Field, expected: &str) -> RobotError {
     RobotError::WrongType {
         place: place.clone(),
-        field: field.to_string(),
+        field,
         expected: expected.to_string(),
     }
 }
@@ -326,7 +334,7 @@ fn wrong(place: &Place, field: &str, expected: &str) -> RobotError {
 fn object<'a>(
     value: &'a Value,
     place: &Place,
-    field: &str,
+    field: Field,
     expected: &str,
 ) -> Result<&'a Map<String, Value>, RobotError> {
     value
@@ -348,23 +356,27 @@ fn check_fields(obj: &Map<String, Value>, place: &Place, known: &[&str]) -> Resu
 fn string(
     obj: &Map<String, Value>,
     place: &Place,
-    field: &str,
+    field: Field,
 ) -> Result<Option<String>, RobotError> {
-    match obj.get(field) {
+    match obj.get(field.name()) {
         None | Some(Value::Null) => Ok(None),
         Some(Value::String(s)) => Ok(Some(s.clone())),
         Some(_) => Err(wrong(place, field, "a text in quotes")),
     }
 }
 
-fn number(obj: &Map<String, Value>, place: &Place, field: &str) -> Result<Option<f64>, RobotError> {
-    match obj.get(field) {
+fn number(
+    obj: &Map<String, Value>,
+    place: &Place,
+    field: Field,
+) -> Result<Option<f64>, RobotError> {
+    match obj.get(field.name()) {
         None => Ok(None),
         Some(Value::Number(n)) => match n.as_f64() {
             Some(v) if v.is_finite() => Ok(Some(v)),
             _ => Err(RobotError::NotFinite {
                 place: place.clone(),
-                field: field.to_string(),
+                field,
                 value: f64::INFINITY,
             }),
         },
@@ -376,9 +388,9 @@ fn number(obj: &Map<String, Value>, place: &Place, field: &str) -> Result<Option
 fn triple(
     obj: &Map<String, Value>,
     place: &Place,
-    field: &str,
+    field: Field,
 ) -> Result<Option<[f64; 3]>, RobotError> {
-    let Some(value) = obj.get(field) else {
+    let Some(value) = obj.get(field.name()) else {
         return Ok(None);
     };
     let expected = "a list of 3 numbers";

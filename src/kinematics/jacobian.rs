@@ -49,6 +49,48 @@ pub enum Task {
 }
 
 impl Task {
+    /// Every task, in menu order.
+    pub const ALL: [Task; 5] = [
+        Task::Position,
+        Task::PositionAndAxis(ToolAxis::Z),
+        Task::PositionAndAxis(ToolAxis::X),
+        Task::PositionAndAxis(ToolAxis::Y),
+        Task::FullPose,
+    ];
+
+    /// The id links and the JSON API use: `position`, `axis-x`, `axis-y`, `axis-z`,
+    /// `full`.
+    pub fn id(self) -> &'static str {
+        match self {
+            Task::Position => "position",
+            Task::PositionAndAxis(ToolAxis::X) => "axis-x",
+            Task::PositionAndAxis(ToolAxis::Y) => "axis-y",
+            Task::PositionAndAxis(ToolAxis::Z) => "axis-z",
+            Task::FullPose => "full",
+        }
+    }
+
+    /// The task of an id, if it is one.
+    pub fn from_id(id: &str) -> Option<Task> {
+        Task::ALL.into_iter().find(|t| t.id() == id)
+    }
+
+    /// The name people read in the app's menu.
+    pub fn label(self) -> &'static str {
+        match self {
+            Task::Position => "Position only (3 rows)",
+            Task::PositionAndAxis(ToolAxis::X) => "Position + tool x axis (5D)",
+            Task::PositionAndAxis(ToolAxis::Y) => "Position + tool y axis (5D)",
+            Task::PositionAndAxis(ToolAxis::Z) => "Position + tool z axis (5D)",
+            Task::FullPose => "Full pose (6 rows)",
+        }
+    }
+
+    /// Every id, for messages: `position, axis-x, …`.
+    pub fn id_list() -> String {
+        Task::ALL.map(Task::id).join(", ")
+    }
+
     /// The number of independent rows (3, 5 or 6).
     pub fn rows(self) -> usize {
         match self {
@@ -202,4 +244,47 @@ pub fn tool_velocity(j: &Matrix6xX<f64>, q_dot: &[f64]) -> Vector6<f64> {
         (0..j.ncols()).map(|i| q_dot.get(i).copied().unwrap_or(0.0)),
     );
     j * qd
+}
+
+/// Relative agreement the central-difference Jacobian must reach with the geometric one:
+/// every entry within `JACOBIAN_AGREEMENT · max(1, ‖J‖)`.
+pub const JACOBIAN_AGREEMENT: f64 = 1e-5;
+
+/// The Jacobian of a pose as the matrices panel and the JSON API show it: the geometric
+/// Jacobian, its central-difference check (ε = [`NUMERIC_EPSILON`]) and their largest
+/// difference against the tolerance `JACOBIAN_AGREEMENT · max(1, ‖J‖)`, and the
+/// reach-scaled measures of the task rows ([`jacobian_measures`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct JacobianAnalysis {
+    /// The geometric Jacobian (6 × n, base frame).
+    pub geometric: Matrix6xX<f64>,
+    /// The central-difference Jacobian (6 × n).
+    pub numerical: Matrix6xX<f64>,
+    /// The largest absolute difference of the two, entry by entry.
+    pub max_difference: f64,
+    /// The largest difference that counts as agreement.
+    pub tolerance: f64,
+    /// Whether the two agree within the tolerance.
+    pub agrees: bool,
+    /// Singular values, manipulability, det J, condition number, singularity flag.
+    pub measures: JacobianMeasures,
+}
+
+impl JacobianAnalysis {
+    /// The analysis at the pose `fk` (forward kinematics of `robot` at `q`) for `task`.
+    pub fn new(robot: &Robot, fk: &ForwardKinematics, q: &[f64], task: Task) -> Self {
+        let geometric = geometric_jacobian(fk);
+        let numerical = numerical_jacobian(robot, q, NUMERIC_EPSILON);
+        let max_difference = (&geometric - &numerical).abs().max();
+        let tolerance = JACOBIAN_AGREEMENT * geometric.norm().max(1.0);
+        let measures = jacobian_measures(&geometric, task, fk.tool_rotation(), robot.reach());
+        JacobianAnalysis {
+            agrees: max_difference <= tolerance,
+            geometric,
+            numerical,
+            max_difference,
+            tolerance,
+            measures,
+        }
+    }
 }

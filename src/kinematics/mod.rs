@@ -15,22 +15,23 @@ pub mod presets;
 pub mod rng;
 pub mod robot;
 
-pub use error::{Place, RobotError};
+pub use error::{DhColumn, Field, Place, RobotError};
 pub use file::{robot_from_json, robot_from_value, robot_to_json};
 pub use fk::{
     ForwardKinematics, link_transform, modified_dh_transform, standard_dh_transform, tool_pose,
 };
 pub use ik::{
     ClosedFormFamily, ClosedFormSet, ClosedFormSolution, DEFAULT_MAX_JOINT_CHANGE, IkError,
-    IkMethod, IkResult, IkSettings, IkSolver, IkStep, JacobianSource, closed_form_family,
+    IkMethod, IkResult, IkSettings, IkSolver, IkStep, JacobianSource, Reach, closed_form_family,
     closed_form_solutions, drag_step, solve,
 };
 pub use jacobian::{
-    JacobianMeasures, NUMERIC_EPSILON, SINGULARITY_THRESHOLD, Task, ToolAxis, geometric_jacobian,
-    geometric_jacobian_into, jacobian_measures, numerical_jacobian, task_jacobian, tool_velocity,
+    JACOBIAN_AGREEMENT, JacobianAnalysis, JacobianMeasures, NUMERIC_EPSILON, SINGULARITY_THRESHOLD,
+    Task, ToolAxis, geometric_jacobian, geometric_jacobian_into, jacobian_measures,
+    numerical_jacobian, task_jacobian, tool_velocity,
 };
 pub use orientation::{AngleAxis, EulerParameters, Orientation, XyzFixed, ZyxEuler, rotation_log};
-pub use presets::{PRESETS, preset, preset_ids};
+pub use presets::{PRESETS, preset, preset_ids, preset_names};
 pub use rng::SplitMix64;
 pub use robot::{
     Convention, DhRow, Joint, JointKind, JointLimits, LengthUnit, PartSizes, Robot, RobotParts,

@@ -45,3 +45,16 @@ pub fn preset(id: &str) -> Result<Robot, RobotError> {
         )),
     }
 }
+
+/// Every preset's id and robot name, in the order of [`PRESETS`], read from the files
+/// once (the first call) and kept: a menu can list them every frame without parsing
+/// JSON. A preset whose file does not load is listed by its id (the tests load every
+/// preset, so this does not happen in a release).
+pub fn preset_names() -> &'static [(&'static str, String)] {
+    static NAMES: std::sync::OnceLock<Vec<(&'static str, String)>> = std::sync::OnceLock::new();
+    NAMES.get_or_init(|| {
+        preset_ids()
+            .map(|id| (id, preset(id).map_or_else(|_| id.to_string(), |r| r.name)))
+            .collect()
+    })
+}

@@ -5,7 +5,7 @@
 use nalgebra::{IsometryMatrix3, Rotation3, Translation3, Vector3};
 
 use super::angles;
-use super::error::{Place, RobotError};
+use super::error::{Field, Place, RobotError};
 
 /// The most joints a robot may have.
 pub const MAX_JOINTS: usize = 64;
@@ -274,20 +274,33 @@ impl Robot {
                 JointKind::Revolute => (1.0_f64.to_degrees(), MAX_ANGLE_DEG),
                 JointKind::Prismatic => (1.0, MAX_LENGTH),
             };
-            check_value(&place, "theta", joint.dh.theta.to_degrees(), MAX_ANGLE_DEG)?;
-            check_value(&place, "d", joint.dh.d, MAX_LENGTH)?;
-            check_value(&place, "a", joint.dh.a, MAX_LENGTH)?;
-            check_value(&place, "alpha", joint.dh.alpha.to_degrees(), MAX_ANGLE_DEG)?;
-            check_value(&place, "min", joint.limits.min * lim_scale, lim_max)?;
-            check_value(&place, "max", joint.limits.max * lim_scale, lim_max)?;
-            check_value(&place, "home", joint.home * lim_scale, lim_max)?;
-            for (field, size) in [("housing", joint.parts.housing), ("link", joint.parts.link)] {
+            check_value(
+                &place,
+                Field::Theta,
+                joint.dh.theta.to_degrees(),
+                MAX_ANGLE_DEG,
+            )?;
+            check_value(&place, Field::D, joint.dh.d, MAX_LENGTH)?;
+            check_value(&place, Field::A, joint.dh.a, MAX_LENGTH)?;
+            check_value(
+                &place,
+                Field::Alpha,
+                joint.dh.alpha.to_degrees(),
+                MAX_ANGLE_DEG,
+            )?;
+            check_value(&place, Field::Min, joint.limits.min * lim_scale, lim_max)?;
+            check_value(&place, Field::Max, joint.limits.max * lim_scale, lim_max)?;
+            check_value(&place, Field::Home, joint.home * lim_scale, lim_max)?;
+            for (field, size) in [
+                (Field::Housing, joint.parts.housing),
+                (Field::Link, joint.parts.link),
+            ] {
                 for v in size.iter().flatten() {
                     check_size(&place, field, *v)?;
                 }
             }
             if let Some(speed) = joint.max_speed {
-                check_value(&place, "max_speed", speed * lim_scale, MAX_LENGTH)?;
+                check_value(&place, Field::MaxSpeed, speed * lim_scale, MAX_LENGTH)?;
             }
             if joint.limits.min > joint.limits.max {
                 return Err(RobotError::LimitsReversed {
@@ -298,8 +311,8 @@ impl Robot {
             }
         }
         for (field, size) in [
-            ("base_size", self.parts.base),
-            ("hand_size", self.parts.hand),
+            (Field::BaseSize, self.parts.base),
+            (Field::HandSize, self.parts.hand),
         ] {
             for v in size.iter().flatten() {
                 check_size(&Place::Robot, field, *v)?;
@@ -310,10 +323,10 @@ impl Robot {
             (Place::Tool, &self.flange_from_tool),
         ] {
             for (k, v) in iso.translation.vector.iter().enumerate() {
-                check_value(&place, ["x", "y", "z"][k], *v, MAX_LENGTH)?;
+                check_value(&place, [Field::X, Field::Y, Field::Z][k], *v, MAX_LENGTH)?;
             }
             for v in iso.rotation.matrix().iter() {
-                check_value(&place, "rotation", *v, 1.0 + 1e-6)?;
+                check_value(&place, Field::Rotation, *v, 1.0 + 1e-6)?;
             }
         }
         Ok(self)
@@ -347,21 +360,21 @@ impl Robot {
 /// Fails when `value` is not finite or its size is above `limit`.
 pub(crate) fn check_value(
     place: &Place,
-    field: &str,
+    field: Field,
     value: f64,
     limit: f64,
 ) -> Result<(), RobotError> {
     if !value.is_finite() {
         return Err(RobotError::NotFinite {
             place: place.clone(),
-            field: field.to_string(),
+            field,
             value,
         });
     }
     if value.abs() > limit {
         return Err(RobotError::TooLarge {
             place: place.clone(),
-            field: field.to_string(),
+            field,
             value,
             limit,
         });
@@ -370,12 +383,12 @@ pub(crate) fn check_value(
 }
 
 /// A part size must be a finite, non-negative length.
-fn check_size(place: &Place, field: &str, value: f64) -> Result<(), RobotError> {
+fn check_size(place: &Place, field: Field, value: f64) -> Result<(), RobotError> {
     check_value(place, field, value, MAX_LENGTH)?;
     if value < 0.0 {
         return Err(RobotError::NegativeSize {
             place: place.clone(),
-            field: field.to_string(),
+            field,
             value,
         });
     }

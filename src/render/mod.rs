@@ -4,6 +4,7 @@
 //! values into a plain `Rgba8Unorm` texture, which is what egui expects of its textures
 //! (WebGL2 cannot reinterpret an sRGB texture as unorm, so the encoding is explicit). The same code runs on WebGPU, WebGL2 and native Vulkan (lavapipe in
 //! the UI tests). The renderer never computes kinematics: it draws a [`Scene`].
+#![deny(clippy::too_many_lines)]
 
 pub mod camera;
 pub mod mesh;
@@ -129,9 +130,7 @@ const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth24Plus;
 
 /// Owns the pipelines, meshes and offscreen targets.
 pub struct SceneRenderer {
-    mesh_pipeline: wgpu::RenderPipeline,
-    mesh_on_top_pipeline: wgpu::RenderPipeline,
-    line_pipeline: wgpu::RenderPipeline,
+    pipelines: Pipelines,
     globals: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     meshes: Vec<GpuMesh>,
@@ -146,6 +145,230 @@ pub struct SceneRenderer {
     raw_lines: Vec<LineVertex>,
 }
 
+/// The uniform buffer of [`Globals`] and its bind group.
+struct GlobalsBinding {
+    layout: wgpu::BindGroupLayout,
+    buffer: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+}
+
+impl GlobalsBinding {
+    fn new(device: &wgpu::Device) -> Self {
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("armlab globals"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            }],
+        });
+        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("armlab globals"),
+            size: std::mem::size_of::<Globals>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("armlab globals"),
+            layout: &layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: buffer.as_entire_binding(),
+            }],
+        });
+        GlobalsBinding {
+            layout,
+            buffer,
+            bind_group,
+        }
+    }
+}
+
+/// What differs between the three pipelines.
+struct PipelineSpec<'a> {
+    label: &'a str,
+    vertex_entry: &'a str,
+    fragment_entry: &'a str,
+    buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
+    topology: wgpu::PrimitiveTopology,
+    /// Depth-tested (and depth-writing); off for the marker drawn on top.
+    depth_test: bool,
+}
+
+/// The shader, layout and sample count every pipeline shares.
+struct PipelineBase<'a> {
+    device: &'a wgpu::Device,
+    shader: wgpu::ShaderModule,
+    layout: wgpu::PipelineLayout,
+    sample_count: u32,
+}
+
+impl PipelineBase<'_> {
+    fn pipeline(&self, spec: &PipelineSpec<'_>) -> wgpu::RenderPipeline {
+        let depth_compare = if spec.depth_test {
+            wgpu::CompareFunction::LessEqual
+        } else {
+            wgpu::CompareFunction::Always
+        };
+        self.device
+            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(spec.label),
+                layout: Some(&self.layout),
+                vertex: wgpu::VertexState {
+                    module: &self.shader,
+                    entry_point: Some(spec.vertex_entry),
+                    buffers: spec.buffers,
+                    compilation_options: wgpu::PipelineCompilationOptions::default(),
+                },
+                primitive: wgpu::PrimitiveState {
+                    topology: spec.topology,
+                    cull_mode: None,
+                    ..Default::default()
+                },
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: DEPTH_FORMAT,
+                    depth_write_enabled: Some(spec.depth_test),
+                    depth_compare: Some(depth_compare),
+                    stencil: wgpu::StencilState::default(),
+                    bias: wgpu::DepthBiasState::default(),
+                }),
+                multisample: wgpu::MultisampleState {
+                    count: self.sample_count,
+                    mask: !0,
+                    alpha_to_coverage_enabled: false,
+                },
+                fragment: Some(wgpu::FragmentState {
+                    module: &self.shader,
+                    entry_point: Some(spec.fragment_entry),
+                    targets: &[Some(wgpu::ColorTargetState {
+                        format: COLOR_FORMAT,
+                        blend: Some(wgpu::BlendState::ALPHA_BLENDING),
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })],
+                    compilation_options: wgpu::PipelineCompilationOptions::default(),
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+    }
+}
+
+/// The meshes drawn depth-tested, the same drawn on top (the marker), and the lines.
+struct Pipelines {
+    mesh: wgpu::RenderPipeline,
+    mesh_on_top: wgpu::RenderPipeline,
+    line: wgpu::RenderPipeline,
+}
+
+impl Pipelines {
+    fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout, sample_count: u32) -> Self {
+        let base = PipelineBase {
+            device,
+            shader: device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("armlab scene"),
+                source: wgpu::ShaderSource::Wgsl(include_str!("scene.wgsl").into()),
+            }),
+            layout: device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("armlab scene"),
+                bind_group_layouts: &[Some(globals)],
+                immediate_size: 0,
+            }),
+            sample_count,
+        };
+        let mesh_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
+        let instance_attrs = wgpu::vertex_attr_array![
+            2 => Float32x4, 3 => Float32x4, 4 => Float32x4, 5 => Float32x4,
+            6 => Float32x4, 7 => Float32x4, 8 => Float32x4, 9 => Float32x4
+        ];
+        let line_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x4];
+        let mesh_buffers = [
+            Some(vertex_layout::<Vertex>(
+                wgpu::VertexStepMode::Vertex,
+                &mesh_attrs,
+            )),
+            Some(vertex_layout::<InstanceRaw>(
+                wgpu::VertexStepMode::Instance,
+                &instance_attrs,
+            )),
+        ];
+        let line_buffers = [Some(vertex_layout::<LineVertex>(
+            wgpu::VertexStepMode::Vertex,
+            &line_attrs,
+        ))];
+        let meshes = |label, depth_test| PipelineSpec {
+            label,
+            vertex_entry: "vs_mesh",
+            fragment_entry: "fs_mesh",
+            buffers: &mesh_buffers,
+            topology: wgpu::PrimitiveTopology::TriangleList,
+            depth_test,
+        };
+        Pipelines {
+            mesh: base.pipeline(&meshes("armlab meshes", true)),
+            mesh_on_top: base.pipeline(&meshes("armlab handles", false)),
+            line: base.pipeline(&PipelineSpec {
+                label: "armlab lines",
+                vertex_entry: "vs_line",
+                fragment_entry: "fs_line",
+                buffers: &line_buffers,
+                topology: wgpu::PrimitiveTopology::LineList,
+                depth_test: true,
+            }),
+        }
+    }
+}
+
+fn vertex_layout<'a, T>(
+    step_mode: wgpu::VertexStepMode,
+    attributes: &'a [wgpu::VertexAttribute],
+) -> wgpu::VertexBufferLayout<'a> {
+    wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<T>() as u64,
+        step_mode,
+        attributes,
+    }
+}
+
+/// The unit meshes of every [`Shape`], in [`SHAPES`] order, on the GPU.
+fn upload_meshes(device: &wgpu::Device) -> Vec<GpuMesh> {
+    SHAPES
+        .iter()
+        .map(|shape| {
+            let mesh = match shape {
+                Shape::Box => Mesh::unit_box(),
+                Shape::Cylinder => Mesh::unit_cylinder(32),
+                Shape::Cone => Mesh::unit_cone(32),
+                Shape::Sphere => Mesh::unit_sphere(16, 32),
+            };
+            GpuMesh {
+                vertices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("armlab mesh vertices"),
+                    contents: bytemuck::cast_slice(&mesh.vertices),
+                    usage: wgpu::BufferUsages::VERTEX,
+                }),
+                indices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("armlab mesh indices"),
+                    contents: bytemuck::cast_slice(&mesh.indices),
+                    usage: wgpu::BufferUsages::INDEX,
+                }),
+                count: mesh.indices.len() as u32,
+            }
+        })
+        .collect()
+}
+
+/// A run of instances of one mesh, drawn on top or depth-tested.
+struct DrawRange {
+    on_top: bool,
+    mesh: usize,
+    instances: std::ops::Range<u32>,
+}
+
 impl SceneRenderer {
     /// Creates the pipelines and meshes on the app's wgpu device.
     pub fn new(render_state: &RenderState) -> Self {
@@ -158,166 +381,8 @@ impl SceneRenderer {
         } else {
             1
         };
-        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("armlab scene"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("scene.wgsl").into()),
-        });
-        let layout_entry = wgpu::BindGroupLayoutEntry {
-            binding: 0,
-            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
-        let bind_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("armlab globals"),
-            entries: &[layout_entry],
-        });
-        let globals = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("armlab globals"),
-            size: std::mem::size_of::<Globals>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("armlab globals"),
-            layout: &bind_layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: globals.as_entire_binding(),
-            }],
-        });
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("armlab scene"),
-            bind_group_layouts: &[Some(&bind_layout)],
-            immediate_size: 0,
-        });
-        let mesh_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
-        let instance_attrs = wgpu::vertex_attr_array![
-            2 => Float32x4, 3 => Float32x4, 4 => Float32x4, 5 => Float32x4,
-            6 => Float32x4, 7 => Float32x4, 8 => Float32x4, 9 => Float32x4
-        ];
-        let line_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x4];
-        let blend = Some(wgpu::BlendState::ALPHA_BLENDING);
-        let make = |label: &str,
-                    vs: &str,
-                    fs: &str,
-                    buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
-                    topology: wgpu::PrimitiveTopology,
-                    depth_test: bool| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(label),
-                layout: Some(&layout),
-                vertex: wgpu::VertexState {
-                    module: &shader,
-                    entry_point: Some(vs),
-                    buffers,
-                    compilation_options: wgpu::PipelineCompilationOptions::default(),
-                },
-                primitive: wgpu::PrimitiveState {
-                    topology,
-                    cull_mode: None,
-                    ..Default::default()
-                },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: DEPTH_FORMAT,
-                    depth_write_enabled: Some(depth_test),
-                    depth_compare: Some(if depth_test {
-                        wgpu::CompareFunction::LessEqual
-                    } else {
-                        wgpu::CompareFunction::Always
-                    }),
-                    stencil: wgpu::StencilState::default(),
-                    bias: wgpu::DepthBiasState::default(),
-                }),
-                multisample: wgpu::MultisampleState {
-                    count: sample_count,
-                    mask: !0,
-                    alpha_to_coverage_enabled: false,
-                },
-                fragment: Some(wgpu::FragmentState {
-                    module: &shader,
-                    entry_point: Some(fs),
-                    targets: &[Some(wgpu::ColorTargetState {
-                        format: COLOR_FORMAT,
-                        blend,
-                        write_mask: wgpu::ColorWrites::ALL,
-                    })],
-                    compilation_options: wgpu::PipelineCompilationOptions::default(),
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
-        };
-        let mesh_buffers = [
-            Some(wgpu::VertexBufferLayout {
-                array_stride: std::mem::size_of::<Vertex>() as u64,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: &mesh_attrs,
-            }),
-            Some(wgpu::VertexBufferLayout {
-                array_stride: std::mem::size_of::<InstanceRaw>() as u64,
-                step_mode: wgpu::VertexStepMode::Instance,
-                attributes: &instance_attrs,
-            }),
-        ];
-        let line_buffers = [Some(wgpu::VertexBufferLayout {
-            array_stride: std::mem::size_of::<LineVertex>() as u64,
-            step_mode: wgpu::VertexStepMode::Vertex,
-            attributes: &line_attrs,
-        })];
-        let tri = wgpu::PrimitiveTopology::TriangleList;
-        let mesh_pipeline = make(
-            "armlab meshes",
-            "vs_mesh",
-            "fs_mesh",
-            &mesh_buffers,
-            tri,
-            true,
-        );
-        let mesh_on_top_pipeline = make(
-            "armlab handles",
-            "vs_mesh",
-            "fs_mesh",
-            &mesh_buffers,
-            tri,
-            false,
-        );
-        let line_pipeline = make(
-            "armlab lines",
-            "vs_line",
-            "fs_line",
-            &line_buffers,
-            wgpu::PrimitiveTopology::LineList,
-            true,
-        );
-        let meshes = SHAPES
-            .iter()
-            .map(|shape| {
-                let mesh = match shape {
-                    Shape::Box => Mesh::unit_box(),
-                    Shape::Cylinder => Mesh::unit_cylinder(32),
-                    Shape::Cone => Mesh::unit_cone(32),
-                    Shape::Sphere => Mesh::unit_sphere(16, 32),
-                };
-                GpuMesh {
-                    vertices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some("armlab mesh vertices"),
-                        contents: bytemuck::cast_slice(&mesh.vertices),
-                        usage: wgpu::BufferUsages::VERTEX,
-                    }),
-                    indices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some("armlab mesh indices"),
-                        contents: bytemuck::cast_slice(&mesh.indices),
-                        usage: wgpu::BufferUsages::INDEX,
-                    }),
-                    count: mesh.indices.len() as u32,
-                }
-            })
-            .collect();
+        let globals = GlobalsBinding::new(device);
+        let pipelines = Pipelines::new(device, &globals.layout, sample_count);
         let instance_capacity = 256;
         let line_capacity = 1024;
         SceneRenderer {
@@ -326,12 +391,10 @@ impl SceneRenderer {
                 instance_capacity * std::mem::size_of::<InstanceRaw>(),
             ),
             line_buffer: vertex_buffer(device, line_capacity * std::mem::size_of::<LineVertex>()),
-            mesh_pipeline,
-            mesh_on_top_pipeline,
-            line_pipeline,
-            globals,
-            bind_group,
-            meshes,
+            pipelines,
+            globals: globals.buffer,
+            bind_group: globals.bind_group,
+            meshes: upload_meshes(device),
             instance_capacity,
             line_capacity,
             sample_count,
@@ -415,42 +478,74 @@ impl SceneRenderer {
         scene: &Scene,
     ) -> egui::TextureId {
         let texture_id = self.ensure_targets(render_state, size);
-        let device = &render_state.device;
-        let queue = &render_state.queue;
+        let ranges = self.upload_instances(render_state, scene);
+        self.upload_lines(render_state, scene);
+        let globals = Globals {
+            view_proj: scene.view_proj.into(),
+            light_dir: [
+                scene.light_dir[0],
+                scene.light_dir[1],
+                scene.light_dir[2],
+                0.0,
+            ],
+            eye: [scene.eye[0], scene.eye[1], scene.eye[2], 1.0],
+        };
+        render_state
+            .queue
+            .write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
+        let mut encoder =
+            render_state
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("armlab scene"),
+                });
+        self.encode_pass(&mut encoder, scene.background, &ranges);
+        render_state.queue.submit(Some(encoder.finish()));
+        texture_id
+    }
 
-        // Instances grouped by shape, on-top ones last.
+    /// Writes the scene's instances grouped by shape, on-top ones last, into the instance
+    /// buffer (grown as needed); returns the draw ranges.
+    fn upload_instances(&mut self, render_state: &RenderState, scene: &Scene) -> Vec<DrawRange> {
         self.raw_instances.clear();
         let mut ranges = Vec::with_capacity(8);
         for on_top in [false, true] {
-            for (mesh_index, shape) in SHAPES.iter().enumerate() {
+            for (mesh, shape) in SHAPES.iter().enumerate() {
                 let start = self.raw_instances.len() as u32;
-                for inst in scene
+                let group = scene
                     .instances
                     .iter()
-                    .filter(|i| i.shape == *shape && i.on_top == on_top)
-                {
-                    self.raw_instances.push(raw_instance(inst));
-                }
+                    .filter(|i| i.shape == *shape && i.on_top == on_top);
+                self.raw_instances.extend(group.map(raw_instance));
                 let end = self.raw_instances.len() as u32;
                 if end > start {
-                    ranges.push((on_top, mesh_index, start..end));
+                    ranges.push(DrawRange {
+                        on_top,
+                        mesh,
+                        instances: start..end,
+                    });
                 }
             }
         }
         if self.raw_instances.len() > self.instance_capacity {
             self.instance_capacity = self.raw_instances.len().next_power_of_two();
             self.instance_buffer = vertex_buffer(
-                device,
+                &render_state.device,
                 self.instance_capacity * std::mem::size_of::<InstanceRaw>(),
             );
         }
         if !self.raw_instances.is_empty() {
-            queue.write_buffer(
+            render_state.queue.write_buffer(
                 &self.instance_buffer,
                 0,
                 bytemuck::cast_slice(&self.raw_instances),
             );
         }
+        ranges
+    }
+
+    /// Writes the scene's lines into the line buffer (grown as needed).
+    fn upload_lines(&mut self, render_state: &RenderState, scene: &Scene) {
         self.raw_lines.clear();
         for line in &scene.lines {
             let color = linear_color(line.color);
@@ -464,88 +559,81 @@ impl SceneRenderer {
         if self.raw_lines.len() > self.line_capacity {
             self.line_capacity = self.raw_lines.len().next_power_of_two();
             self.line_buffer = vertex_buffer(
-                device,
+                &render_state.device,
                 self.line_capacity * std::mem::size_of::<LineVertex>(),
             );
         }
         if !self.raw_lines.is_empty() {
-            queue.write_buffer(&self.line_buffer, 0, bytemuck::cast_slice(&self.raw_lines));
+            render_state.queue.write_buffer(
+                &self.line_buffer,
+                0,
+                bytemuck::cast_slice(&self.raw_lines),
+            );
         }
-        let globals = Globals {
-            view_proj: scene.view_proj.into(),
-            light_dir: [
-                scene.light_dir[0],
-                scene.light_dir[1],
-                scene.light_dir[2],
-                0.0,
-            ],
-            eye: [scene.eye[0], scene.eye[1], scene.eye[2], 1.0],
-        };
-        queue.write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
+    }
 
+    /// The render pass: clear, the grid lines, then each range of instances.
+    fn encode_pass(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        background: [u8; 3],
+        ranges: &[DrawRange],
+    ) {
         let Some(targets) = &self.targets else {
-            return texture_id;
+            return;
         };
         // The target holds sRGB-encoded values: the clear colour goes in as it is.
-        let bg = scene.background;
         let clear = wgpu::Color {
-            r: bg[0] as f64 / 255.0,
-            g: bg[1] as f64 / 255.0,
-            b: bg[2] as f64 / 255.0,
+            r: background[0] as f64 / 255.0,
+            g: background[1] as f64 / 255.0,
+            b: background[2] as f64 / 255.0,
             a: 1.0,
         };
         let (view, resolve_target) = match &targets.msaa {
             Some(msaa) => (msaa, Some(&targets.resolved)),
             None => (&targets.resolved, None),
         };
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("armlab scene"),
-        });
-        {
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("armlab scene"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view,
-                    depth_slice: None,
-                    resolve_target,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(clear),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &targets.depth,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Discard,
-                    }),
-                    stencil_ops: None,
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(clear),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &targets.depth,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Discard,
                 }),
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            pass.set_bind_group(0, &self.bind_group, &[]);
-            if !self.raw_lines.is_empty() {
-                pass.set_pipeline(&self.line_pipeline);
-                pass.set_vertex_buffer(0, self.line_buffer.slice(..));
-                pass.draw(0..self.raw_lines.len() as u32, 0..1);
-            }
-            pass.set_vertex_buffer(1, self.instance_buffer.slice(..));
-            for (on_top, mesh_index, range) in ranges {
-                pass.set_pipeline(if on_top {
-                    &self.mesh_on_top_pipeline
-                } else {
-                    &self.mesh_pipeline
-                });
-                let mesh = &self.meshes[mesh_index];
-                pass.set_vertex_buffer(0, mesh.vertices.slice(..));
-                pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-                pass.draw_indexed(0..mesh.count, 0, range);
-            }
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_bind_group(0, &self.bind_group, &[]);
+        if !self.raw_lines.is_empty() {
+            pass.set_pipeline(&self.pipelines.line);
+            pass.set_vertex_buffer(0, self.line_buffer.slice(..));
+            pass.draw(0..self.raw_lines.len() as u32, 0..1);
         }
-        queue.submit(Some(encoder.finish()));
-        texture_id
+        pass.set_vertex_buffer(1, self.instance_buffer.slice(..));
+        for range in ranges {
+            pass.set_pipeline(if range.on_top {
+                &self.pipelines.mesh_on_top
+            } else {
+                &self.pipelines.mesh
+            });
+            let mesh = &self.meshes[range.mesh];
+            pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+            pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..mesh.count, 0, range.instances.clone());
+        }
     }
 }
 

@@ -288,7 +288,7 @@ fn drag_row(
     Some(stats.json(
         &format!("{robot_id} drag, 400 mm circle in 1 mm steps"),
         robot_id,
-        method.name(),
+        method.id(),
         "drag_step warm-started from the previous answer, orientation held",
     ))
 }

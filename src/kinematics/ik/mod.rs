@@ -75,16 +75,80 @@ pub enum IkMethod {
 }
 
 impl IkMethod {
-    /// A short name for the UI and the JSON API.
-    pub fn name(self) -> &'static str {
+    /// Every method, in menu order (the transpose with its adaptive step).
+    pub const ALL: [IkMethod; 4] = [
+        IkMethod::DampedLeastSquares,
+        IkMethod::PseudoInverse,
+        IkMethod::JacobianTranspose { alpha: None },
+        IkMethod::ClosedForm,
+    ];
+
+    /// The id links, the JSON API and the benchmark use: `dls`, `pinv`, `gradient`,
+    /// `closed`.
+    pub fn id(self) -> &'static str {
         match self {
             IkMethod::DampedLeastSquares => "dls",
             IkMethod::PseudoInverse => "pinv",
             IkMethod::JacobianTranspose { .. } => "gradient",
-            IkMethod::ClosedForm => "closed-form",
+            IkMethod::ClosedForm => "closed",
+        }
+    }
+
+    /// The method of an id (`gradient` with the adaptive step); `closed-form`, the JSON
+    /// API's first name for the closed form, is read too.
+    pub fn from_id(id: &str) -> Option<IkMethod> {
+        match id {
+            "closed-form" => Some(IkMethod::ClosedForm),
+            _ => IkMethod::ALL.into_iter().find(|m| m.id() == id),
+        }
+    }
+
+    /// The name people read in the app's menu.
+    pub fn label(self) -> &'static str {
+        match self {
+            IkMethod::DampedLeastSquares => "Damped least squares",
+            IkMethod::PseudoInverse => "Pseudo-inverse (Newton)",
+            IkMethod::JacobianTranspose { .. } => "Jacobian transpose (gradient)",
+            IkMethod::ClosedForm => "Closed form",
+        }
+    }
+
+    /// Every id, for messages: `dls, pinv, gradient, closed`.
+    pub fn id_list() -> String {
+        IkMethod::ALL.map(IkMethod::id).join(", ")
+    }
+}
+
+/// Where the tool is against the target, as the app shows it: one vocabulary for the
+/// marker's colour, the status line and the IK panel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Reach {
+    /// The tool is at the target within [`REACHED_POSITION_TOLERANCE_M`] and
+    /// [`REACHED_ORIENTATION_TOLERANCE`] for the task's rows.
+    Reached,
+    /// The last solve or drag step found the target out of reach: the arm shows the
+    /// closest pose it found.
+    OutOfReach,
+    /// Not at the target, and not (yet) found out of reach.
+    Pending,
+}
+
+impl Reach {
+    /// The id the test hook reports: `reached`, `out-of-reach`, `pending`.
+    pub fn id(self) -> &'static str {
+        match self {
+            Reach::Reached => "reached",
+            Reach::OutOfReach => "out-of-reach",
+            Reach::Pending => "pending",
         }
     }
 }
+
+/// Position error (metres, converted to the robot's unit) at or below which the app
+/// counts the target as reached.
+pub const REACHED_POSITION_TOLERANCE_M: f64 = 1e-5;
+/// Orientation error (radians) at or below which the app counts the target as reached.
+pub const REACHED_ORIENTATION_TOLERANCE: f64 = 1e-4;
 
 /// Settings of one IK call.
 #[derive(Debug, Clone, PartialEq)]

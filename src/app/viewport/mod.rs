@@ -1,0 +1,407 @@
+//! The 3D viewport: orbit (left drag), pan (right or middle drag, or shift + left), zoom
+//! (wheel, pinch); the target marker is dragged in the view plane by its ball, along an
+//! axis by its arrow, and turned by its rings (5D and full-pose tasks). Every frame of a
+//! drag asks the model for an IK step warm-started at the current q.
+//!
+//! The viewport owns its interaction state, the camera and the renderer. A frame runs in
+//! named steps: [`Viewport::handle_input`] (camera and marker drags; the marker geometry
+//! is the pure [`marker`] module), the IK step, [`Viewport::draw_scene`],
+//! [`overlay::draw`] and [`Viewport::publish_points`].
+
+pub mod marker;
+mod overlay;
+
+use eframe::egui_wgpu::RenderState;
+use egui::{Color32, Pos2, Rect, Sense};
+use nalgebra::{Point3, Vector3};
+
+use crate::kinematics::Task;
+use crate::render::SceneRenderer;
+use crate::render::camera::OrbitCamera;
+
+use super::FrameTime;
+use super::hook::{self, ScreenPoints};
+use super::model::{HoverSource, Model};
+use super::scene::{self, MarkerLook, handle_px};
+use super::style;
+use super::top_bar::ViewAction;
+use marker::{Handle, MarkerDrag, ViewGeometry, dist_to_segment, drag_marker, pick};
+
+/// What the pointer is dragging.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Drag {
+    Orbit,
+    Pan,
+    Marker(MarkerDrag),
+}
+
+/// The 3D view: camera, interaction state and renderer.
+pub struct Viewport {
+    camera: OrbitCamera,
+    renderer: Option<SceneRenderer>,
+    drag: Option<Drag>,
+    hover: Option<Handle>,
+    /// The model's reframe count the camera last framed the arm at.
+    framed_at: Option<u64>,
+    rect: Option<Rect>,
+    grid_step: f64,
+    rendered: bool,
+}
+
+impl Viewport {
+    /// A viewport drawing with wgpu when a render state is given (none: a placeholder
+    /// sentence, for tests of the logic).
+    pub fn new(render_state: Option<&RenderState>) -> Self {
+        Viewport {
+            camera: OrbitCamera::default(),
+            renderer: render_state.map(SceneRenderer::new),
+            drag: None,
+            hover: None,
+            framed_at: None,
+            rect: None,
+            grid_step: 0.0,
+            rendered: false,
+        }
+    }
+
+    /// True while the user drags the target marker.
+    pub fn dragging(&self) -> bool {
+        matches!(self.drag, Some(Drag::Marker(_)))
+    }
+
+    /// Whether the 3D picture was drawn by the wgpu renderer last frame.
+    pub fn rendered(&self) -> bool {
+        self.rendered
+    }
+
+    /// The view's rectangle last frame (egui points).
+    pub fn rect(&self) -> Option<Rect> {
+        self.rect
+    }
+
+    /// The grid spacing last drawn (robot units).
+    pub fn grid_step(&self) -> f64 {
+        self.grid_step
+    }
+
+    /// The camera.
+    pub fn camera(&self) -> &OrbitCamera {
+        &self.camera
+    }
+
+    /// Carries out what the top bar asked.
+    pub fn apply(&mut self, action: ViewAction, model: &Model, ctx: &egui::Context) {
+        match action {
+            ViewAction::Fit => self.fit(model),
+            ViewAction::View(view) => self.camera.set_view(view),
+        }
+        ctx.request_repaint();
+    }
+
+    /// Frames the robot.
+    fn fit(&mut self, model: &Model) {
+        let reach = model.robot().reach();
+        let base = model.robot().world_from_base.translation.vector;
+        let centre = Point3::from(base + Vector3::new(0.0, 0.0, reach * 0.35));
+        self.camera.fit(centre, reach * 0.85);
+        self.framed_at = Some(model.reframes());
+    }
+
+    /// Shows the viewport and handles its input.
+    pub fn ui(
+        &mut self,
+        model: &mut Model,
+        ui: &mut egui::Ui,
+        points: &mut ScreenPoints,
+        render_state: Option<&RenderState>,
+        timing: &mut FrameTime,
+    ) {
+        if self.framed_at != Some(model.reframes()) {
+            self.fit(model);
+        }
+        let rect = ui.available_rect_before_wrap();
+        let response = ui.allocate_rect(rect, Sense::click_and_drag());
+        self.rect = Some(rect);
+        let axes = marker_axes(model);
+        self.handle_input(model, ui, &response, &axes);
+        if self.dragging() {
+            // Every frame of the drag, including frames where the pointer rests: the arm
+            // keeps converging (each step moves each joint by at most the per-call limit).
+            let t0 = hook::now_ms();
+            model.drag_step();
+            timing.ik_ms += hook::now_ms() - t0;
+            if model.ik().reach == crate::kinematics::ik::Reach::Pending {
+                ui.ctx().request_repaint();
+            }
+        }
+        if response.drag_stopped() {
+            self.drag = None;
+        }
+        self.update_hover(model, &response, &axes);
+        self.draw_scene(model, ui, rect, render_state, &axes, timing);
+        overlay::draw(model, &ui.painter_at(rect), rect, self.grid_step);
+        self.publish_points(model, rect, &axes, points);
+        if response.hovered() && self.hover.is_some() {
+            ui.ctx().set_cursor_icon(egui::CursorIcon::Grab);
+        }
+    }
+
+    /// Wheel and pinch zoom, orbit, pan, two-finger pan, and marker drags.
+    fn handle_input(
+        &mut self,
+        model: &mut Model,
+        ui: &egui::Ui,
+        response: &egui::Response,
+        axes: &[Vector3<f64>; 3],
+    ) {
+        let (shift, scroll, zoom, multi) = ui.input(|i| {
+            (
+                i.modifiers.shift,
+                i.smooth_scroll_delta,
+                i.zoom_delta(),
+                i.multi_touch(),
+            )
+        });
+        if response.hovered() {
+            if scroll.y != 0.0 {
+                self.camera.zoom((scroll.y as f64 * 0.0015).exp());
+            }
+            if zoom != 1.0 {
+                self.camera.zoom(zoom as f64);
+            }
+        }
+        if response.drag_started() {
+            let press = ui
+                .input(|i| i.pointer.press_origin())
+                .or(response.hover_pos())
+                .or(response.interact_pointer_pos());
+            let primary = response.dragged_by(egui::PointerButton::Primary);
+            self.drag = Some(self.start_drag(model, press, primary && !shift, axes));
+        }
+        let height = response.rect.height().max(1.0) as f64;
+        if response.dragged() {
+            let delta = response.drag_delta();
+            match self.drag {
+                Some(Drag::Orbit) if multi.is_none() => {
+                    self.camera.orbit(delta.x as f64, delta.y as f64);
+                }
+                Some(Drag::Pan) => self.camera.pan(delta.x as f64, delta.y as f64, height),
+                Some(Drag::Marker(drag)) => {
+                    let pointer = response.hover_pos().or(response.interact_pointer_pos());
+                    if let Some(p) = pointer {
+                        let view = view_geometry(&self.camera, model, response.rect);
+                        let target = drag_marker(&drag, axes, &view, to_array(p));
+                        model.set_target(target);
+                    }
+                }
+                Some(Drag::Orbit) | None => {}
+            }
+        }
+        if let Some(mt) = multi {
+            // Two fingers: pan with their centre, pinch already zooms.
+            let d = mt.translation_delta;
+            self.camera.pan(d.x as f64, d.y as f64, height);
+        }
+    }
+
+    /// What a new drag holds: a marker handle under the press, else orbit or pan.
+    fn start_drag(
+        &self,
+        model: &Model,
+        press: Option<Pos2>,
+        primary: bool,
+        axes: &[Vector3<f64>; 3],
+    ) -> Drag {
+        let Some(rect) = self.rect else {
+            return Drag::Orbit;
+        };
+        let view = view_geometry(&self.camera, model, rect);
+        let rings = model.task() != Task::Position;
+        let grabbed = press.filter(|_| primary).and_then(|p| {
+            pick(model.target(), axes, rings, &view, to_array(p)).map(|handle| (handle, p))
+        });
+        match grabbed {
+            Some((handle, p)) => Drag::Marker(MarkerDrag::start(
+                handle,
+                model.target(),
+                axes,
+                &view,
+                to_array(p),
+            )),
+            None if primary => Drag::Orbit,
+            None => Drag::Pan,
+        }
+    }
+
+    /// The handle under the pointer (or held), and the link under the pointer, which
+    /// highlights its matrices.
+    fn update_hover(
+        &mut self,
+        model: &mut Model,
+        response: &egui::Response,
+        axes: &[Vector3<f64>; 3],
+    ) {
+        let view = view_geometry(&self.camera, model, response.rect);
+        let rings = model.task() != Task::Position;
+        self.hover = match &self.drag {
+            Some(Drag::Marker(drag)) => Some(drag.handle),
+            _ => response
+                .hover_pos()
+                .and_then(|p| pick(model.target(), axes, rings, &view, to_array(p))),
+        };
+        let link = match (
+            self.drag.is_none() && self.hover.is_none(),
+            response.hover_pos(),
+        ) {
+            (true, Some(p)) => hovered_link(model, &view, to_array(p)),
+            _ => None,
+        };
+        if model.hover_source() != Some(HoverSource::Matrices) {
+            model.set_hovered_link(link, HoverSource::View);
+        }
+    }
+
+    /// Builds the scene from the model and has the renderer draw it into the view.
+    fn draw_scene(
+        &mut self,
+        model: &Model,
+        ui: &egui::Ui,
+        rect: Rect,
+        render_state: Option<&RenderState>,
+        axes: &[Vector3<f64>; 3],
+        timing: &mut FrameTime,
+    ) {
+        let painter = ui.painter_at(rect);
+        let presentation = model.settings().presentation;
+        let bg = style::background(presentation);
+        self.rendered = false;
+        let (Some(rs), Some(renderer)) = (render_state, self.renderer.as_mut()) else {
+            painter.rect_filled(rect, 0.0, bg);
+            painter.text(
+                rect.center(),
+                egui::Align2::CENTER_CENTER,
+                "The 3D view needs WebGPU, WebGL2 or Vulkan.",
+                egui::FontId::proportional(16.0),
+                style::ERROR,
+            );
+            return;
+        };
+        let look = MarkerLook {
+            color: style::reach_color(model.ik().reach).to_array(),
+            axes: *axes,
+            rings: model.task() != Task::Position,
+            active: self.hover,
+        };
+        let ppp = ui.ctx().pixels_per_point();
+        let px_size = [
+            (rect.width() * ppp).round() as u32,
+            (rect.height() * ppp).round() as u32,
+        ];
+        let t0 = hook::now_ms();
+        let (scene, step) = scene::build(&scene::SceneInput {
+            robot: model.robot(),
+            fk: model.fk(),
+            camera: &self.camera,
+            viewport_px: [rect.width().max(1.0) as f64, rect.height().max(1.0) as f64],
+            show_frames: model.settings().show_frames,
+            highlighted_link: model.hovered_link(),
+            target: model.target(),
+            marker: &look,
+            background: [bg.r(), bg.g(), bg.b()],
+        });
+        self.grid_step = step;
+        let t1 = hook::now_ms();
+        let texture = renderer.render(rs, px_size, &scene);
+        timing.scene_ms += t1 - t0;
+        timing.render_ms += hook::now_ms() - t1;
+        painter.image(
+            texture,
+            rect,
+            Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0)),
+            Color32::WHITE,
+        );
+        self.rendered = true;
+    }
+
+    /// Screen points for the browser tests: the marker's handles, the tool and the base.
+    fn publish_points(
+        &self,
+        model: &Model,
+        rect: Rect,
+        axes: &[Vector3<f64>; 3],
+        points: &mut ScreenPoints,
+    ) {
+        let view = view_geometry(&self.camera, model, rect);
+        let centre = Point3::from(model.target().translation.vector);
+        let mut add = |name: String, p: &Point3<f64>| {
+            if let Some(s) = view.project(p) {
+                points.insert(name, egui::pos2(s[0] as f32, s[1] as f32));
+            }
+        };
+        add("target".into(), &centre);
+        let rings = model.task() != Task::Position;
+        for (i, name) in ["x", "y", "z"].iter().enumerate() {
+            add(
+                format!("target-{name}"),
+                &(centre + axes[i] * ((handle_px::ARROW - 18.0) * view.px)),
+            );
+            if rings {
+                let (u, _) = scene::perpendiculars(&axes[i]);
+                add(
+                    format!("ring-{name}"),
+                    &(centre + u * (handle_px::RING * view.px)),
+                );
+            }
+        }
+        add("tool".into(), &Point3::from(model.fk().tool_position()));
+        let base = model.robot().world_from_base.translation.vector;
+        add("base".into(), &Point3::from(base));
+    }
+}
+
+/// The view's geometry this frame: the camera, the view's placement, and the world length
+/// of one point at the target's depth.
+fn view_geometry<'a>(camera: &'a OrbitCamera, model: &Model, rect: Rect) -> ViewGeometry<'a> {
+    let size = [rect.width().max(1.0) as f64, rect.height().max(1.0) as f64];
+    let centre = Point3::from(model.target().translation.vector);
+    let px = camera.world_per_pixel(size[1]) * (camera.eye() - centre).norm() / camera.distance;
+    ViewGeometry {
+        camera,
+        size,
+        origin: [rect.min.x as f64, rect.min.y as f64],
+        px,
+    }
+}
+
+fn to_array(p: Pos2) -> [f64; 2] {
+    [p.x as f64, p.y as f64]
+}
+
+/// The axes the marker's arrows and rings use: world axes for position-only targets,
+/// the target's own axes otherwise.
+fn marker_axes(model: &Model) -> [Vector3<f64>; 3] {
+    match model.task() {
+        Task::Position => [Vector3::x(), Vector3::y(), Vector3::z()],
+        _ => {
+            let r = model.target().rotation.matrix();
+            [0, 1, 2].map(|c| r.column(c).into_owned())
+        }
+    }
+}
+
+/// The link (1-based) whose segment between consecutive frame origins is under `at`.
+fn hovered_link(model: &Model, view: &ViewGeometry<'_>, at: [f64; 2]) -> Option<usize> {
+    let mut prev = Point3::from(model.robot().world_from_base.translation.vector);
+    let mut best: Option<(f64, usize)> = None;
+    for (i, frame) in model.fk().base_from_frames.iter().enumerate() {
+        let o = Point3::from(frame.translation.vector);
+        if let (Some(a), Some(b)) = (view.project(&prev), view.project(&o)) {
+            let d = dist_to_segment(at, a, b);
+            if d < 10.0 && best.is_none_or(|(bd, _)| d < bd) {
+                best = Some((d, i + 1));
+            }
+        }
+        prev = o;
+    }
+    best.map(|(_, i)| i)
+}
