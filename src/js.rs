@@ -56,5 +56,5 @@ extern "C" {
 #[wasm_bindgen]
 pub fn ik_benchmark(request: &str) -> Result<String, JsError> {
     let now = || performance_now() * 1e-3;
-    crate::kinematics::ik::bench::run_json(request, &now).map_err(|e| JsError::new(&e))
+    crate::bench::ik::run_json(request, &now).map_err(|e| JsError::new(&e.to_string()))
 }

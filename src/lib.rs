@@ -4,9 +4,11 @@
 //!   orientation forms. It has no GUI dependency and runs natively and as wasm.
 //! - `app` (feature `app`) is the eframe/egui application.
 //! - [`api`] is the JSON API over the core (JSON text in and out).
+//! - [`bench`] is the IK benchmark protocol and its statistics, outside the core.
 //! - `js` (feature `js`) is the JavaScript API over the core, through wasm-bindgen.
 
 pub mod api;
+pub mod bench;
 pub mod kinematics;
 
 #[cfg(feature = "app")]

@@ -9,21 +9,14 @@ use std::time::Instant;
 
 use armlab::app::session::Session;
 use armlab::app::{ArmLabApp, style};
+use armlab::bench::stats::Summary;
 
-fn percentile(sorted: &[f64], p: f64) -> f64 {
-    sorted
-        .get(((sorted.len() as f64 * p) as usize).min(sorted.len().saturating_sub(1)))
-        .copied()
-        .unwrap_or(f64::NAN)
-}
-
+/// Median, 95th percentile and maximum of a frame-time list, in milliseconds.
 fn summary(mut ms: Vec<f64>) -> serde_json::Value {
-    ms.sort_by(f64::total_cmp);
-    serde_json::json!({
-        "median_ms": percentile(&ms, 0.5),
-        "p95_ms": percentile(&ms, 0.95),
-        "max_ms": ms.last().copied().unwrap_or(f64::NAN),
-    })
+    match Summary::of(&mut ms) {
+        Some(s) => serde_json::json!({ "median_ms": s.median, "p95_ms": s.p95, "max_ms": s.max }),
+        None => serde_json::Value::Null,
+    }
 }
 
 fn main() {

@@ -4,16 +4,16 @@
 
 use std::time::Instant;
 
-use armlab::kinematics::ik::bench::{BenchConfig, run};
+use armlab::bench::ik::{BenchConfig, MAX_BUDGET, MAX_SAMPLES, run};
 
 fn main() {
     let mut config = BenchConfig::default();
     let args: Vec<String> = std::env::args().skip(1).collect();
-    if let Some(samples) = args.first().and_then(|s| s.parse().ok()) {
-        config.samples = samples;
+    if let Some(samples) = args.first().and_then(|s| s.parse::<usize>().ok()) {
+        config.samples = samples.clamp(1, MAX_SAMPLES);
     }
-    if let Some(budget) = args.get(1).and_then(|s| s.parse().ok()) {
-        config.budget = budget;
+    if let Some(budget) = args.get(1).and_then(|s| s.parse::<usize>().ok()) {
+        config.budget = budget.clamp(1, MAX_BUDGET);
     }
     let start = Instant::now();
     let now = move || start.elapsed().as_secs_f64();

@@ -19,7 +19,6 @@
 //! [`IkSolver::drag_step`] every frame; the hot loop then never allocates. [`solve`] and
 //! [`drag_step`] are the one-shot forms. The core has no clock: budgets are iterations.
 
-pub mod bench;
 mod closed_form;
 mod numeric;
 

@@ -10,13 +10,51 @@
 
 use nalgebra::{IsometryMatrix3, Matrix3, Vector3};
 use serde_json::{Value, json};
+use thiserror::Error;
 
-use super::{IkMethod, IkSettings, IkSolver, closed_form_solutions, pose_error, target_pose};
+use super::stats::{mean, percentile};
 use crate::kinematics::fk::tool_pose;
+use crate::kinematics::ik::{
+    IkMethod, IkSettings, IkSolver, closed_form_solutions, pose_error, target_pose,
+};
 use crate::kinematics::jacobian::Task;
 use crate::kinematics::presets::preset;
 use crate::kinematics::rng::SplitMix64;
 use crate::kinematics::robot::Robot;
+
+/// The most targets a request may ask for per row (a run of this size takes about a
+/// second per row natively).
+pub const MAX_SAMPLES: usize = 100_000;
+/// The largest iteration budget a request may give one solve.
+pub const MAX_BUDGET: usize = 100_000;
+
+/// What is wrong with a benchmark request.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+pub enum BenchError {
+    /// The text is not JSON.
+    #[error("Bad request: not JSON ({0})")]
+    NotJson(String),
+    /// A count that is not a whole number ≥ 0 (`samples`, `budget`, `seed`).
+    #[error("Bad request: \"{0}\" must be a whole number")]
+    NotACount(&'static str),
+    /// A count outside its range.
+    #[error("Bad request: \"{field}\" must be between 1 and {max}")]
+    OutOfRange {
+        /// The field.
+        field: &'static str,
+        /// Its largest value.
+        max: usize,
+    },
+    /// A solver tolerance that is not a positive finite number.
+    #[error("Bad request: \"solver_tolerance\" must be a positive number")]
+    BadTolerance,
+    /// A field the request does not have.
+    #[error("Bad request: \"{0}\" is not known; use samples, budget, seed, solver_tolerance")]
+    UnknownField(String),
+    /// The report could not be written.
+    #[error("The report could not be written: {0}")]
+    Report(String),
+}
 
 /// The success threshold of the protocol: 10⁻⁵ m and 10⁻⁵ rad.
 pub const SUCCESS_TOLERANCE: f64 = 1e-5;
@@ -59,20 +97,8 @@ impl Stats {
         let n = self.times.len().max(1);
         self.times.sort_by(f64::total_cmp);
         self.iterations.sort_by(f64::total_cmp);
-        let pick = |v: &[f64], f: f64| -> f64 {
-            if v.is_empty() {
-                return 0.0;
-            }
-            let k = ((v.len() as f64 - 1.0) * f).round() as usize;
-            v[k.min(v.len() - 1)]
-        };
-        let mean = |v: &[f64]| -> f64 {
-            if v.is_empty() {
-                0.0
-            } else {
-                v.iter().sum::<f64>() / v.len() as f64
-            }
-        };
+        let pick = |v: &[f64], f: f64| percentile(v, f).unwrap_or(0.0);
+        let mean = |v: &[f64]| mean(v).unwrap_or(0.0);
         let us = |s: f64| (s * 1e8).round() / 100.0;
         let mut row = json!({
             "name": name,
@@ -385,28 +411,42 @@ pub fn run(config: &BenchConfig, now: &dyn Fn() -> f64) -> Value {
 }
 
 /// Parses a benchmark request `{"samples", "budget", "seed", "solver_tolerance"}` (all
-/// optional; `{}` or empty text for the defaults).
-pub fn config_from_json(request: &str) -> Result<BenchConfig, String> {
+/// optional; `{}` or empty text for the defaults). `samples` is at most [`MAX_SAMPLES`]
+/// and `budget` at most [`MAX_BUDGET`], so no request runs unbounded.
+pub fn config_from_json(request: &str) -> Result<BenchConfig, BenchError> {
     let mut config = BenchConfig::default();
     if request.trim().is_empty() {
         return Ok(config);
     }
     let value: Value =
-        serde_json::from_str(request).map_err(|e| format!("Bad request: not JSON ({e})"))?;
-    let count = |key: &str| -> Result<Option<u64>, String> {
+        serde_json::from_str(request).map_err(|e| BenchError::NotJson(e.to_string()))?;
+    let Some(object) = value.as_object() else {
+        return Err(BenchError::NotJson("not an object { ... }".into()));
+    };
+    if let Some(key) = object
+        .keys()
+        .find(|k| !["samples", "budget", "seed", "solver_tolerance"].contains(&k.as_str()))
+    {
+        return Err(BenchError::UnknownField(key.chars().take(40).collect()));
+    }
+    let count = |key: &'static str| -> Result<Option<u64>, BenchError> {
         match value.get(key) {
             None => Ok(None),
-            Some(v) => v
-                .as_u64()
-                .map(Some)
-                .ok_or_else(|| format!("Bad request: \"{key}\" must be a whole number")),
+            Some(v) => v.as_u64().map(Some).ok_or(BenchError::NotACount(key)),
         }
     };
-    if let Some(n) = count("samples")? {
-        config.samples = (n as usize).clamp(1, 1_000_000);
+    let bounded = |key: &'static str, max: usize| -> Result<Option<usize>, BenchError> {
+        match count(key)? {
+            None => Ok(None),
+            Some(n) if (1..=max as u64).contains(&n) => Ok(Some(n as usize)),
+            Some(_) => Err(BenchError::OutOfRange { field: key, max }),
+        }
+    };
+    if let Some(n) = bounded("samples", MAX_SAMPLES)? {
+        config.samples = n;
     }
-    if let Some(n) = count("budget")? {
-        config.budget = (n as usize).clamp(1, 10_000_000);
+    if let Some(n) = bounded("budget", MAX_BUDGET)? {
+        config.budget = n;
     }
     if let Some(n) = count("seed")? {
         config.seed = n;
@@ -415,13 +455,13 @@ pub fn config_from_json(request: &str) -> Result<BenchConfig, String> {
         config.solver_tolerance = v
             .as_f64()
             .filter(|t| t.is_finite() && *t > 0.0)
-            .ok_or("Bad request: \"solver_tolerance\" must be a positive number")?;
+            .ok_or(BenchError::BadTolerance)?;
     }
     Ok(config)
 }
 
 /// [`run`] from a JSON request ([`config_from_json`]) to pretty JSON text.
-pub fn run_json(request: &str, now: &dyn Fn() -> f64) -> Result<String, String> {
+pub fn run_json(request: &str, now: &dyn Fn() -> f64) -> Result<String, BenchError> {
     let config = config_from_json(request)?;
-    serde_json::to_string_pretty(&run(&config, now)).map_err(|e| e.to_string())
+    serde_json::to_string_pretty(&run(&config, now)).map_err(|e| BenchError::Report(e.to_string()))
 }
