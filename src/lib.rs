@@ -4,7 +4,7 @@
 //!   orientation forms. It has no GUI dependency and runs natively and as wasm.
 //! - `app` (feature `app`) is the eframe/egui application.
 //! - [`api`] is the JSON API over the core (JSON text in and out).
-//! - [`bench`] is the IK benchmark protocol and its statistics, outside the core.
+//! - [`bench`](mod@bench) is the IK benchmark protocol and its statistics, outside the core.
 //! - `js` (feature `js`) is the JavaScript API over the core, through wasm-bindgen.
 
 pub mod api;

@@ -3,6 +3,9 @@
 # the core's tests natively and as wasm in Node (same count), the UI tests (egui_kittest on
 # lavapipe), the JS API in Node, and the built page in headless Chromium.
 set -euo pipefail
+# egui_kittest overwrites a mismatching snapshot and passes when this is set (and the
+# browser test compares against the same image): never in a test run.
+unset UPDATE_SNAPSHOTS
 source "$(dirname "$0")/setup.sh"
 cd "$ROOT"
 START=$SECONDS
@@ -21,6 +24,11 @@ count() { # sums cargo's "test result: ... N passed; M failed" and node's "# pas
   f=$(grep -Eo '[0-9]+ passed; [0-9]+ failed|^# fail [0-9]+' "$1" | grep -Eo '[0-9]+$|[0-9]+ failed' | grep -Eo '[0-9]+' | awk '{s+=$1} END {print s+0}')
   echo "$p $f"
 }
+not_run() { # ignored + filtered out (cargo), skipped + todo (node): tests that exist but did not run
+  grep -Eo '[0-9]+ ignored; [0-9]+ measured; [0-9]+ filtered out|^# (skipped|todo) [0-9]+' "$1" \
+    | grep -Eo '[0-9]+ ignored|[0-9]+ filtered|(skipped|todo) [0-9]+' \
+    | awk '{ for (i = 1; i <= NF; i++) if ($i ~ /^[0-9]+$/) s += $i } END {print s+0}'
+}
 run() { # run NAME CMD...: runs, keeps the log, adds its counts
   local name="$1"; shift
   say "$name"
@@ -32,7 +40,24 @@ run() { # run NAME CMD...: runs, keeps the log, adds its counts
     exit 1
   fi
 }
-add() { read -r p f < <(count "$LOG/$1.log"); passed=$((passed + p)); failed=$((failed + f)); }
+SUITES=""
+add() { # adds a test suite's counts; a suite that ran no test fails the run
+  read -r p f < <(count "$LOG/$1.log")
+  local skipped; skipped=$(not_run "$LOG/$1.log")
+  if [ "$p" -eq 0 ]; then
+    echo "FAILED: the suite $1 ran no test"
+    echo "$passed passed, $((failed + f + 1)) failed"
+    exit 1
+  fi
+  passed=$((passed + p)); failed=$((failed + f))
+  SUITES="$SUITES
+  $1: $p passed, $f failed, $skipped ignored, skipped or filtered out"
+}
+snapshots_hash() { # the snapshot images and their contents (new files count too)
+  (cd "$ROOT" && find tests/snapshots -name '*.png' ! -name '*.diff.png' ! -name '*.old.png' ! -name '*.new.png' -print0 \
+    | sort -z | xargs -0 sha256sum)
+}
+SNAPSHOTS_BEFORE="$(snapshots_hash)"
 
 run fmt cargo fmt --check
 run clippy-native cargo clippy --all-targets -- -D warnings
@@ -47,6 +72,10 @@ fi
 if grep -rnE '\b(egui|eframe|wgpu|web_sys|wasm_bindgen|js_sys)::' src/kinematics; then
   echo "FAILED: src/kinematics imports GUI or web crates (above)"; exit 1
 fi
+
+say "the docs build without warnings (core and app)"
+run doc-core env RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --no-default-features --lib -q
+run doc-app env RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib -q
 
 run core-native cargo test --no-default-features --tests
 run core-doc cargo test --no-default-features --doc
@@ -74,5 +103,16 @@ build_web
 run e2e node --test --test-concurrency=1 web/e2e.test.mjs
 add e2e
 
+say "the snapshots are unchanged"
+if [ "$(snapshots_hash)" != "$SNAPSHOTS_BEFORE" ]; then
+  echo "FAILED: a snapshot image in tests/snapshots changed during the run (a test must not write its reference)"
+  diff <(echo "$SNAPSHOTS_BEFORE") <(snapshots_hash) || true
+  echo "$passed passed, $((failed + 1)) failed"
+  exit 1
+fi
+
 say "all tests passed in $((SECONDS - START)) s"
+printf 'suites:%s\n' "$SUITES"
+# The core's tests run twice (natively and as wasm): the distinct tests count them once.
+echo "distinct tests: $((passed - wasm)) (the $wasm core tests run natively and as wasm)"
 echo "$passed passed, $failed failed"

@@ -4,9 +4,8 @@
 //! drag asks the model for an IK step warm-started at the current q.
 //!
 //! The viewport owns its interaction state, the camera and the renderer. A frame runs in
-//! named steps: [`Viewport::handle_input`] (camera and marker drags; the marker geometry
-//! is the pure [`marker`] module), the IK step, [`Viewport::draw_scene`],
-//! [`overlay::draw`] and [`Viewport::publish_points`].
+//! named steps: input (camera and marker drags; the marker geometry is the pure
+//! [`marker`] module), the IK step, the scene, the overlay text, and the test points.
 
 pub mod marker;
 mod overlay;
