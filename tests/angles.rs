@@ -1,4 +1,4 @@
-//! Joint-angle bookkeeping (SPEC §2).
+//! Joint-angle bookkeeping (docs/kinematics.md §3).
 // On wasm the tests are wasm_bindgen_tests, which clippy does not treat as tests.
 #![cfg_attr(
     target_arch = "wasm32",

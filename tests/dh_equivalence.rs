@@ -1,4 +1,4 @@
-//! SPEC §1.2: the UR10's modified table and its standard-DH twin give the same T_06.
+//! docs/kinematics.md §2.4: the UR10's modified table and its standard-DH twin give the same T_06.
 // On wasm the tests are wasm_bindgen_tests, which clippy does not treat as tests.
 #![cfg_attr(
     target_arch = "wasm32",

@@ -1,4 +1,4 @@
-//! Inverse kinematics (SPEC §1–2): round trips FK(IK(T)) = T, the closed forms, the
+//! Inverse kinematics (docs/kinematics.md §8–9): round trips FK(IK(T)) = T, the closed forms, the
 //! class examples, unreachable and singular targets, and dragging.
 
 // On wasm32 the tests are `wasm_bindgen_test`s, which clippy does not see as tests, so
@@ -362,7 +362,7 @@ fn rrr_closed_form_gives_four_solutions_that_verify() {
                 s.label
             );
         }
-        // SPEC §1.4's own FK formula agrees.
+        // The RRR's FK formula (docs/kinematics.md §9.2) agrees.
         let (l1, l2, l3) = (100.9, 222.1, 136.2);
         for s in &set.solutions {
             let (c1, s1) = (s.q[0].cos(), s.q[0].sin());

@@ -1,4 +1,4 @@
-//! The geometric Jacobian against its central-difference check (SPEC §2), the measures,
+//! The geometric Jacobian against its central-difference check (docs/kinematics.md §4), the measures,
 //! and velocity kinematics.
 // On wasm the tests are wasm_bindgen_tests, which clippy does not treat as tests.
 #![cfg_attr(

@@ -1,4 +1,4 @@
-//! Orientation forms (SPEC §2): R → angles → R returns R, degenerate cases included.
+//! Orientation forms (docs/kinematics.md §7): R → angles → R returns R, degenerate cases included.
 // On wasm the tests are wasm_bindgen_tests, which clippy does not treat as tests.
 #![cfg_attr(
     target_arch = "wasm32",

@@ -1,4 +1,4 @@
-//! SPEC §1's reference values: forward kinematics of every robot it gives numbers for.
+//! The reference values of docs/kinematics.md §10: forward kinematics of every robot it gives numbers for.
 // On wasm the tests are wasm_bindgen_tests, which clippy does not treat as tests.
 #![cfg_attr(
     target_arch = "wasm32",
@@ -53,7 +53,7 @@ fn puma560_at_zero() {
 }
 
 #[test]
-#[allow(clippy::approx_constant)] // SPEC's printed 0.7071, kept as printed.
+#[allow(clippy::approx_constant)] // The published 0.7071, kept as printed.
 fn panda_at_ready_pose() {
     let robot = preset("panda").unwrap();
     let q = [
@@ -70,7 +70,7 @@ fn panda_at_ready_pose() {
         assert!((h - want).abs() < 1e-12, "Panda home is the ready pose");
     }
     let fk = ForwardKinematics::new(&robot, &q).unwrap();
-    // SPEC prints four decimals.
+    // The published values have four decimals.
     assert_vec_near("Panda p", &fk.tool_position(), [0.3069, 0.0, 0.5903], 5e-5);
     assert_rot_near(
         "Panda R",

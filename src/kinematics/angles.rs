@@ -1,4 +1,4 @@
-//! Joint-angle bookkeeping (SPEC §2): wrapping to (−π, π] and keeping an angle as the
+//! Joint-angle bookkeeping (docs/kinematics.md §3): wrapping to (−π, π] and keeping an angle as the
 //! 2π-equivalent inside a joint's limits nearest the current value.
 
 use std::f64::consts::{PI, TAU};

@@ -7,7 +7,7 @@ use super::fk::{ForwardKinematics, tool_pose};
 use super::orientation::rotation_log;
 use super::robot::{JointKind, Robot};
 
-/// The step of the numerical Jacobian (SPEC §2, as in the Metrover calculator).
+/// The step of the numerical Jacobian (docs/kinematics.md §4.2, as in the Metrover calculator).
 pub const NUMERIC_EPSILON: f64 = 1e-6;
 
 /// The smallest scaled singular value (linear rows divided by the reach) below which the
@@ -130,7 +130,7 @@ pub fn geometric_jacobian_into(fk: &ForwardKinematics, j: &mut Matrix6xX<f64>) {
     }
 }
 
-/// The Jacobian by central differences with step `eps` (SPEC §2): linear rows
+/// The Jacobian by central differences with step `eps` (docs/kinematics.md §4.2): linear rows
 /// `(p(q+εe_i) − p(q−εe_i))/2ε`, angular rows `vee(log(R(q+εe_i)·R(q−εe_i)ᵀ))/2ε`.
 pub fn numerical_jacobian(robot: &Robot, q: &[f64], eps: f64) -> Matrix6xX<f64> {
     let n = robot.dof();
@@ -184,7 +184,7 @@ pub fn task_jacobian(
     out
 }
 
-/// The unit-free measures of a task Jacobian (SPEC §2).
+/// The unit-free measures of a task Jacobian (docs/kinematics.md §6).
 #[derive(Debug, Clone, PartialEq)]
 pub struct JacobianMeasures {
     /// The characteristic length the linear rows were divided by (the arm's reach).

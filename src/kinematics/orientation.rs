@@ -1,4 +1,4 @@
-//! End-effector orientation in the four forms of SPEC §2 (Craig's names), both ways, with
+//! End-effector orientation in the four forms of docs/kinematics.md §7 (Craig's names), both ways, with
 //! the degenerate cases handled without dividing by zero: R → angles → R returns R.
 
 use nalgebra::{Matrix3, Vector3};

@@ -1,4 +1,4 @@
-//! The robots ArmLab ships with (SPEC §1), each a human-editable file in
+//! The robots ArmLab ships with, each a human-editable file in
 //! `assets/robots/`, compiled in.
 
 use super::error::RobotError;

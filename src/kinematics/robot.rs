@@ -128,7 +128,7 @@ impl JointLimits {
 }
 
 /// Outer sizes (length × width × height, in the robot's unit) of drawn parts, when the
-/// robot file gives them (the Metrover does, SPEC §1.1). Pure data: the core never uses
+/// robot file gives them (the Metrover does: `assets/robots/metrover.json`). Pure data: the core never uses
 /// it; the renderer draws default proportions for what is `None`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct PartSizes {
@@ -178,7 +178,7 @@ impl Joint {
     }
 
     /// The value this joint takes for a requested `value` when it is now at `current`
-    /// (SPEC §2): prismatic joints clamp to their stroke; ±180° revolute joints wrap to
+    /// (docs/kinematics.md §3): prismatic joints clamp to their stroke; ±180° revolute joints wrap to
     /// (−π, π]; other revolute joints take the 2π-equivalent of `value` inside the limits
     /// nearest `current`, or the nearest limit when no equivalent lies inside.
     pub fn keep(&self, value: f64, current: f64) -> f64 {
@@ -349,7 +349,7 @@ impl Robot {
         }
     }
 
-    /// Every joint's value kept as SPEC §2 says, relative to the current pose `current`.
+    /// Every joint's value kept as docs/kinematics.md §3 says, relative to the current pose `current`.
     pub fn keep_q(&self, q: &mut [f64], current: &[f64]) {
         for ((v, c), joint) in q.iter_mut().zip(current).zip(&self.joints) {
             *v = joint.keep(*v, *c);

@@ -1,5 +1,5 @@
-//! Closed-form IK: the planar 2R (SPEC §1.3), the RRR arm (SPEC §1.4) and the UR family
-//! (SPEC §1.2), derived from the loaded robot's DH table in either convention.
+//! Closed-form IK (docs/kinematics.md §9): the planar 2R, the RRR arm and the UR family,
+//! derived from the loaded robot's DH table in either convention.
 //!
 //! Every table is first written as a standard-DH chain `T = pre·A_1⋯A_n·post` with
 //! `A_i = Rot_z(θ_i)·Trans_z(d_i)·Trans_x(a_i)·Rot_x(α_i)`, `θ_i = q_i + offset_i`: a
@@ -33,11 +33,11 @@ use crate::kinematics::robot::{Convention, Joint, JointKind, Robot};
 /// The arm families with a closed form here.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ClosedFormFamily {
-    /// Two revolute joints with parallel axes (SPEC §1.3): up to two solutions (elbows).
+    /// Two revolute joints with parallel axes (docs/kinematics.md §9.1): up to two solutions (elbows).
     Planar2R,
-    /// Base yaw and a planar 2R above it (SPEC §1.4): up to four solutions.
+    /// Base yaw and a planar 2R above it (docs/kinematics.md §9.2): up to four solutions.
     Rrr,
-    /// The Universal Robots geometry (SPEC §1.2): up to eight solutions.
+    /// The Universal Robots geometry (docs/kinematics.md §9.3): up to eight solutions.
     UrFamily,
 }
 
@@ -258,7 +258,7 @@ fn represent(joint: &Joint, theta: f64, seed: f64) -> (f64, bool) {
 /// A planar 2R branch: (θ_a, θ_b, exact, singular).
 type Planar = (f64, f64, bool, bool);
 
-/// Planar 2R by the law of cosines (SPEC §1.3): `c_b = (x² + y² − a1² − a2²)/(2·a1·a2)`,
+/// Planar 2R by the law of cosines (docs/kinematics.md §9.1): `c_b = (x² + y² − a1² − a2²)/(2·a1·a2)`,
 /// `θ_b = ±acos(c_b)`, `θ_a = atan2(y, x) − atan2(a2·s_b, a1 + a2·c_b)`. Out of reach, c_b
 /// is clamped (arm stretched or folded toward the point, `exact` false). Stretched or
 /// folded, the two branches coincide (one returned, `singular`); at the origin of an

@@ -1,11 +1,11 @@
-//! Inverse kinematics (SPEC §2): one interface over every method.
+//! Inverse kinematics (docs/kinematics.md §8–9): one interface over every method.
 //!
 //! - Numeric: damped least squares / Levenberg–Marquardt with adaptive damping
 //!   `Δq = Jᵀ(J·Jᵀ + λ²I)⁻¹·e` (the default, robust near singularities and at unreachable
 //!   targets), Newton with the Moore–Penrose pseudo-inverse `Δq = J⁺·e`, and Jacobian
 //!   transpose / gradient descent on ½‖e‖², `Δq = α·Jᵀ·e`. Each can use the geometric or
 //!   the central-difference Jacobian.
-//! - Closed form where the arm allows it: the planar 2R, the RRR of SPEC §1.4 and the
+//! - Closed form where the arm allows it: the planar 2R, the RRR arm and the
 //!   UR family (all up to eight solutions), see [`closed_form_solutions`].
 //!
 //! The error vector `e` has the position error `p_target − p` in its first three rows
@@ -42,7 +42,7 @@ pub const DEFAULT_MAX_JOINT_CHANGE: f64 = 0.1;
 /// Which Jacobian the numeric methods use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum JacobianSource {
-    /// The geometric Jacobian (SPEC §2): exact and cheap.
+    /// The geometric Jacobian (docs/kinematics.md §4.1): exact and cheap.
     #[default]
     Geometric,
     /// Central differences with ε = [`crate::kinematics::NUMERIC_EPSILON`] (the Metrover
@@ -59,7 +59,7 @@ pub enum IkMethod {
     #[default]
     DampedLeastSquares,
     /// Newton–Raphson with the Moore–Penrose pseudo-inverse, `Δq = J⁺·e`, the undamped
-    /// full step (it can jump far: SPEC §1.3). Singular values below 10⁻⁶·σ_max are
+    /// full step (it can jump far: docs/kinematics.md §8.1). Singular values below 10⁻⁶·σ_max are
     /// dropped.
     PseudoInverse,
     /// Jacobian transpose / gradient descent on ½‖e‖²: `Δq = α·Jᵀ·e`. With `Some(α)` the

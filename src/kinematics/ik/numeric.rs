@@ -340,7 +340,7 @@ impl Workspace {
         self.m = m;
     }
 
-    /// The central-difference Jacobian (SPEC §2) into `j`, without allocating.
+    /// The central-difference Jacobian (docs/kinematics.md §4.2) into `j`, without allocating.
     fn central_difference(&mut self, robot: &Robot) {
         let n = robot.dof();
         if self.j.ncols() != n {
