@@ -10,11 +10,12 @@ use wasm_bindgen_test::wasm_bindgen_test as test;
 
 mod common;
 
-use armlab::kinematics::ik::{joint_distance, pose_error, target_pose};
+use armlab::kinematics::ik::{joint_distance, target_pose};
 use armlab::kinematics::{
     ClosedFormFamily, IkMethod, IkSettings, IkSolver, JacobianSource, Robot, Task, ToolAxis,
     closed_form_family, closed_form_solutions, drag_step, preset, solve, tool_pose,
 };
+use common::task_error as pose_error;
 use nalgebra::{IsometryMatrix3, Matrix3, Vector3};
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -65,24 +66,21 @@ fn damped_least_squares_round_trips_every_preset_and_task() {
                     )
                     .unwrap();
                 assert!(all_finite(&r.q), "{id} {task:?}: NaN in {:?}", r.q);
-                assert!(
-                    r.within_limits,
-                    "{id} {task:?}: {:?} outside the limits",
-                    r.q
-                );
+                common::assert_within_limits(&format!("{id} {task:?}"), &robot, &r.q);
                 if !r.success {
                     failures += 1;
                     continue;
                 }
-                // Independent check by a separate FK call.
-                let (pe, oe) = pose_error(&robot, &r.q, &target, task);
-                assert!(
-                    pe <= tolerance_in_units(&robot, &settings) * 1.0001,
-                    "{id} {task:?}: {pe}"
-                );
-                assert!(
-                    oe <= settings.orientation_tolerance * 1.0001,
-                    "{id} {task:?}: {oe}"
+                // Independent check: FK of the answer against the target by the test's
+                // own pose difference, orientation included for 5D and full-pose tasks.
+                common::assert_reaches(
+                    &format!("{id} {task:?}"),
+                    &robot,
+                    &r.q,
+                    &target,
+                    task,
+                    tolerance_in_units(&robot, &settings) * 1.0001,
+                    settings.orientation_tolerance * 1.0001,
                 );
             }
             assert!(
@@ -161,6 +159,7 @@ fn metrover_reaches_600_0_520_position_only_from_zero() {
         )
         .unwrap();
         assert!(r.success, "{method:?} {jacobian:?}: {r:?}");
+        common::assert_within_limits("Metrover", &robot, &r.q);
         assert!(
             (0.0..=PI).contains(&r.q[1]),
             "joint 2 = {} outside 0…180°",
@@ -190,14 +189,37 @@ fn planar_2r_newton_first_step_jumps_far_then_converges() {
     )
     .unwrap();
     assert!(r.success, "{r:?}");
+    // The first step by hand: θ + J⁻¹·(target − FK(θ)) with the textbook 2R Jacobian
+    // (l1 = 2, l2 = 1), J = [[−l1 s1 − l2 s12, −l2 s12], [l1 c1 + l2 c12, l2 c12]].
+    let (t1, t2) = (0.1_f64, 0.1_f64);
+    let (s1, c1, s12, c12) = (t1.sin(), t1.cos(), (t1 + t2).sin(), (t1 + t2).cos());
+    let (x, y) = (2.0 * c1 + c12, 2.0 * s1 + s12);
+    let (ex, ey) = (1.5 - x, 1.5 - y);
+    let j = [[-2.0 * s1 - s12, -s12], [2.0 * c1 + c12, c12]];
+    let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+    let step = [
+        (j[1][1] * ex - j[0][1] * ey) / det,
+        (-j[1][0] * ex + j[0][0] * ey) / det,
+    ];
+    let want = [t1 + step[0], t2 + step[1]];
     let first = &r.trace[1].raw_q;
-    eprintln!("first Newton step: {first:?}, iterations {}", r.iterations);
     assert!(
-        (first[0] - (-6.0)).abs() < 1.0 && (first[1] - 20.0).abs() < 1.5,
-        "{first:?}"
+        (first[0] - want[0]).abs() < 1e-9 && (first[1] - want[1]).abs() < 1e-9,
+        "first Newton step {first:?}, by hand {want:?}"
     );
-    let p = tool_pose(&robot, &r.q).translation.vector;
-    assert!((p - Vector3::new(1.5, 1.5, 0.0)).norm() <= 1e-6);
+    assert!(
+        (want[0] + 6.0).abs() < 1.0 && (want[1] - 20.0).abs() < 1.5,
+        "{want:?}"
+    );
+    common::assert_reaches(
+        "2R Newton",
+        &robot,
+        &r.q,
+        &target,
+        Task::Position,
+        1e-6,
+        0.0,
+    );
 }
 
 #[test]
@@ -252,8 +274,85 @@ fn drag_step_never_moves_a_joint_more_than_the_limit() {
         assert!(moved <= 0.1 + 1e-12, "moved {moved}");
         q = r.q;
     }
-    let (pe, _) = pose_error(&robot, &q, &far, Task::FullPose);
-    assert!(pe < 1e-3, "{pe}");
+    common::assert_reaches("UR10 drag", &robot, &q, &far, Task::FullPose, 1e-3, 1e-6);
+}
+
+/// The drag's error as the solver weighs it: position over the reach, and the angle.
+fn drag_cost(robot: &Robot, q: &[f64], target: &IsometryMatrix3<f64>, task: Task) -> f64 {
+    let (p, a) = common::task_error(robot, q, target, task);
+    (p / robot.reach()).powi(2) + a * a
+}
+
+#[test]
+fn drag_steps_never_move_the_tool_away_from_the_target() {
+    // Damped least squares, the drag's method: from bent, non-singular poses toward
+    // reachable and unreachable targets, each step lowers the error or keeps it. (A start
+    // on a singularity may first have to move away to leave it, the test above starts
+    // there; undamped Newton may jump away by design, docs/kinematics.md §8.1.)
+    // (robot, start, goal: a joint vector whose tool point is the target, or a point)
+    let ur10_start = vec![0.3, -1.2, 1.4, -1.0, -1.3, 0.2];
+    let cases: [(&str, Vec<f64>, Result<Vec<f64>, [f64; 3]>); 6] = [
+        (
+            "ur10",
+            ur10_start.clone(),
+            Ok(vec![0.9, -0.8, 1.0, -1.4, -1.0, 0.5]),
+        ),
+        ("ur10", ur10_start, Err([2500.0, 0.0, 300.0])),
+        (
+            "puma560",
+            vec![0.2, 0.4, -0.6, 0.3, 0.5, 0.1],
+            Ok(vec![0.6, 0.7, -0.9, 0.3, 0.5, 0.1]),
+        ),
+        (
+            "panda",
+            vec![0.0, -0.7, 0.0, -2.2, 0.0, 1.6, 0.7],
+            Ok(vec![0.4, -0.3, 0.2, -1.8, 0.1, 1.9, 0.7]),
+        ),
+        ("rrr", vec![0.3, 0.5, -1.0], Ok(vec![0.9, 0.2, -0.6])),
+        ("rrr", vec![0.3, 0.5, -1.0], Err([900.0, 0.0, 0.0])),
+    ];
+    for (id, start, goal) in cases {
+        let robot = preset(id).unwrap();
+        let rotation = *tool_pose(&robot, &start).rotation.matrix();
+        let reachable = goal.is_ok();
+        let p = match goal {
+            Ok(q) => tool_pose(&robot, &q).translation.vector,
+            Err(p) => Vector3::from(p),
+        };
+        let target = target_pose(p, rotation);
+        for method in [IkMethod::DampedLeastSquares] {
+            let mut q = start.clone();
+            for step in 0..300 {
+                let r = drag_step(
+                    &robot,
+                    &q,
+                    &target,
+                    Task::Position,
+                    method,
+                    &IkSettings::drag(),
+                )
+                .unwrap();
+                let before = drag_cost(&robot, &q, &target, Task::Position);
+                let after = drag_cost(&robot, &r.q, &target, Task::Position);
+                assert!(
+                    after <= before * (1.0 + 1e-12) + 1e-24,
+                    "{id} {method:?} step {step}: the error rose {before} → {after}"
+                );
+                q = r.q;
+            }
+            let what = format!("{id} {method:?}");
+            if reachable {
+                let tolerance = 1e-6 / robot.length_unit.in_metres();
+                common::assert_reaches(&what, &robot, &q, &target, Task::Position, tolerance, 0.0);
+            } else {
+                let (pe, _) = common::task_error(&robot, &q, &target, Task::Position);
+                assert!(
+                    pe > 0.1 * robot.reach(),
+                    "{what}: out of reach, yet {pe} away"
+                );
+            }
+        }
+    }
 }
 
 /// Distinct joint vectors up to whole turns, as sorted wrapped keys.
@@ -570,11 +669,41 @@ fn singular_configurations_give_flagged_finite_solutions() {
             &IkSettings::default(),
         )
         .unwrap();
-        assert!(
-            all_finite(&r.q) && r.position_error.is_finite(),
-            "{method:?}"
+        assert!(all_finite(&r.q), "{method:?}");
+        // Not only finite: each method leaves the stretched seed and reaches the target
+        // (restarts included), checked by the test's own FK difference.
+        common::assert_reaches(
+            &format!("2R from the stretched pose, {method:?}"),
+            &robot,
+            &r.q,
+            &target,
+            Task::Position,
+            1e-6,
+            0.0,
         );
     }
+    // Damped least squares from the UR10's stretched, wrist-singular q = 0 to a full pose.
+    let ur10 = preset("ur10").unwrap();
+    let goal = tool_pose(&ur10, &[0.5, -1.1, 1.3, -1.6, -1.4, 0.2]);
+    let r = solve(
+        &ur10,
+        &goal,
+        Task::FullPose,
+        &[0.0; 6],
+        IkMethod::DampedLeastSquares,
+        &IkSettings::default(),
+    )
+    .unwrap();
+    common::assert_reaches(
+        "UR10 from q = 0",
+        &ur10,
+        &r.q,
+        &goal,
+        Task::FullPose,
+        1e-3,
+        1e-6,
+    );
+    common::assert_within_limits("UR10 from q = 0", &ur10, &r.q);
 }
 
 #[test]
