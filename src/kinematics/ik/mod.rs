@@ -208,17 +208,22 @@ impl IkSettings {
 
     fn check(&self) -> Result<(), IkError> {
         let positive = |v: f64| v.is_finite() && v > 0.0;
-        if !positive(self.position_tolerance) || !positive(self.orientation_tolerance) {
-            return Err(IkError::Settings(
-                "the tolerances must be positive numbers".into(),
-            ));
+        for (name, value) in [
+            ("position_tolerance", self.position_tolerance),
+            ("orientation_tolerance", self.orientation_tolerance),
+        ] {
+            if !positive(value) {
+                return Err(IkError::Settings(format!(
+                    "{name} must be a positive number, not {value}"
+                )));
+            }
         }
         if let Some(limit) = self.max_joint_change
             && !positive(limit)
         {
-            return Err(IkError::Settings(
-                "the largest joint change must be a positive number".into(),
-            ));
+            return Err(IkError::Settings(format!(
+                "max_joint_change must be a positive number, not {limit}"
+            )));
         }
         Ok(())
     }
