@@ -39,13 +39,20 @@ impl Panel for JointsPanel {
             .show(ui, |ui| {
                 for (i, joint) in model.robot().joints.iter().enumerate() {
                     let response = joint_slider(ui, model, i, joint, &mut q[i]);
-                    // The rail's ends, for the browser tests.
+                    // Where the slider's minimum and maximum values sit, for the browser
+                    // tests: egui insets the rail's ends by the handle's radius, a 2.5th
+                    // of the slider's height.
                     let r = response.rect;
+                    let inset = r.height() / 2.5;
                     let rail = ui.spacing().slider_width;
-                    points.insert(format!("slider-{}-min", i + 1), r.left_center());
+                    let y = r.center().y;
+                    points.insert(
+                        format!("slider-{}-min", i + 1),
+                        egui::pos2(r.left() + inset, y),
+                    );
                     points.insert(
                         format!("slider-{}-max", i + 1),
-                        egui::pos2(r.left() + rail, r.center().y),
+                        egui::pos2(r.left() + rail - inset, y),
                     );
                     changed |= response.changed();
                     ui.end_row();
