@@ -264,21 +264,30 @@ fn link_parts(input: &SceneInput<'_>, i: usize, sizes: &Proportions, out: &mut V
             ));
         }
     }
-    // The joint housing along its axis: a cylinder for revolute, a box for prismatic.
+    out.push(joint_housing(input, i, sizes));
+}
+
+/// Joint `i`'s housing along its axis: a cylinder for revolute, a box for prismatic.
+fn joint_housing(input: &SceneInput<'_>, i: usize, sizes: &Proportions) -> Instance {
+    let fk = input.fk;
     let at = Point3::from(fk.joint_origins[i]);
     let rot = rotation_to(&fk.joint_axes[i]);
-    let (shape, width, own) = match joint.kind {
+    let (shape, width, own) = match input.robot.joints[i].kind {
         JointKind::Revolute => (Shape::Cylinder, sizes.joint_d, JOINT),
         JointKind::Prismatic => (Shape::Box, sizes.joint_d * 0.8, PRISMATIC),
     };
-    let c = if highlighted { HIGHLIGHT } else { own };
-    out.push(instance(
+    let c = if input.highlighted_link == Some(i + 1) {
+        HIGHLIGHT
+    } else {
+        own
+    };
+    instance(
         shape,
         &at,
         &rot,
         Vector3::new(width, width, sizes.joint_len),
         c,
-    ));
+    )
 }
 
 /// The flange and a U-shaped gripper around the tool point: a palm behind it and two

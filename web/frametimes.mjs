@@ -1,0 +1,99 @@
+// Frame times of a built page while the UR10 target is dragged, for comparing two builds
+// back to back (a benchmark: it prints figures, it asserts nothing, and it is not part of
+// the test command). Headless Chromium draws through SwiftShader here, so compare runs
+// made one after the other on the same machine, and read no difference under ~1 ms.
+//
+//   node web/frametimes.mjs DIST_DIR [runs=3] [frames=300]
+//
+// Each run opens the page at 1400×860 with the arm, the target and the DH frames shown,
+// grabs the target ball and drags it in small steps, holding the button, until the app
+// has drawn at least `frames` frames, then prints the median, p95 and max of the app's
+// own main-thread milliseconds (`app`, `render` and their sum) from
+// window.armlab.frameTimes(), one JSON line per run and one for all runs together.
+import http from 'node:http';
+import fs from 'node:fs';
+import path from 'node:path';
+import { chromium } from 'playwright-core';
+
+const [distArg, runsArg, framesArg] = process.argv.slice(2);
+if (!distArg) {
+  console.error('usage: node web/frametimes.mjs DIST_DIR [runs] [frames]');
+  process.exit(2);
+}
+const dist = path.resolve(distArg);
+const runs = Number(runsArg ?? 3);
+const wanted = Number(framesArg ?? 300);
+const VIEW = { width: 1400, height: 860 };
+const types = { '.html': 'text/html', '.js': 'text/javascript', '.wasm': 'application/wasm', '.json': 'application/json', '.png': 'image/png' };
+
+const server = http.createServer((req, res) => {
+  const url = new URL(req.url, 'http://localhost');
+  let file = path.join(dist, decodeURIComponent(url.pathname));
+  if (!file.startsWith(dist)) { res.writeHead(403); res.end(); return; }
+  if (file.endsWith('/')) file = path.join(file, 'index.html');
+  fs.readFile(file, (err, data) => {
+    if (err) { res.writeHead(404); res.end(); return; }
+    res.writeHead(200, { 'content-type': types[path.extname(file)] ?? 'application/octet-stream' });
+    res.end(data);
+  });
+});
+await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
+const base = `http://127.0.0.1:${server.address().port}/`;
+const browser = await chromium.launch({
+  executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
+  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking',
+    '--disable-component-update', '--disable-sync', '--no-first-run', '--disable-quic'],
+});
+
+const state = async (page) => JSON.parse(await page.evaluate(() => window.armlab.state()));
+
+function summary(values) {
+  const sorted = [...values].sort((a, b) => a - b);
+  const pick = (p) => sorted[Math.min(sorted.length - 1, Math.round((sorted.length - 1) * p))];
+  return { median: +pick(0.5).toFixed(3), p95: +pick(0.95).toFixed(3), max: +pick(1).toFixed(3) };
+}
+
+function report(label, frames) {
+  return {
+    label,
+    frames: frames.length,
+    app_ms: summary(frames.map((f) => f.app)),
+    render_ms: summary(frames.map((f) => f.render)),
+    app_plus_render_ms: summary(frames.map((f) => f.app + f.render)),
+  };
+}
+
+const all = [];
+for (let run = 1; run <= runs; run++) {
+  const ctx = await browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
+  const page = await ctx.newPage();
+  await page.goto(`${base}#robot=ur10&q=0,-1,1.2,-1.5,-1.2,0.3&task=position`, { waitUntil: 'domcontentloaded' });
+  await page.waitForFunction(() => {
+    const text = window.armlab?.state();
+    return Boolean(text) && JSON.parse(text).rendered;
+  }, null, { timeout: 120000 });
+  const t = await page.evaluate(() => window.armlab.screenPoint('target'));
+  const b = await page.evaluate(() => window.armlab.screenPoint('base'));
+  await page.mouse.move(t.x, t.y);
+  await page.mouse.down();
+  await page.evaluate(() => window.armlab.frameTimes());
+  const frames = [];
+  // Back and forth along the line toward the base, a pixel or two per event.
+  for (let i = 0; frames.length < wanted && i < 20 * wanted; i++) {
+    const phase = (i % 120) / 120;
+    const f = 0.3 * (phase < 0.5 ? phase * 2 : 2 - phase * 2);
+    await page.mouse.move(t.x + (b.x - t.x) * f, t.y + (b.y - t.y) * f);
+    if (i % 20 === 19) frames.push(...await page.evaluate(() => window.armlab.frameTimes()));
+  }
+  frames.push(...await page.evaluate(() => window.armlab.frameTimes()));
+  await page.mouse.up();
+  const s = await state(page);
+  const r = report(`run ${run}`, frames);
+  r.dragging_ended_reached = s.reached;
+  console.log(JSON.stringify(r));
+  all.push(...frames);
+  await ctx.close();
+}
+console.log(JSON.stringify(report(`all ${runs} runs of ${dist}`, all)));
+await browser.close();
+server.close();
