@@ -4,7 +4,9 @@
 
 use nalgebra::DMatrix;
 
-use crate::kinematics::{Convention, JacobianAnalysis, JacobianMeasures, JointKind, Orientation};
+use crate::kinematics::{
+    Convention, JacobianAnalysis, JacobianMeasures, JointKind, Orientation, Robot, Task,
+};
 
 use super::Panel;
 use super::format::number;
@@ -317,10 +319,42 @@ fn homogeneous(pose: &nalgebra::IsometryMatrix3<f64>) -> DMatrix<f64> {
     DMatrix::from_fn(4, 4, |r, c| h[(r, c)])
 }
 
-/// The matrices panel. Its layout caches (each block's size while scrolled out of sight,
-/// the glyph quads of the numbers) live in egui's memory for the frame.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct MatricesPanel;
+/// The matrices panel. It keeps the Jacobian analysis of the pose it last showed (the
+/// central-difference check and an SVD, recomputed only when the robot, q or the task
+/// changes); its layout caches (each block's size while scrolled out of sight, the glyph
+/// quads of the numbers) live in egui's memory for the frame.
+#[derive(Debug, Clone, Default)]
+pub struct MatricesPanel {
+    analysis: Option<AnalysisCache>,
+}
+
+/// A Jacobian analysis and what it was computed for.
+#[derive(Debug, Clone)]
+struct AnalysisCache {
+    robot: Robot,
+    q: Vec<f64>,
+    task: Task,
+    analysis: JacobianAnalysis,
+}
+
+impl MatricesPanel {
+    /// The analysis of the model's pose, from the cache when nothing it depends on changed.
+    fn analysis(&mut self, model: &Model) -> &JacobianAnalysis {
+        let fresh = self.analysis.as_ref().is_some_and(|c| {
+            c.task == model.task() && c.q.as_slice() == model.q() && &c.robot == model.robot()
+        });
+        if !fresh {
+            self.analysis = None;
+        }
+        let cache = self.analysis.get_or_insert_with(|| AnalysisCache {
+            robot: model.robot().clone(),
+            q: model.q().to_vec(),
+            task: model.task(),
+            analysis: JacobianAnalysis::new(model.robot(), model.fk(), model.q(), model.task()),
+        });
+        &cache.analysis
+    }
+}
 
 impl Panel for MatricesPanel {
     fn ui(&mut self, model: &mut Model, ui: &mut egui::Ui, _points: &mut ScreenPoints) {
@@ -344,7 +378,9 @@ impl Panel for MatricesPanel {
         );
         egui::CollapsingHeader::new("Jacobian")
             .default_open(true)
-            .show(ui, |ui| jacobian_block(model, ui, decimals));
+            .show(ui, |ui| {
+                jacobian_block(model, self.analysis(model), ui, decimals)
+            });
         let hovered = egui::CollapsingHeader::new("Link transforms A_i and running products T_0i")
             .default_open(true)
             .show(ui, |ui| link_blocks(model, ui, decimals))
@@ -412,9 +448,7 @@ fn link_blocks(model: &Model, ui: &mut egui::Ui, decimals: usize) -> Option<usiz
     hovered
 }
 
-fn jacobian_block(model: &Model, ui: &mut egui::Ui, decimals: usize) {
-    let robot = model.robot();
-    let analysis = JacobianAnalysis::new(robot, model.fk(), model.q(), model.task());
+fn jacobian_block(model: &Model, analysis: &JacobianAnalysis, ui: &mut egui::Ui, decimals: usize) {
     let j = &analysis.geometric;
     let jm = DMatrix::from_fn(6, j.ncols(), |r, c| j[(r, c)]);
     matrix_block(

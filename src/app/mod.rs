@@ -90,7 +90,7 @@ impl ArmLabApp {
             model,
             joints: joints::JointsPanel,
             ik_panel: ik_panel::IkPanel::default(),
-            matrices: matrices::MatricesPanel,
+            matrices: matrices::MatricesPanel::default(),
             viewport: viewport::Viewport::new(None),
             points: ScreenPoints::default(),
             timing: FrameTime::default(),
