@@ -311,13 +311,14 @@ test('a joint slider moved with the mouse changes that joint and T_0n', async ()
   await page.mouse.click(lo.x + (hi.x - lo.x) * 0.8, lo.y);
   await settle(page);
   const after = await state(page);
-  // The points are where the slider's −360° and +360° sit: 80 % along is 216° = 3.770 rad,
-  // within a pixel's worth of angle (and the slider's 0.1° steps).
+  // The points are where the slider's −360° and +360° sit: 80 % along is 216° = 3.770 rad.
+  // egui's "smart aim" then takes the roundest value within a pixel of the pointer (here
+  // 200°: a pixel is 8.6° on this rail), so allow 2.5 pixels' worth of angle.
   const expected = -2 * Math.PI + 0.8 * 4 * Math.PI;
   const perPixel = (4 * Math.PI) / (hi.x - lo.x);
   assert.ok(Math.abs(after.q[1] - before.q[1]) > 0.5, `the click moved θ2 (${before.q[1]} → ${after.q[1]})`);
-  assert.ok(Math.abs(after.q[1] - expected) <= 1.5 * perPixel,
-    `θ2 = ${after.q[1]} rad, expected ${expected.toFixed(4)} ± ${(1.5 * perPixel).toFixed(4)}`);
+  assert.ok(Math.abs(after.q[1] - expected) <= 2.5 * perPixel,
+    `θ2 = ${after.q[1]} rad, expected ${expected.toFixed(4)} ± ${(2.5 * perPixel).toFixed(4)}`);
   after.q.forEach((v, i) => { if (i !== 1) assert.equal(v, before.q[i]); });
   assert.ok(Math.hypot(...after.tool.map((v, i) => v - before.tool[i])) > 10, 'T_0n changed');
   await ctx.close();
