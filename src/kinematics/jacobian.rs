@@ -86,6 +86,17 @@ impl Task {
         }
     }
 
+    /// The task an arm opens with: the full pose with six joints or more, the position
+    /// alone with fewer (five joints cannot set a whole pose, and a planar arm's
+    /// textbook singularity shows in its position rows).
+    pub fn default_for(dof: usize) -> Task {
+        if dof >= 6 {
+            Task::FullPose
+        } else {
+            Task::Position
+        }
+    }
+
     /// Every id, for messages: `position, axis-x, …`.
     pub fn id_list() -> String {
         Task::ALL.map(Task::id).join(", ")
