@@ -75,10 +75,15 @@ fn choosing_a_preset_swaps_the_robot() {
     h.run_steps(2);
     let model = h.state().model();
     assert_eq!(model.robot().name, "Puma 560");
-    assert_eq!(model.q().len(), 6);
-    // The target moved onto the new gripper and the matrices are the Puma's: its T_06
-    // at home (q = 0) has p = (0.4521, −0.15005, 1.10363) m with R = I.
+    // It opens at its own home pose and default task, the target on the new gripper.
+    assert_eq!(model.q(), model.robot().home().as_slice());
+    assert_eq!(model.task(), armlab::kinematics::Task::FullPose);
     assert_eq!(model.ik().reach, Reach::Reached);
+    // The matrices are the Puma's: at q = 0 (the Zero button) its T_06 has
+    // p = (0.4521, −0.15005, 1.10363) m with R = I.
+    h.get_by_label("Zero").click();
+    h.run_steps(2);
+    let model = h.state().model();
     assert_eq!(model.q(), &[0.0; 6]);
     let p = model.fk().tool_position();
     assert!((p - nalgebra::Vector3::new(0.4521, -0.15005, 1.10363)).norm() < 1e-5);
@@ -413,4 +418,20 @@ fn the_ik_panel_alone_solves_and_replays_its_run() {
     let last = run.trace.last().expect("a trace").q.clone();
     assert_ne!(q, last, "the replay moved the arm away from the answer");
     assert_eq!(start.len(), q.len());
+}
+
+#[test]
+fn a_link_naming_only_the_robot_opens_its_default_task() {
+    let h = harness("#robot=metrover");
+    let model = h.state().model();
+    assert_eq!(model.task(), armlab::kinematics::Task::Position, "five joints: position only");
+    assert_eq!(model.q(), model.robot().home().as_slice());
+    let h = harness("#robot=panda");
+    assert_eq!(h.state().model().task(), armlab::kinematics::Task::FullPose);
+    let h = harness("#robot=planar-2r&task=full");
+    assert_eq!(
+        h.state().model().task(),
+        armlab::kinematics::Task::FullPose,
+        "a task the link names wins"
+    );
 }

@@ -199,7 +199,7 @@ impl ArmLabApp {
         style::install(ui.ctx(), self.model.settings().presentation);
         egui::Panel::top("armlab_top").show(ui, |ui| {
             if let Some(action) = top_bar::ui(&mut self.model, ui) {
-                self.viewport.apply(action, &self.model, ui.ctx());
+                self.viewport.apply(action, ui.ctx());
             }
         });
         egui::Panel::left("armlab_left")

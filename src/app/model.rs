@@ -286,10 +286,13 @@ impl Model {
         self.recompute_reach();
     }
 
-    /// Loads a robot as a new start (a preset or a file): its home pose, the target on
-    /// its tool, the view framed anew.
+    /// Loads a robot as a new start (a preset or a file): its home pose, its default task
+    /// (position only below six joints) and method, the target on its tool, the view
+    /// framed anew.
     pub fn load_robot(&mut self, robot: Robot, source: RobotSource) {
         self.q = robot.home();
+        self.task = Task::default_for(robot.dof());
+        self.method = IkMethod::DampedLeastSquares;
         self.robot = robot;
         self.source = source;
         self.keep_method_available();

@@ -6,7 +6,8 @@
 //! - `q`: joint values in the core's units (radians, the robot's length unit);
 //! - `target`: position in the robot's length unit and Z-Y-X Euler angles α, β, γ in
 //!   radians (`R = Rz(α)·Ry(β)·Rx(γ)`);
-//! - `task`: `position`, `axis-x`, `axis-y`, `axis-z` or `full`;
+//! - `task`: `position`, `axis-x`, `axis-y`, `axis-z` or `full` (without it, the robot's
+//!   default: position only below six joints, the full pose from six);
 //! - `method`: `dls`, `pinv`, `gradient` or `closed`.
 
 use nalgebra::IsometryMatrix3;
@@ -98,12 +99,13 @@ impl Session {
     /// A preset at its home pose, target at the tool.
     pub fn for_preset(id: &str) -> Result<Session, RobotError> {
         let robot = preset(id)?;
+        let robot_dof = robot.dof();
         Ok(Session {
             q: robot.home(),
             robot,
             source: RobotSource::Preset(id.to_string()),
             target: None,
-            task: Task::FullPose,
+            task: Task::default_for(robot_dof),
             method: IkMethod::DampedLeastSquares,
         })
     }
@@ -157,10 +159,10 @@ impl Session {
                 let robot = robot_from_json(&text)?;
                 Session {
                     q: robot.home(),
+                    task: Task::default_for(robot.dof()),
                     robot,
                     source: RobotSource::Custom,
                     target: None,
-                    task: parts.task,
                     method: parts.method,
                 }
             }
@@ -172,7 +174,8 @@ impl Session {
             session.q = q;
         }
         session.target = parts.target.as_ref().map(target_from_array);
-        session.task = parts.task;
+        // A link that names no task opens the robot's own default task.
+        session.task = parts.task.unwrap_or(session.task);
         session.method = parts.method;
         Ok(Some(session))
     }
@@ -184,7 +187,7 @@ struct LinkParts {
     dh: Option<String>,
     q: Option<Vec<f64>>,
     target: Option<[f64; 6]>,
-    task: Task,
+    task: Option<Task>,
     method: IkMethod,
 }
 
@@ -195,7 +198,7 @@ impl LinkParts {
             dh: None,
             q: None,
             target: None,
-            task: Task::FullPose,
+            task: None,
             method: IkMethod::DampedLeastSquares,
         };
         for part in hash.split('&').filter(|p| !p.is_empty()) {
@@ -211,8 +214,10 @@ impl LinkParts {
                     parts.target = Some(t.try_into().map_err(|_| LinkError::TargetLength)?);
                 }
                 "task" => {
-                    parts.task = Task::from_id(value)
-                        .ok_or_else(|| LinkError::UnknownTask(value.to_string()))?;
+                    parts.task = Some(
+                        Task::from_id(value)
+                            .ok_or_else(|| LinkError::UnknownTask(value.to_string()))?,
+                    );
                 }
                 "method" => {
                     parts.method = IkMethod::from_id(value)

@@ -117,6 +117,46 @@ impl OrbitCamera {
         self.distance = (radius.max(1e-6) / (self.fov_y * 0.5).sin()) * 1.1;
     }
 
+    /// Frames a set of points from the current direction in a viewport of `aspect`
+    /// (width / height): the focus moves to the middle of their extent across the screen,
+    /// and the distance is the smallest at which every point lies inside the view with
+    /// `margin` (a fraction of the half-width and half-height, e.g. 0.9) to spare.
+    ///
+    /// For a point at (x, y) across and z along the view from the focus, the perspective
+    /// puts it at x / (d − z) · 1/tan(fov_x/2) of the half-width: it fits when
+    /// d ≥ z + |x| / (margin · tan(fov_x/2)), and likewise vertically.
+    pub fn fit_points(&mut self, points: &[Point3<f64>], aspect: f64, margin: f64) {
+        let Some(first) = points.first() else {
+            return;
+        };
+        let forward = (self.focus - self.eye()).normalize();
+        let right = forward.cross(&Vector3::z()).normalize();
+        let up = right.cross(&forward);
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in points {
+            let v = p - first;
+            for (k, axis) in [right, up].iter().enumerate() {
+                lo[k] = lo[k].min(v.dot(axis));
+                hi[k] = hi[k].max(v.dot(axis));
+            }
+        }
+        let mean_depth =
+            points.iter().map(|p| (p - first).dot(&forward)).sum::<f64>() / points.len() as f64;
+        self.focus = first
+            + right * ((lo[0] + hi[0]) * 0.5)
+            + up * ((lo[1] + hi[1]) * 0.5)
+            + forward * mean_depth;
+        let tan_y = (self.fov_y * 0.5).tan() * margin;
+        let tan_x = (self.fov_y * 0.5).tan() * aspect.max(1e-3) * margin;
+        let mut distance: f64 = 1e-6;
+        for p in points {
+            let v = p - self.focus;
+            let (x, y, z) = (v.dot(&right), v.dot(&up), v.dot(&forward));
+            distance = distance.max(z + x.abs() / tan_x).max(z + y.abs() / tan_y);
+        }
+        self.distance = distance;
+    }
+
     /// Turns to a standard view, keeping the focus and distance.
     pub fn set_view(&mut self, view: StandardView) {
         let (yaw, pitch) = match view {
@@ -148,6 +188,33 @@ impl OrbitCamera {
     pub fn zoom(&mut self, factor: f64) {
         if factor.is_finite() && factor > 0.0 {
             self.distance = (self.distance / factor).clamp(1e-4, 1e7);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fitted_points_land_inside_the_view_at_any_aspect() {
+        let points = [
+            Point3::new(-1000.0, -300.0, 0.0),
+            Point3::new(1200.0, 400.0, 0.0),
+            Point3::new(300.0, -200.0, 900.0),
+            Point3::new(0.0, 0.0, -100.0),
+        ];
+        for (w, h) in [(1024.0, 768.0), (400.0, 760.0), (1900.0, 300.0)] {
+            let mut camera = OrbitCamera::default();
+            camera.fit_points(&points, w / h, 0.9);
+            let mut touches = false;
+            for p in &points {
+                let [x, y] = camera.project(p, [w, h]).expect("in front");
+                assert!(x >= 0.05 * w - 1e-6 && x <= 0.95 * w + 1e-6, "x {x} of {w}");
+                assert!(y >= 0.05 * h - 1e-6 && y <= 0.95 * h + 1e-6, "y {y} of {h}");
+                touches |= x < 0.05 * w + 1.0 || x > 0.95 * w - 1.0 || y < 0.05 * h + 1.0 || y > 0.95 * h - 1.0;
+            }
+            assert!(touches, "the fit is tight: some point reaches the margin at {w}×{h}");
         }
     }
 }

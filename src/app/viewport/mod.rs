@@ -40,8 +40,8 @@ pub struct Viewport {
     renderer: Option<SceneRenderer>,
     drag: Option<Drag>,
     hover: Option<Handle>,
-    /// The model's reframe count the camera last framed the arm at.
-    framed_at: Option<u64>,
+    /// The model's reframe count and the view's size the camera last framed the arm at.
+    framed_at: Option<(u64, egui::Vec2)>,
     rect: Option<Rect>,
     grid_step: f64,
     rendered: bool,
@@ -89,21 +89,34 @@ impl Viewport {
     }
 
     /// Carries out what the top bar asked.
-    pub fn apply(&mut self, action: ViewAction, model: &Model, ctx: &egui::Context) {
-        match action {
-            ViewAction::Fit => self.fit(model),
-            ViewAction::View(view) => self.camera.set_view(view),
+    pub fn apply(&mut self, action: ViewAction, ctx: &egui::Context) {
+        if let ViewAction::View(view) = action {
+            self.camera.set_view(view);
         }
+        self.framed_at = None;
         ctx.request_repaint();
     }
 
-    /// Frames the robot.
-    fn fit(&mut self, model: &Model) {
-        let reach = model.robot().reach();
-        let base = model.robot().world_from_base.translation.vector;
-        let centre = Point3::from(base + Vector3::new(0.0, 0.0, reach * 0.35));
-        self.camera.fit(centre, reach * 0.85);
-        self.framed_at = Some(model.reframes());
+    /// Frames the whole arm, its reach circle (radius the reach, about the base's z axis at
+    /// the base's height) and the target, for the view's aspect ratio.
+    fn fit(&mut self, model: &Model, size: egui::Vec2) {
+        let robot = model.robot();
+        let fk = model.fk();
+        let base = &robot.world_from_base;
+        let reach = robot.reach();
+        let mut points: Vec<Point3<f64>> = (0..24)
+            .map(|k| {
+                let t = std::f64::consts::TAU * k as f64 / 24.0;
+                base * Point3::new(reach * t.cos(), reach * t.sin(), 0.0)
+            })
+            .collect();
+        points.push(Point3::from(base.translation.vector));
+        points.extend(fk.base_from_frames.iter().map(|f| Point3::from(f.translation.vector)));
+        points.push(Point3::from(fk.tool_position()));
+        points.push(Point3::from(model.target().translation.vector));
+        let aspect = (size.x / size.y.max(1.0)) as f64;
+        self.camera.fit_points(&points, aspect, 0.9);
+        self.framed_at = Some((model.reframes(), size));
     }
 
     /// Shows the viewport and handles its input.
@@ -115,10 +128,11 @@ impl Viewport {
         render_state: Option<&RenderState>,
         timing: &mut FrameTime,
     ) {
-        if self.framed_at != Some(model.reframes()) {
-            self.fit(model);
-        }
         let rect = ui.available_rect_before_wrap();
+        // Framed anew on load, on a robot change, on Fit and when the view's size changes.
+        if self.framed_at != Some((model.reframes(), rect.size())) {
+            self.fit(model, rect.size());
+        }
         let response = ui.allocate_rect(rect, Sense::click_and_drag());
         self.rect = Some(rect);
         let axes = marker_axes(model);
