@@ -424,7 +424,11 @@ fn the_ik_panel_alone_solves_and_replays_its_run() {
 fn a_link_naming_only_the_robot_opens_its_default_task() {
     let h = harness("#robot=metrover");
     let model = h.state().model();
-    assert_eq!(model.task(), armlab::kinematics::Task::Position, "five joints: position only");
+    assert_eq!(
+        model.task(),
+        armlab::kinematics::Task::Position,
+        "five joints: position only"
+    );
     assert_eq!(model.q(), model.robot().home().as_slice());
     let h = harness("#robot=panda");
     assert_eq!(h.state().model().task(), armlab::kinematics::Task::FullPose);

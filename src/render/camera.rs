@@ -122,9 +122,9 @@ impl OrbitCamera {
     /// and the distance is the smallest at which every point lies inside the view with
     /// `margin` (a fraction of the half-width and half-height, e.g. 0.9) to spare.
     ///
-    /// For a point at (x, y) across and z along the view from the focus, the perspective
-    /// puts it at x / (d − z) · 1/tan(fov_x/2) of the half-width: it fits when
-    /// d ≥ z + |x| / (margin · tan(fov_x/2)), and likewise vertically.
+    /// For a point at (x, y) across and z along the view (away from the eye) from the
+    /// focus, the perspective puts it at x / (d + z) · 1/tan(fov_x/2) of the half-width:
+    /// it fits when d ≥ |x| / (margin · tan(fov_x/2)) − z, and likewise vertically.
     pub fn fit_points(&mut self, points: &[Point3<f64>], aspect: f64, margin: f64) {
         let Some(first) = points.first() else {
             return;
@@ -140,8 +140,11 @@ impl OrbitCamera {
                 hi[k] = hi[k].max(v.dot(axis));
             }
         }
-        let mean_depth =
-            points.iter().map(|p| (p - first).dot(&forward)).sum::<f64>() / points.len() as f64;
+        let mean_depth = points
+            .iter()
+            .map(|p| (p - first).dot(&forward))
+            .sum::<f64>()
+            / points.len() as f64;
         self.focus = first
             + right * ((lo[0] + hi[0]) * 0.5)
             + up * ((lo[1] + hi[1]) * 0.5)
@@ -152,7 +155,7 @@ impl OrbitCamera {
         for p in points {
             let v = p - self.focus;
             let (x, y, z) = (v.dot(&right), v.dot(&up), v.dot(&forward));
-            distance = distance.max(z + x.abs() / tan_x).max(z + y.abs() / tan_y);
+            distance = distance.max(x.abs() / tan_x - z).max(y.abs() / tan_y - z);
         }
         self.distance = distance;
     }
@@ -212,9 +215,15 @@ mod tests {
                 let [x, y] = camera.project(p, [w, h]).expect("in front");
                 assert!(x >= 0.05 * w - 1e-6 && x <= 0.95 * w + 1e-6, "x {x} of {w}");
                 assert!(y >= 0.05 * h - 1e-6 && y <= 0.95 * h + 1e-6, "y {y} of {h}");
-                touches |= x < 0.05 * w + 1.0 || x > 0.95 * w - 1.0 || y < 0.05 * h + 1.0 || y > 0.95 * h - 1.0;
+                touches |= x < 0.05 * w + 1.0
+                    || x > 0.95 * w - 1.0
+                    || y < 0.05 * h + 1.0
+                    || y > 0.95 * h - 1.0;
             }
-            assert!(touches, "the fit is tight: some point reaches the margin at {w}×{h}");
+            assert!(
+                touches,
+                "the fit is tight: some point reaches the margin at {w}×{h}"
+            );
         }
     }
 }

@@ -97,25 +97,35 @@ impl Viewport {
         ctx.request_repaint();
     }
 
-    /// Frames the whole arm, its reach circle (radius the reach, about the base's z axis at
-    /// the base's height) and the target, for the view's aspect ratio.
+    /// Frames the whole arm (the base block, every frame origin, the tool) and the target
+    /// for the view's aspect ratio. (The reach circle is not drawn yet, so it is not
+    /// framed: framing it left the UR10 a third of the view.)
     fn fit(&mut self, model: &Model, size: egui::Vec2) {
         let robot = model.robot();
         let fk = model.fk();
         let base = &robot.world_from_base;
         let reach = robot.reach();
-        let mut points: Vec<Point3<f64>> = (0..24)
-            .map(|k| {
-                let t = std::f64::consts::TAU * k as f64 / 24.0;
-                base * Point3::new(reach * t.cos(), reach * t.sin(), 0.0)
+        let [bx, by, bz] = robot
+            .parts
+            .base
+            .unwrap_or([reach * 0.22, reach * 0.22, reach * 0.06]);
+        let mut points: Vec<Point3<f64>> = [(-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0)]
+            .iter()
+            .flat_map(|(sx, sy)| {
+                [0.0, -bz].map(|z| base * Point3::new(sx * bx * 0.5, sy * by * 0.5, z))
             })
             .collect();
-        points.push(Point3::from(base.translation.vector));
-        points.extend(fk.base_from_frames.iter().map(|f| Point3::from(f.translation.vector)));
+        points.extend(
+            fk.base_from_frames
+                .iter()
+                .map(|f| Point3::from(f.translation.vector)),
+        );
         points.push(Point3::from(fk.tool_position()));
         points.push(Point3::from(model.target().translation.vector));
         let aspect = (size.x / size.y.max(1.0)) as f64;
-        self.camera.fit_points(&points, aspect, 0.9);
+        // The margin leaves room for the joint housings and the marker's rings, which are
+        // drawn around these points.
+        self.camera.fit_points(&points, aspect, 0.65);
         self.framed_at = Some((model.reframes(), size));
     }
 
