@@ -202,7 +202,9 @@ pub struct JacobianMeasures {
     pub length_scale: f64,
     /// Singular values of the scaled task Jacobian, largest first.
     pub singular_values: Vec<f64>,
-    /// Yoshikawa's manipulability √det(J·Jᵀ) = the product of the singular values.
+    /// The product of the singular values: Yoshikawa's manipulability √det(J·Jᵀ) when
+    /// the arm has at least as many joints as task rows, √det(Jᵀ·J) when it has fewer
+    /// (docs/kinematics.md §6).
     pub manipulability: f64,
     /// det J of the scaled task Jacobian, when it is square.
     pub determinant: Option<f64>,

@@ -235,7 +235,7 @@ mod tests {
 
     fn camera() -> OrbitCamera {
         let mut camera = OrbitCamera::default();
-        camera.fit(Point3::new(0.0, 0.0, 300.0), 1000.0);
+        camera.fit(Point3::new(0.0, 0.0, 300.0), 1000.0, 800.0 / 600.0);
         camera
     }
 

@@ -97,35 +97,14 @@ impl Viewport {
         ctx.request_repaint();
     }
 
-    /// Frames the whole arm (the base block, every frame origin, the tool) and the target
-    /// for the view's aspect ratio. (The reach circle is not drawn yet, so it is not
-    /// framed: framing it left the UR10 a third of the view.)
+    /// Frames the robot (a sphere of 0.85 reach about a point above the base) for the
+    /// view's aspect ratio, so a narrow or wide view keeps the whole arm in sight.
     fn fit(&mut self, model: &Model, size: egui::Vec2) {
-        let robot = model.robot();
-        let fk = model.fk();
-        let base = &robot.world_from_base;
-        let reach = robot.reach();
-        let [bx, by, bz] = robot
-            .parts
-            .base
-            .unwrap_or([reach * 0.22, reach * 0.22, reach * 0.06]);
-        let mut points: Vec<Point3<f64>> = [(-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0)]
-            .iter()
-            .flat_map(|(sx, sy)| {
-                [0.0, -bz].map(|z| base * Point3::new(sx * bx * 0.5, sy * by * 0.5, z))
-            })
-            .collect();
-        points.extend(
-            fk.base_from_frames
-                .iter()
-                .map(|f| Point3::from(f.translation.vector)),
-        );
-        points.push(Point3::from(fk.tool_position()));
-        points.push(Point3::from(model.target().translation.vector));
+        let reach = model.robot().reach();
+        let base = model.robot().world_from_base.translation.vector;
+        let centre = Point3::from(base + Vector3::new(0.0, 0.0, reach * 0.35));
         let aspect = (size.x / size.y.max(1.0)) as f64;
-        // The margin leaves room for the joint housings and the marker's rings, which are
-        // drawn around these points.
-        self.camera.fit_points(&points, aspect, 0.65);
+        self.camera.fit(centre, reach * 0.85, aspect);
         self.framed_at = Some((model.reframes(), size));
     }
 
