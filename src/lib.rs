@@ -4,11 +4,13 @@
 //!   orientation forms. It has no GUI dependency and runs natively and as wasm.
 //! - `app` (feature `app`) is the eframe/egui application.
 //! - [`api`] is the JSON API over the core (JSON text in and out).
+//! - [`i18n`] is the one catalogue of user-facing text (English, Finnish).
 //! - [`bench`](mod@bench) is the IK benchmark protocol and its statistics, outside the core.
 //! - `js` (feature `js`) is the JavaScript API over the core, through wasm-bindgen.
 
 pub mod api;
 pub mod bench;
+pub mod i18n;
 pub mod kinematics;
 
 #[cfg(feature = "app")]

@@ -69,7 +69,7 @@ fn moving_a_slider_changes_q_and_the_tool_pose_numbers() {
 fn choosing_a_preset_swaps_the_robot() {
     let mut h = harness("");
     assert_eq!(h.state().model().robot().name, "UR10");
-    h.get_by_label("Robot").click();
+    h.get_by_label("Preset").click();
     h.run_steps(2);
     h.get_by_label("Puma 560").click();
     h.run_steps(2);
@@ -342,7 +342,7 @@ fn alone<P: Panel + 'static>(preset: &str, panel: P) -> Harness<'static, Alone<P
 
 #[test]
 fn the_joints_panel_alone_changes_only_the_models_q() {
-    let mut h = alone("rrr", JointsPanel);
+    let mut h = alone("rrr", JointsPanel::default());
     let before = h.state().model.q().to_vec();
     let tool_before = h.state().model.fk().tool_position();
     h.get_by_role_and_label(Role::Slider, "θ2").focus();

@@ -44,7 +44,6 @@ impl IkPanel {
 
 impl Panel for IkPanel {
     fn ui(&mut self, model: &mut Model, ui: &mut egui::Ui, _points: &mut ScreenPoints) {
-        ui.strong("Inverse kinematics");
         egui::Grid::new("ik_controls")
             .num_columns(2)
             .show(ui, |ui| {
@@ -53,7 +52,7 @@ impl Panel for IkPanel {
                 method_menu(model, ui);
                 ui.end_row();
             });
-        ui.horizontal(|ui| {
+        ui.horizontal_wrapped(|ui| {
             if ui.button("Snap target to gripper").clicked() {
                 model.snap_target();
             }
@@ -77,7 +76,7 @@ fn task_menu(model: &mut Model, ui: &mut egui::Ui) {
     let mut task = model.task();
     egui::ComboBox::from_id_salt("ik_task")
         .selected_text(task.label())
-        .width(200.0)
+        .width(ui.available_width().clamp(120.0, 200.0))
         .show_ui(ui, |ui| {
             for t in Task::ALL {
                 ui.selectable_value(&mut task, t, t.label());
@@ -94,7 +93,7 @@ fn method_menu(model: &mut Model, ui: &mut egui::Ui) {
     let mut method = model.method();
     egui::ComboBox::from_id_salt("ik_method")
         .selected_text(method.label())
-        .width(200.0)
+        .width(ui.available_width().clamp(120.0, 200.0))
         .show_ui(ui, |ui| {
             for m in IkMethod::ALL {
                 let enabled = m != IkMethod::ClosedForm || has_closed_form;

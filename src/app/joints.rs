@@ -3,29 +3,41 @@
 
 use crate::kinematics::{Joint, JointKind};
 
-use super::Panel;
+use super::{Panel, tr};
+use crate::i18n::Key;
 use super::hook::ScreenPoints;
 use super::model::Model;
 
-/// The joint sliders. It keeps no state of its own: every value is the model's q.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct JointsPanel;
+/// The joint sliders. Every value is the model's q; the panel keeps only its sliders'
+/// ids, so a shortcut can focus one.
+#[derive(Debug, Clone, Default)]
+pub struct JointsPanel {
+    sliders: Vec<egui::Id>,
+}
+
+impl JointsPanel {
+    /// Gives joint `i`'s slider the keyboard (the arrow keys then move it).
+    pub fn focus(&self, i: usize, ctx: &egui::Context) {
+        if let Some(id) = self.sliders.get(i) {
+            ctx.memory_mut(|m| m.request_focus(*id));
+        }
+    }
+}
 
 impl Panel for JointsPanel {
     /// Draws the sliders; a change moves the arm at once.
     fn ui(&mut self, model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
         ui.horizontal(|ui| {
-            ui.strong("Joints");
             if ui
-                .button("Zero")
-                .on_hover_text("All joints to 0 (or the nearest limit)")
+                .button(tr(model, Key::Zero))
+                .on_hover_text(tr(model, Key::ZeroHint))
                 .clicked()
             {
                 model.set_q_exact(vec![0.0; model.robot().dof()]);
             }
             if ui
-                .button("Home")
-                .on_hover_text("The robot's home pose")
+                .button(tr(model, Key::Home))
+                .on_hover_text(tr(model, Key::HomeHint))
                 .clicked()
             {
                 model.set_q_exact(model.robot().home());
@@ -33,12 +45,17 @@ impl Panel for JointsPanel {
         });
         let mut q = model.q().to_vec();
         let mut changed = false;
+        self.sliders.clear();
+        // The slider fills the column: the label and the value box beside it stay.
+        let rail = (ui.available_width() - 130.0).clamp(80.0, 320.0);
+        ui.spacing_mut().slider_width = rail;
         egui::Grid::new("joint_sliders")
             .num_columns(2)
             .striped(true)
             .show(ui, |ui| {
                 for (i, joint) in model.robot().joints.iter().enumerate() {
                     let response = joint_slider(ui, model, i, joint, &mut q[i]);
+                    self.sliders.push(response.id);
                     // Where the slider's minimum and maximum values sit, for the browser
                     // tests: egui insets the rail's ends by the handle's radius, a 2.5th
                     // of the slider's height.

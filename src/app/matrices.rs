@@ -87,23 +87,23 @@ fn matrix_block(
         ui.visuals().widgets.noninteractive.bg_stroke
     });
     frame.show(ui, |ui| {
-        let header = ui.horizontal(|ui| {
+        // Left to right and wrapping: a narrow column puts the copy buttons under the
+        // title instead of over it.
+        let header = ui.horizontal_wrapped(|ui| {
             let title = ui.strong(title).on_hover_text(hover);
-            ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                type Format = fn(&DMatrix<f64>, usize) -> String;
-                let formats: [(&str, Format); 3] =
-                    [("NumPy", to_numpy), ("LaTeX", to_latex), ("Text", to_plain)];
-                for (label, format) in formats {
-                    if ui
-                        .small_button(label)
-                        .on_hover_text(format!("Copy as {label}"))
-                        .clicked()
-                    {
-                        ui.ctx().copy_text(format(m, decimals));
-                    }
+            ui.label(egui::RichText::new("copy:").weak());
+            type Format = fn(&DMatrix<f64>, usize) -> String;
+            let formats: [(&str, Format); 3] =
+                [("Text", to_plain), ("LaTeX", to_latex), ("NumPy", to_numpy)];
+            for (label, format) in formats {
+                if ui
+                    .small_button(label)
+                    .on_hover_text(format!("Copy as {label}"))
+                    .clicked()
+                {
+                    ui.ctx().copy_text(format(m, decimals));
                 }
-                ui.label("copy:");
-            });
+            }
             title.hovered()
         });
         hovered |= header.inner || header.response.hovered();
@@ -392,7 +392,6 @@ impl Panel for MatricesPanel {
 
 fn precision_row(model: &mut Model, ui: &mut egui::Ui) {
     ui.horizontal(|ui| {
-        ui.strong("Matrices");
         let label = ui.label("decimals:");
         let mut precision = model.settings().precision;
         if ui

@@ -20,11 +20,14 @@ pub mod format;
 pub mod hook;
 pub mod ik_panel;
 pub mod joints;
+pub mod layout;
 pub mod matrices;
 pub mod model;
 pub mod robot_panel;
 pub mod scene;
 pub mod session;
+pub mod settings;
+pub mod shell;
 pub mod style;
 pub mod top_bar;
 pub mod viewport;
@@ -34,6 +37,19 @@ pub mod web;
 use hook::ScreenPoints;
 use model::{Message, Model};
 use session::Session;
+use settings::PanelKind;
+
+use crate::i18n::Key;
+
+/// The text of `key` in the model's language.
+pub fn tr(model: &Model, key: Key) -> &'static str {
+    crate::i18n::text(model.settings().lang, key)
+}
+
+/// The text of `key` in the model's language, its places filled by `args`.
+pub fn trf(model: &Model, key: Key, args: &[&dyn std::fmt::Display]) -> String {
+    crate::i18n::fill(model.settings().lang, key, args)
+}
 
 /// Main-thread milliseconds of one frame of the app, in parts.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -56,10 +72,11 @@ const RECENT_FRAMES: usize = 600;
 /// The whole app: the model, the panels, and the frame's bookkeeping.
 pub struct ArmLabApp {
     model: Model,
-    joints: joints::JointsPanel,
-    ik_panel: ik_panel::IkPanel,
-    robot_panel: robot_panel::RobotPanel,
-    matrices: matrices::MatricesPanel,
+    panels: shell::SidePanels,
+    /// The narrow layout's open sheet.
+    sheet: Option<PanelKind>,
+    /// Touch screen: larger hit areas (from the browser's pointer, or the first touch).
+    touch: bool,
     viewport: viewport::Viewport,
     points: ScreenPoints,
     /// The parts of the frame being drawn, filled in as they run.
@@ -75,7 +92,7 @@ impl ArmLabApp {
     /// Creates the app, opening the state of `hash` (a URL hash) when it is valid.
     pub fn new(cc: &eframe::CreationContext<'_>, hash: &str) -> Self {
         style::install_fonts(&cc.egui_ctx);
-        style::install(&cc.egui_ctx, false);
+        style::install(&cc.egui_ctx, false, false);
         let mut app = ArmLabApp::with_session(Session::default_session());
         app.viewport = viewport::Viewport::new(cc.wgpu_render_state.as_ref());
         app.open_hash(hash);
@@ -86,11 +103,15 @@ impl ArmLabApp {
     pub fn with_session(session: Session) -> Self {
         let model = Model::new(session);
         ArmLabApp {
-            robot_panel: robot_panel::RobotPanel::new(model.robot()),
+            panels: shell::SidePanels {
+                robot: robot_panel::RobotPanel::new(model.robot()),
+                joints: joints::JointsPanel::default(),
+                ik: ik_panel::IkPanel::default(),
+                matrices: matrices::MatricesPanel::default(),
+            },
             model,
-            joints: joints::JointsPanel,
-            ik_panel: ik_panel::IkPanel::default(),
-            matrices: matrices::MatricesPanel::default(),
+            sheet: None,
+            touch: false,
             viewport: viewport::Viewport::new(None),
             points: ScreenPoints::default(),
             timing: FrameTime::default(),
@@ -133,17 +154,38 @@ impl ArmLabApp {
 
     /// The robot panel (its DH editor and file dialog).
     pub fn robot_panel(&self) -> &robot_panel::RobotPanel {
-        &self.robot_panel
+        &self.panels.robot
     }
 
     /// The robot panel, to open its file dialog (tests).
     pub fn robot_panel_mut(&mut self) -> &mut robot_panel::RobotPanel {
-        &mut self.robot_panel
+        &mut self.panels.robot
     }
 
     /// The IK panel (its replay).
     pub fn ik_panel(&self) -> &ik_panel::IkPanel {
-        &self.ik_panel
+        &self.panels.ik
+    }
+
+    /// The narrow layout's open sheet, if any.
+    pub fn sheet(&self) -> Option<PanelKind> {
+        self.sheet
+    }
+
+    /// Opens (or closes, with `None`) the narrow layout's sheet.
+    pub fn set_sheet(&mut self, sheet: Option<PanelKind>) {
+        self.sheet = sheet;
+    }
+
+    /// Whether the UI is sized for touch (hit areas at least 40 px tall).
+    pub fn touch(&self) -> bool {
+        self.touch
+    }
+
+    /// Sizes the UI for touch (the page sets it for a coarse pointer; the first touch
+    /// sets it too).
+    pub fn set_touch(&mut self, touch: bool) {
+        self.touch = touch;
     }
 
     /// The named screen points drawn last frame.
@@ -187,7 +229,9 @@ impl ArmLabApp {
         self.frame_ms.push_back(t);
     }
 
-    /// Draws the whole UI: top bar, joint, IK and robot panel, matrices, viewport.
+    /// Draws the whole UI for the screen: the top bar, the side panels as the layout
+    /// plan places them (columns when wide, a bottom sheet when narrow), and the 3D view
+    /// in the room left.
     pub fn show(
         &mut self,
         ui: &mut egui::Ui,
@@ -196,32 +240,32 @@ impl ArmLabApp {
         let start = hook::now_ms();
         self.frame += 1;
         self.points.clear();
-        style::install(ui.ctx(), self.model.settings().presentation);
+        let ctx = ui.ctx().clone();
+        self.touch |= ctx.input(|i| i.any_touches());
+        style::install(&ctx, self.model.settings().presentation, self.touch);
+        let plan = layout::plan(ui.max_rect().size(), ctx.zoom_factor(), self.model.settings());
+        let narrow = plan.mode == layout::Mode::Narrow;
+        if let Some(action) = self.shortcuts(&ctx, narrow) {
+            self.viewport.apply(action, &ctx);
+        }
         egui::Panel::top("armlab_top").show(ui, |ui| {
-            if let Some(action) = top_bar::ui(&mut self.model, ui) {
+            if let Some(action) = top_bar::ui(&mut self.model, ui, narrow) {
                 self.viewport.apply(action, ui.ctx());
             }
         });
-        egui::Panel::left("armlab_left")
-            .default_size(330.0)
-            .resizable(true)
-            .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| {
-                    self.joints.ui(&mut self.model, ui, &mut self.points);
-                    ui.separator();
-                    self.ik_panel.ui(&mut self.model, ui, &mut self.points);
-                    ui.separator();
-                    self.robot_panel.ui(&mut self.model, ui, &mut self.points);
-                });
-            });
-        egui::Panel::right("armlab_right")
-            .default_size(460.0)
-            .resizable(true)
-            .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| {
-                    self.matrices.ui(&mut self.model, ui, &mut self.points);
-                });
-            });
+        match plan.mode {
+            layout::Mode::Wide => {
+                self.panels
+                    .wide(&plan, &mut self.model, ui, &mut self.points);
+            }
+            layout::Mode::Narrow => self.panels.narrow(
+                &plan,
+                &mut self.sheet,
+                &mut self.model,
+                ui,
+                &mut self.points,
+            ),
+        }
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE.fill(style::background(self.model.settings().presentation)))
             .show(ui, |ui| {
@@ -234,15 +278,57 @@ impl ArmLabApp {
                 );
             });
         #[cfg(not(target_arch = "wasm32"))]
-        self.robot_panel.show_file_dialog(&mut self.model, ui.ctx());
+        self.panels.robot.show_file_dialog(&mut self.model, &ctx);
         // Last, once every text of the frame has its glyphs in the font atlas.
-        matrices::finish_numbers(ui.ctx());
+        matrices::finish_numbers(&ctx);
         #[cfg(target_arch = "wasm32")]
         {
-            web::store_hash(self, ui.ctx());
-            web::publish(self, ui.ctx());
+            web::store_hash(self, &ctx);
+            web::publish(self, &ctx);
         }
         self.record_frame_time(hook::now_ms() - start);
+    }
+
+    /// The keyboard shortcuts (none while a text field has the keyboard): F frames the
+    /// arm, P toggles presentation mode, 1–9 focus joint N's slider (the arrow keys then
+    /// move it), Escape closes the narrow layout's sheet.
+    fn shortcuts(&mut self, ctx: &egui::Context, narrow: bool) -> Option<top_bar::ViewAction> {
+        if ctx.text_edit_focused() {
+            return None;
+        }
+        let pressed = |key| ctx.input_mut(|i| i.consume_key(egui::Modifiers::NONE, key));
+        if pressed(egui::Key::P) {
+            let mut settings = self.model.settings().clone();
+            settings.presentation = !settings.presentation;
+            self.model.set_settings(settings);
+        }
+        if pressed(egui::Key::Escape) {
+            self.sheet = None;
+        }
+        const DIGITS: [egui::Key; 9] = [
+            egui::Key::Num1,
+            egui::Key::Num2,
+            egui::Key::Num3,
+            egui::Key::Num4,
+            egui::Key::Num5,
+            egui::Key::Num6,
+            egui::Key::Num7,
+            egui::Key::Num8,
+            egui::Key::Num9,
+        ];
+        for (i, key) in DIGITS.into_iter().enumerate() {
+            if i < self.model.robot().dof() && pressed(key) {
+                if narrow {
+                    self.sheet = Some(PanelKind::Joints);
+                } else {
+                    let mut settings = self.model.settings().clone();
+                    settings.set_panel_open(PanelKind::Joints, true);
+                    self.model.set_settings(settings);
+                }
+                self.panels.joints.focus(i, ctx);
+            }
+        }
+        pressed(egui::Key::F).then_some(top_bar::ViewAction::Fit)
     }
 }
 

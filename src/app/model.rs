@@ -14,30 +14,8 @@ use crate::kinematics::ik::{
 use crate::kinematics::{ForwardKinematics, IkMethod, Robot, Task, geometric_jacobian_into};
 
 use super::session::{RobotSource, Session};
-
-/// Display preferences.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Settings {
-    /// Angles in degrees (true) or radians.
-    pub degrees: bool,
-    /// Draw the DH frames (x red, y green, z blue).
-    pub show_frames: bool,
-    /// Decimals in the matrices.
-    pub precision: usize,
-    /// Large fonts and high contrast for projectors.
-    pub presentation: bool,
-}
-
-impl Default for Settings {
-    fn default() -> Self {
-        Settings {
-            degrees: true,
-            show_frames: true,
-            precision: 3,
-            presentation: false,
-        }
-    }
-}
+pub use super::settings::Settings;
+use super::settings::{CameraPose, DisplayPatch};
 
 /// The IK state as the user sees it: the marker's colour and the IK panel's numbers.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -137,6 +115,8 @@ pub struct Model {
     message: Option<Message>,
     loads: u64,
     reframes: u64,
+    camera: Option<CameraPose>,
+    camera_loads: u64,
 }
 
 impl Model {
@@ -158,6 +138,8 @@ impl Model {
             message: None,
             loads: 0,
             reframes: 0,
+            camera: None,
+            camera_loads: 0,
         };
         model.open(session);
         model
@@ -257,7 +239,20 @@ impl Model {
             target: Some(self.target),
             task: self.task,
             method: self.method,
+            display: DisplayPatch::of(&self.settings),
+            camera: self.camera,
         }
+    }
+
+    /// The camera as the 3D view last reported it (for the link).
+    pub fn camera(&self) -> Option<CameraPose> {
+        self.camera
+    }
+
+    /// Counts the cameras a link asked for: the 3D view takes [`Model::camera`] when this
+    /// changes.
+    pub fn camera_loads(&self) -> u64 {
+        self.camera_loads
     }
 
     /// The link hash of the session (without `#`).
@@ -270,6 +265,11 @@ impl Model {
     /// Replaces the whole session (a link, a stored session): robot, q, target, task and
     /// method; the target sits at the tool when the session names none.
     pub fn open(&mut self, session: Session) {
+        session.display.apply(&mut self.settings);
+        if session.camera.is_some() {
+            self.camera = session.camera;
+            self.camera_loads += 1;
+        }
         self.robot = session.robot;
         self.source = session.source;
         self.q = session.q;
@@ -381,6 +381,11 @@ impl Model {
     pub fn set_method(&mut self, method: IkMethod) {
         self.method = method;
         self.keep_method_available();
+    }
+
+    /// Notes where the 3D view's camera is (the view calls this when it moves).
+    pub fn note_camera(&mut self, camera: CameraPose) {
+        self.camera = Some(camera);
     }
 
     /// Sets the display settings.

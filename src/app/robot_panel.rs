@@ -219,12 +219,12 @@ impl RobotPanel {
             RobotSource::Custom => None,
         };
         let mut chosen = None;
-        egui::ComboBox::new("preset_chooser", "Robot")
+        egui::ComboBox::new("preset_chooser", "Preset")
             .selected_text(match current {
                 Some(_) => model.robot().name.clone(),
                 None => format!("{} (edited)", model.robot().name),
             })
-            .width(230.0)
+            .width((ui.available_width() - 60.0).clamp(120.0, 230.0))
             .show_ui(ui, |ui| {
                 for (id, name) in preset_names() {
                     if ui
@@ -244,7 +244,7 @@ impl RobotPanel {
     }
 
     fn file_buttons(&mut self, model: &mut Model, ui: &mut egui::Ui) {
-        ui.horizontal(|ui| {
+        ui.horizontal_wrapped(|ui| {
             #[cfg(target_arch = "wasm32")]
             {
                 if ui.button("Save robot file").clicked() {
@@ -408,7 +408,7 @@ fn dh_table(
 /// The convention's radio buttons; returns whether it changed.
 fn convention_row(editor: &mut DhEditor, robot_convention: Convention, ui: &mut egui::Ui) -> bool {
     let mut changed = false;
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         ui.label("Convention:");
         let mut conv = editor.convention.unwrap_or(robot_convention);
         changed |= ui
@@ -440,8 +440,15 @@ fn dh_row(
     let mut changed = kind_menu(ui, i, row, number.id);
     for (c, cell) in row.cells.iter_mut().enumerate() {
         let bad = matches!(error, Some((r, col, _)) if *r == i && *col == c);
+        // As wide as its value (the column scrolls; its width is bounded by the layout).
+        let font = egui::TextStyle::Body.resolve(ui.style());
+        let text_width = ui
+            .painter()
+            .layout_no_wrap(cell.clone(), font, egui::Color32::WHITE)
+            .size()
+            .x;
         let mut edit = egui::TextEdit::singleline(cell)
-            .desired_width(52.0)
+            .desired_width((text_width + 6.0).clamp(52.0, 400.0))
             .id_salt(("dh", i, c))
             .hint_text(COLUMNS[c]);
         if bad {

@@ -8,7 +8,13 @@
 //!   radians (`R = Rz(α)·Ry(β)·Rx(γ)`);
 //! - `task`: `position`, `axis-x`, `axis-y`, `axis-z` or `full` (without it, the robot's
 //!   default: position only below six joints, the full pose from six);
-//! - `method`: `dls`, `pinv`, `gradient` or `closed`.
+//! - `method`: `dls`, `pinv`, `gradient` or `closed`;
+//! - display: `units=deg|rad`, `frames=on|off`, `decimals=0..8`, `present=on|off`,
+//!   `lang=en|fi`, `panels=` and `ppanels=` (the open panels of the normal and the
+//!   presentation layout: `joints,ik,matrices,robot` or `none`); each is optional, and a
+//!   field a link lacks keeps the viewer's own setting (the language: the browser's);
+//! - `camera=yaw,pitch,distance,x,y,z`: the 3D view's direction (radians), distance and
+//!   focus (robot units); without it the view frames the arm.
 
 use nalgebra::IsometryMatrix3;
 use thiserror::Error;
@@ -18,6 +24,7 @@ use crate::kinematics::{
 };
 
 use super::format::number_list;
+use super::settings::{CameraPose, DisplayPatch};
 
 /// Decimals of the numbers a link writes (1e-6 rad, 1e-6 of a length unit).
 const LINK_DECIMALS: usize = 6;
@@ -41,7 +48,7 @@ pub enum LinkError {
     /// A list item that is not a finite number.
     #[error("the link's {field} has \"{text}\", which is not a number")]
     NotANumber {
-        /// `q` or `target`.
+        /// `q`, `target` or `camera`.
         field: &'static str,
         /// The item as written.
         text: String,
@@ -52,6 +59,19 @@ pub enum LinkError {
     /// A task id that is not known.
     #[error("the link's task \"{0}\" is not known")]
     UnknownTask(String),
+    /// A display field whose value is not one of those allowed.
+    #[error("the link's {field} is \"{text}\"; it can be {allowed}")]
+    BadValue {
+        /// The field's key.
+        field: String,
+        /// The value as written.
+        text: String,
+        /// The values it can have.
+        allowed: &'static str,
+    },
+    /// A camera that is not six numbers with a positive distance.
+    #[error("the link's camera needs six numbers (yaw, pitch, distance, x, y, z), the distance above 0")]
+    BadCamera,
     /// A method id that is not known.
     #[error("the link's method \"{0}\" is not known")]
     UnknownMethod(String),
@@ -90,6 +110,10 @@ pub struct Session {
     pub task: Task,
     /// IK method.
     pub method: IkMethod,
+    /// The display settings the link names (the rest keep the viewer's own).
+    pub display: DisplayPatch,
+    /// The camera, if the link names one.
+    pub camera: Option<CameraPose>,
 }
 
 /// The preset the app opens with, and falls back to when a link is broken.
@@ -107,6 +131,8 @@ impl Session {
             target: None,
             task: Task::default_for(robot_dof),
             method: IkMethod::DampedLeastSquares,
+            display: DisplayPatch::default(),
+            camera: None,
         })
     }
 
@@ -143,6 +169,10 @@ impl Session {
         }
         parts.push(format!("task={}", self.task.id()));
         parts.push(format!("method={}", self.method.id()));
+        parts.extend(self.display.to_parts());
+        if let Some(c) = &self.camera {
+            parts.push(format!("camera={}", number_list(&c.to_array(), LINK_DECIMALS)));
+        }
         parts.join("&")
     }
 
@@ -164,6 +194,8 @@ impl Session {
                     source: RobotSource::Custom,
                     target: None,
                     method: parts.method,
+                    display: DisplayPatch::default(),
+                    camera: None,
                 }
             }
             Some(id) => Session::for_preset(id)?,
@@ -177,6 +209,8 @@ impl Session {
         // A link that names no task opens the robot's own default task.
         session.task = parts.task.unwrap_or(session.task);
         session.method = parts.method;
+        session.display = parts.display;
+        session.camera = parts.camera;
         Ok(Some(session))
     }
 }
@@ -189,6 +223,8 @@ struct LinkParts {
     target: Option<[f64; 6]>,
     task: Option<Task>,
     method: IkMethod,
+    display: DisplayPatch,
+    camera: Option<CameraPose>,
 }
 
 impl LinkParts {
@@ -200,6 +236,8 @@ impl LinkParts {
             target: None,
             task: None,
             method: IkMethod::DampedLeastSquares,
+            display: DisplayPatch::default(),
+            camera: None,
         };
         for part in hash.split('&').filter(|p| !p.is_empty()) {
             let (key, value) = part
@@ -223,7 +261,24 @@ impl LinkParts {
                     parts.method = IkMethod::from_id(value)
                         .ok_or_else(|| LinkError::UnknownMethod(value.to_string()))?;
                 }
-                other => return Err(LinkError::UnknownPart(other.to_string())),
+                "camera" => {
+                    let c: [f64; 6] = parse_numbers(value, "camera")?
+                        .try_into()
+                        .map_err(|_| LinkError::BadCamera)?;
+                    parts.camera = Some(CameraPose::from_array(c).ok_or(LinkError::BadCamera)?);
+                }
+                other => {
+                    let read = parts.display.read(other, value).map_err(|allowed| {
+                        LinkError::BadValue {
+                            field: other.to_string(),
+                            text: value.to_string(),
+                            allowed,
+                        }
+                    })?;
+                    if !read {
+                        return Err(LinkError::UnknownPart(other.to_string()));
+                    }
+                }
             }
         }
         Ok(parts)

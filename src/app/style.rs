@@ -58,15 +58,33 @@ pub fn install_fonts(ctx: &egui::Context) {
     ctx.set_fonts(fonts);
 }
 
-/// Applies the dark theme, larger and higher-contrast in presentation mode. Cheap to call
-/// every frame: it only writes when the mode changed.
-pub fn install(ctx: &egui::Context, presentation: bool) {
-    let id = egui::Id::unique("armlab_presentation_mode");
-    let current: Option<bool> = ctx.data(|d| d.get_temp(id));
-    if current == Some(presentation) {
+/// The zoom of presentation mode for a screen `css_width` CSS pixels wide: large text,
+/// but the 3D view and a panel must still fit a 1024-pixel projector.
+pub fn presentation_zoom(css_width: f32) -> f32 {
+    (css_width / 820.0).clamp(1.25, 1.5)
+}
+
+/// The height of every clickable thing on a touch screen (points; one point is one CSS
+/// pixel at zoom 1): a thumb needs about 40.
+pub const TOUCH_TARGET: f32 = 40.0;
+
+/// Applies the dark theme, larger and higher-contrast in presentation mode, with
+/// thumb-sized controls on a touch screen. Cheap to call every frame: it only writes when
+/// the mode, the touch sizing or the screen's zoom step changed.
+pub fn install(ctx: &egui::Context, presentation: bool, touch: bool) {
+    let css_width = ctx.content_rect().width() * ctx.zoom_factor();
+    let zoom = if presentation {
+        presentation_zoom(css_width)
+    } else {
+        1.0
+    };
+    let id = egui::Id::unique("armlab_style_mode");
+    let wanted = (presentation, touch, (zoom * 100.0).round() as i32);
+    let current: Option<(bool, bool, i32)> = ctx.data(|d| d.get_temp(id));
+    if current == Some(wanted) {
         return;
     }
-    ctx.data_mut(|d| d.insert_temp(id, presentation));
+    ctx.data_mut(|d| d.insert_temp(id, wanted));
     let mut visuals = egui::Visuals::dark();
     visuals.panel_fill = if presentation {
         Color32::from_rgb(8, 8, 8)
@@ -83,5 +101,18 @@ pub fn install(ctx: &egui::Context, presentation: bool) {
     // colours the lecture sees (nor the browser tests' comparison with native).
     ctx.set_theme(egui::Theme::Dark);
     ctx.set_visuals_of(egui::Theme::Dark, visuals);
-    ctx.set_zoom_factor(if presentation { 1.4 } else { 1.0 });
+    ctx.all_styles_mut(|style| {
+        let normal = egui::style::Spacing::default();
+        let spacing = &mut style.spacing;
+        if touch {
+            spacing.interact_size.y = TOUCH_TARGET;
+            spacing.button_padding = egui::vec2(10.0, 10.0);
+            spacing.scroll.bar_width = 14.0;
+        } else {
+            spacing.interact_size = normal.interact_size;
+            spacing.button_padding = normal.button_padding;
+            spacing.scroll = normal.scroll;
+        }
+    });
+    ctx.set_zoom_factor(zoom);
 }

@@ -1,11 +1,13 @@
-//! The top bar: the robot's name, the display toggles, the camera buttons, "Copy link",
-//! and the message of the moment drawn by its kind.
+//! The top bar: the robot's name, the display toggles, the language, the camera buttons,
+//! "Copy link", the shortcut keys, and the message of the moment drawn by its kind. On a
+//! narrow screen everything but the name and "Fit" goes into a menu.
 
+use crate::i18n::{Key, Lang};
 use crate::render::camera::StandardView;
 
 use super::hook;
 use super::model::{Message, MessageKind, Model};
-use super::style;
+use super::{style, tr};
 
 /// What the top bar asks of the 3D view.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -17,34 +19,23 @@ pub enum ViewAction {
 }
 
 /// Draws the top bar; returns what it asks of the 3D view.
-pub fn ui(model: &mut Model, ui: &mut egui::Ui) -> Option<ViewAction> {
+pub fn ui(model: &mut Model, ui: &mut egui::Ui, narrow: bool) -> Option<ViewAction> {
     let mut action = None;
     ui.horizontal_wrapped(|ui| {
-        ui.heading("ArmLab");
+        if !narrow {
+            ui.heading(tr(model, Key::AppName));
+        }
         ui.label(egui::RichText::new(&model.robot().name).strong());
         ui.separator();
-        settings_toggles(model, ui);
-        ui.separator();
-        if ui.button("Fit").on_hover_text("Frame the robot").clicked() {
+        if ui.button(tr(model, Key::Fit)).on_hover_text(tr(model, Key::FitHint)).clicked() {
             action = Some(ViewAction::Fit);
         }
-        for (label, view) in [
-            ("Top", StandardView::Top),
-            ("Front", StandardView::Front),
-            ("Side", StandardView::Side),
-            ("3D", StandardView::Iso),
-        ] {
-            if ui.button(label).clicked() {
-                action = Some(ViewAction::View(view));
-            }
-        }
-        ui.separator();
-        if ui
-            .button("Copy link")
-            .on_hover_text("A link that opens this robot, pose and target")
-            .clicked()
-        {
-            ui.ctx().copy_text(hook::share_link(&model.hash()));
+        if narrow {
+            ui.menu_button(tr(model, Key::Menu), |ui| {
+                action = action.or(controls(model, ui));
+            });
+        } else {
+            action = action.or(controls(model, ui));
         }
     });
     if let Some(message) = model.message().cloned() {
@@ -53,14 +44,53 @@ pub fn ui(model: &mut Model, ui: &mut egui::Ui) -> Option<ViewAction> {
     action
 }
 
+/// The toggles, the language, the standard views and "Copy link".
+fn controls(model: &mut Model, ui: &mut egui::Ui) -> Option<ViewAction> {
+    let mut action = None;
+    settings_toggles(model, ui);
+    ui.separator();
+    ui.menu_button(tr(model, Key::ViewMenu), |ui| {
+        for (key, view) in [
+            (Key::ViewTop, StandardView::Top),
+            (Key::ViewFront, StandardView::Front),
+            (Key::ViewSide, StandardView::Side),
+            (Key::View3d, StandardView::Iso),
+        ] {
+            if ui.button(tr(model, key)).clicked() {
+                action = Some(ViewAction::View(view));
+            }
+        }
+    });
+    ui.separator();
+    if ui
+        .button(tr(model, Key::CopyLink))
+        .on_hover_text(tr(model, Key::CopyLinkHint))
+        .clicked()
+    {
+        ui.ctx().copy_text(hook::share_link(&model.hash()));
+        model.set_message(Message::info(tr(model, Key::LinkCopied)));
+    }
+    action
+}
+
 fn settings_toggles(model: &mut Model, ui: &mut egui::Ui) {
     let mut settings = model.settings().clone();
-    ui.toggle_value(&mut settings.degrees, "Degrees")
-        .on_hover_text("Show angles in degrees (off: radians)");
-    ui.toggle_value(&mut settings.show_frames, "DH frames")
-        .on_hover_text("Draw every DH frame: x red, y green, z blue");
-    ui.toggle_value(&mut settings.presentation, "Presentation")
-        .on_hover_text("Large fonts and high contrast for a projector");
+    ui.toggle_value(&mut settings.degrees, tr(model, Key::Degrees))
+        .on_hover_text(tr(model, Key::DegreesHint));
+    ui.toggle_value(&mut settings.show_frames, tr(model, Key::DhFrames))
+        .on_hover_text(tr(model, Key::DhFramesHint));
+    ui.toggle_value(&mut settings.presentation, tr(model, Key::Presentation))
+        .on_hover_text(tr(model, Key::PresentationHint));
+    egui::ComboBox::from_id_salt("language")
+        .selected_text(settings.lang.name())
+        .width(80.0)
+        .show_ui(ui, |ui| {
+            for lang in Lang::ALL {
+                ui.selectable_value(&mut settings.lang, lang, lang.name());
+            }
+        })
+        .response
+        .on_hover_text(tr(model, Key::LanguageHint));
     if &settings != model.settings() {
         model.set_settings(settings);
     }
@@ -72,9 +102,9 @@ fn message_line(model: &mut Model, ui: &mut egui::Ui, message: &Message) {
         MessageKind::Warning => ("⚠", style::WARNING),
         MessageKind::Error => ("⚠", style::ERROR),
     };
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         ui.colored_label(color, format!("{sign} {}", message.text));
-        if ui.small_button("Dismiss").clicked() {
+        if ui.small_button(tr(model, Key::Dismiss)).clicked() {
             model.dismiss_message();
         }
     });

@@ -21,6 +21,7 @@ use crate::render::camera::OrbitCamera;
 use super::FrameTime;
 use super::hook::{self, ScreenPoints};
 use super::model::{HoverSource, Model};
+use super::settings::CameraPose;
 use super::scene::{self, MarkerLook, handle_px};
 use super::style;
 use super::top_bar::ViewAction;
@@ -42,6 +43,8 @@ pub struct Viewport {
     hover: Option<Handle>,
     /// The model's reframe count and the view's size the camera last framed the arm at.
     framed_at: Option<(u64, egui::Vec2)>,
+    /// The model's camera-load count last applied (a link's camera).
+    camera_loaded: u64,
     rect: Option<Rect>,
     grid_step: f64,
     rendered: bool,
@@ -57,6 +60,7 @@ impl Viewport {
             drag: None,
             hover: None,
             framed_at: None,
+            camera_loaded: 0,
             rect: None,
             grid_step: 0.0,
             rendered: false,
@@ -118,6 +122,7 @@ impl Viewport {
         timing: &mut FrameTime,
     ) {
         let rect = ui.available_rect_before_wrap();
+        self.take_link_camera(model, rect.size());
         // Framed anew on load, on a robot change, on Fit and when the view's size changes.
         if self.framed_at != Some((model.reframes(), rect.size())) {
             self.fit(model, rect.size());
@@ -141,10 +146,41 @@ impl Viewport {
         }
         self.update_hover(model, &response, &axes);
         self.draw_scene(model, ui, rect, render_state, &axes, timing);
-        overlay::draw(model, &ui.painter_at(rect), rect, self.grid_step);
+        let touch = ui.spacing().interact_size.y >= style::TOUCH_TARGET;
+        overlay::draw(model, &ui.painter_at(rect), rect, self.grid_step, touch);
         self.publish_points(model, rect, &axes, points);
         if response.hovered() && self.hover.is_some() {
             ui.ctx().set_cursor_icon(egui::CursorIcon::Grab);
+        }
+        let pose = self.camera_pose();
+        if model.camera() != Some(pose) {
+            model.note_camera(pose);
+        }
+    }
+
+    /// Where the camera is, as a link writes it.
+    pub fn camera_pose(&self) -> CameraPose {
+        let c = &self.camera;
+        CameraPose {
+            yaw: c.yaw,
+            pitch: c.pitch,
+            distance: c.distance,
+            focus: [c.focus.x, c.focus.y, c.focus.z],
+        }
+    }
+
+    /// Takes the camera a link named (instead of framing the arm), once per link.
+    fn take_link_camera(&mut self, model: &Model, size: egui::Vec2) {
+        if self.camera_loaded == model.camera_loads() {
+            return;
+        }
+        self.camera_loaded = model.camera_loads();
+        if let Some(pose) = model.camera() {
+            self.camera.yaw = pose.yaw;
+            self.camera.pitch = pose.pitch;
+            self.camera.distance = pose.distance;
+            self.camera.focus = Point3::from(pose.focus);
+            self.framed_at = Some((model.reframes(), size));
         }
     }
 

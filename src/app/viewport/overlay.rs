@@ -1,15 +1,17 @@
-//! Text drawn over the 3D picture: the grid's scale and the controls, the IK status in
-//! its colour, and the highlighted joint.
+//! Text drawn over the 3D picture: the grid's scale, the controls and the shortcut keys,
+//! the IK status in its colour, and the highlighted joint. Every line wraps within the
+//! view, so a phone shows all of it.
 
 use egui::{Color32, Rect};
 
 use crate::app::format::number;
 use crate::app::model::Model;
-use crate::app::style;
+use crate::app::{style, tr, trf};
+use crate::i18n::Key;
 use crate::kinematics::ik::Reach;
 
-/// Draws the labels over the picture.
-pub fn draw(model: &Model, painter: &egui::Painter, rect: Rect, grid_step: f64) {
+/// Draws the labels over the picture; `touch` names finger gestures instead of the mouse.
+pub fn draw(model: &Model, painter: &egui::Painter, rect: Rect, grid_step: f64, touch: bool) {
     let presentation = model.settings().presentation;
     let unit = model.robot().length_unit.symbol();
     let small = egui::FontId::proportional(if presentation { 15.0 } else { 12.0 });
@@ -18,41 +20,34 @@ pub fn draw(model: &Model, painter: &egui::Painter, rect: Rect, grid_step: f64) 
     } else {
         Color32::from_gray(200)
     };
-    painter.text(
-        rect.left_bottom() + egui::vec2(10.0, -10.0),
-        egui::Align2::LEFT_BOTTOM,
-        format!(
-            "grid {} {unit}   ·   drag: orbit   right-drag: pan   wheel: zoom",
-            number(grid_step, 4)
-        ),
-        small.clone(),
+    let wrap = (rect.width() - 20.0).max(40.0);
+    let controls = tr(model, if touch { Key::TouchControls } else { Key::MouseControls });
+    let mut bottom = trf(model, Key::GridControls, &[&number(grid_step, 4), &unit, &controls]);
+    if !touch {
+        bottom = format!("{bottom}\n{}", tr(model, Key::ShortcutHint));
+    }
+    let galley = painter.layout(bottom, small.clone(), text_color, wrap);
+    painter.galley(
+        rect.left_bottom() + egui::vec2(10.0, -10.0 - galley.size().y),
+        galley,
         text_color,
     );
     let reach = model.ik().reach;
     let status = match reach {
-        Reach::Reached => "target reached",
-        Reach::OutOfReach => "target out of reach: the arm stretches toward it",
-        Reach::Pending => "drag the target ball, its arrows or rings",
+        Reach::Reached => Key::StatusReached,
+        Reach::OutOfReach => Key::StatusOutOfReach,
+        Reach::Pending => Key::StatusPending,
     };
-    painter.text(
-        rect.left_top() + egui::vec2(10.0, 10.0),
-        egui::Align2::LEFT_TOP,
-        status,
-        small.clone(),
-        style::reach_color(reach),
-    );
+    let color = style::reach_color(reach);
+    let galley = painter.layout(tr(model, status).to_owned(), small.clone(), color, wrap);
+    let status_height = galley.size().y;
+    painter.galley(rect.left_top() + egui::vec2(10.0, 10.0), galley, color);
     if let Some(link) = model.hovered_link()
         && let Some(joint) = model.robot().joints.get(link.wrapping_sub(1))
     {
-        painter.text(
-            rect.right_top() + egui::vec2(-10.0, 10.0),
-            egui::Align2::RIGHT_TOP,
-            format!(
-                "joint {link}: {} — A_{link} and T_0{link} highlighted",
-                joint.name
-            ),
-            small,
-            style::HIGHLIGHT,
-        );
+        let text = trf(model, Key::JointHighlighted, &[&link, &joint.name]);
+        let galley = painter.layout(text, small, style::HIGHLIGHT, wrap);
+        let at = rect.right_top() + egui::vec2(-10.0 - galley.size().x, 14.0 + status_height);
+        painter.galley(at, galley, style::HIGHLIGHT);
     }
 }

@@ -1,0 +1,366 @@
+//! Display settings: angle units, DH frames, decimals, presentation mode, language, which
+//! panels are open, and the camera. A link carries all of them (`Display`), so a
+//! lecturer's link opens the same view on every screen.
+
+use crate::i18n::Lang;
+
+/// A panel the user can open and close.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum PanelKind {
+    /// The joint sliders.
+    Joints,
+    /// The IK target, task, method and solve.
+    Ik,
+    /// The matrices and the Jacobian.
+    Matrices,
+    /// The robot: presets, the DH table, files.
+    Robot,
+}
+
+impl PanelKind {
+    /// Every panel, in the order of the tabs.
+    pub const ALL: [PanelKind; 4] = [
+        PanelKind::Joints,
+        PanelKind::Ik,
+        PanelKind::Matrices,
+        PanelKind::Robot,
+    ];
+
+    /// The id a link uses.
+    pub fn id(self) -> &'static str {
+        match self {
+            PanelKind::Joints => "joints",
+            PanelKind::Ik => "ik",
+            PanelKind::Matrices => "matrices",
+            PanelKind::Robot => "robot",
+        }
+    }
+
+    /// The panel of an id.
+    pub fn from_id(id: &str) -> Option<PanelKind> {
+        PanelKind::ALL.into_iter().find(|k| k.id() == id)
+    }
+
+    fn bit(self) -> u8 {
+        1 << (self as u8)
+    }
+}
+
+/// A set of panels (which are open).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PanelSet(u8);
+
+impl PanelSet {
+    /// Every panel.
+    pub const ALL: PanelSet = PanelSet(0b1111);
+    /// No panel.
+    pub const NONE: PanelSet = PanelSet(0);
+
+    /// A set of the given panels.
+    pub fn of(kinds: &[PanelKind]) -> PanelSet {
+        PanelSet(kinds.iter().fold(0, |bits, k| bits | k.bit()))
+    }
+
+    /// Whether `kind` is in the set.
+    pub fn contains(self, kind: PanelKind) -> bool {
+        self.0 & kind.bit() != 0
+    }
+
+    /// Adds or removes `kind`.
+    pub fn set(&mut self, kind: PanelKind, open: bool) {
+        if open {
+            self.0 |= kind.bit();
+        } else {
+            self.0 &= !kind.bit();
+        }
+    }
+
+    /// The panels in the set, in tab order.
+    pub fn iter(self) -> impl Iterator<Item = PanelKind> {
+        PanelKind::ALL.into_iter().filter(move |k| self.contains(*k))
+    }
+
+    /// The link form: ids joined by commas, `none` for the empty set.
+    pub fn to_link(self) -> String {
+        if self == PanelSet::NONE {
+            return "none".to_string();
+        }
+        self.iter().map(PanelKind::id).collect::<Vec<_>>().join(",")
+    }
+
+    /// Reads the link form; the first unknown id is the error.
+    pub fn from_link(text: &str) -> Result<PanelSet, String> {
+        if text == "none" {
+            return Ok(PanelSet::NONE);
+        }
+        let mut set = PanelSet::NONE;
+        for id in text.split(',') {
+            set.set(PanelKind::from_id(id).ok_or_else(|| id.to_string())?, true);
+        }
+        Ok(set)
+    }
+}
+
+/// Display preferences.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    /// Angles in degrees (true) or radians.
+    pub degrees: bool,
+    /// Draw the DH frames (x red, y green, z blue).
+    pub show_frames: bool,
+    /// Decimals in the matrices.
+    pub precision: usize,
+    /// Large fonts and high contrast for projectors.
+    pub presentation: bool,
+    /// The language of the interface.
+    pub lang: Lang,
+    /// The panels open in the normal layout.
+    pub panels: PanelSet,
+    /// The panels open in presentation mode (the lecturer's choice, kept apart).
+    pub presentation_panels: PanelSet,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            degrees: true,
+            show_frames: true,
+            precision: 3,
+            presentation: false,
+            lang: Lang::En,
+            panels: PanelSet::ALL,
+            presentation_panels: PanelSet::of(&[PanelKind::Joints, PanelKind::Matrices]),
+        }
+    }
+}
+
+impl Settings {
+    /// The panels open in the current mode.
+    pub fn open_panels(&self) -> PanelSet {
+        if self.presentation {
+            self.presentation_panels
+        } else {
+            self.panels
+        }
+    }
+
+    /// Opens or closes a panel in the current mode.
+    pub fn set_panel_open(&mut self, kind: PanelKind, open: bool) {
+        if self.presentation {
+            self.presentation_panels.set(kind, open);
+        } else {
+            self.panels.set(kind, open);
+        }
+    }
+}
+
+/// Display settings as a link carries them: each field that the link has.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct DisplayPatch {
+    /// `units=deg|rad`.
+    pub degrees: Option<bool>,
+    /// `frames=on|off`.
+    pub show_frames: Option<bool>,
+    /// `decimals=0..8`.
+    pub precision: Option<usize>,
+    /// `present=on|off`.
+    pub presentation: Option<bool>,
+    /// `lang=en|fi`.
+    pub lang: Option<Lang>,
+    /// `panels=joints,ik,...` (or `none`).
+    pub panels: Option<PanelSet>,
+    /// `ppanels=...`: presentation mode's panels.
+    pub presentation_panels: Option<PanelSet>,
+}
+
+/// The most decimals the matrices show.
+pub const MAX_DECIMALS: usize = 8;
+
+impl DisplayPatch {
+    /// Every field of `settings`.
+    pub fn of(settings: &Settings) -> DisplayPatch {
+        DisplayPatch {
+            degrees: Some(settings.degrees),
+            show_frames: Some(settings.show_frames),
+            precision: Some(settings.precision),
+            presentation: Some(settings.presentation),
+            lang: Some(settings.lang),
+            panels: Some(settings.panels),
+            presentation_panels: Some(settings.presentation_panels),
+        }
+    }
+
+    /// Writes the fields it has into `settings`.
+    pub fn apply(&self, settings: &mut Settings) {
+        let DisplayPatch {
+            degrees,
+            show_frames,
+            precision,
+            presentation,
+            lang,
+            panels,
+            presentation_panels,
+        } = self.clone();
+        settings.degrees = degrees.unwrap_or(settings.degrees);
+        settings.show_frames = show_frames.unwrap_or(settings.show_frames);
+        settings.precision = precision.unwrap_or(settings.precision);
+        settings.presentation = presentation.unwrap_or(settings.presentation);
+        settings.lang = lang.unwrap_or(settings.lang);
+        settings.panels = panels.unwrap_or(settings.panels);
+        settings.presentation_panels = presentation_panels.unwrap_or(settings.presentation_panels);
+    }
+
+    /// The link's `key=value` parts for the fields it has.
+    pub fn to_parts(&self) -> Vec<String> {
+        let on = |b: bool| if b { "on" } else { "off" };
+        let mut parts = Vec::new();
+        if let Some(d) = self.degrees {
+            parts.push(format!("units={}", if d { "deg" } else { "rad" }));
+        }
+        if let Some(f) = self.show_frames {
+            parts.push(format!("frames={}", on(f)));
+        }
+        if let Some(p) = self.precision {
+            parts.push(format!("decimals={p}"));
+        }
+        if let Some(p) = self.presentation {
+            parts.push(format!("present={}", on(p)));
+        }
+        if let Some(l) = self.lang {
+            parts.push(format!("lang={}", l.id()));
+        }
+        if let Some(p) = self.panels {
+            parts.push(format!("panels={}", p.to_link()));
+        }
+        if let Some(p) = self.presentation_panels {
+            parts.push(format!("ppanels={}", p.to_link()));
+        }
+        parts
+    }
+
+    /// Reads one `key=value` part if it is a display field: `Ok(true)` when read,
+    /// `Ok(false)` when the key is not a display field, and the allowed values when the
+    /// value is not one of them.
+    pub fn read(&mut self, key: &str, value: &str) -> Result<bool, &'static str> {
+        let switch = |v: &str| match v {
+            "on" | "1" | "true" => Ok(true),
+            "off" | "0" | "false" => Ok(false),
+            _ => Err("on or off"),
+        };
+        match key {
+            "units" => {
+                self.degrees = Some(match value {
+                    "deg" => true,
+                    "rad" => false,
+                    _ => return Err("deg or rad"),
+                });
+            }
+            "frames" => self.show_frames = Some(switch(value)?),
+            "present" => self.presentation = Some(switch(value)?),
+            "decimals" => {
+                self.precision = Some(
+                    value
+                        .parse()
+                        .ok()
+                        .filter(|d| *d <= MAX_DECIMALS)
+                        .ok_or("a whole number from 0 to 8")?,
+                );
+            }
+            "lang" => self.lang = Some(Lang::from_id(value).ok_or("en or fi")?),
+            "panels" | "ppanels" => {
+                let set = PanelSet::from_link(value)
+                    .map_err(|_| "joints, ik, matrices, robot (joined by commas) or none")?;
+                if key == "panels" {
+                    self.panels = Some(set);
+                } else {
+                    self.presentation_panels = Some(set);
+                }
+            }
+            _ => return Ok(false),
+        }
+        Ok(true)
+    }
+}
+
+/// Where the camera looks from: yaw and pitch (radians), distance and focus (robot units).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CameraPose {
+    /// Angle about the world z axis.
+    pub yaw: f64,
+    /// Elevation above the xy plane.
+    pub pitch: f64,
+    /// Distance from the focus.
+    pub distance: f64,
+    /// The point looked at.
+    pub focus: [f64; 3],
+}
+
+impl CameraPose {
+    /// `[yaw, pitch, distance, x, y, z]`, the link's order.
+    pub fn to_array(self) -> [f64; 6] {
+        let [x, y, z] = self.focus;
+        [self.yaw, self.pitch, self.distance, x, y, z]
+    }
+
+    /// From the link's six numbers; `None` unless the distance is positive.
+    pub fn from_array(a: [f64; 6]) -> Option<CameraPose> {
+        (a[2] > 0.0).then_some(CameraPose {
+            yaw: a[0],
+            pitch: a[1].clamp(-89f64.to_radians(), 89f64.to_radians()),
+            distance: a[2],
+            focus: [a[3], a[4], a[5]],
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn panel_sets_round_trip_through_the_link_form() {
+        for bits in 0..16u8 {
+            let set = PanelSet(bits);
+            assert_eq!(PanelSet::from_link(&set.to_link()), Ok(set));
+        }
+        assert_eq!(PanelSet::from_link("joints,arms"), Err("arms".to_string()));
+    }
+
+    #[test]
+    fn a_display_patch_round_trips_through_its_parts() {
+        let settings = Settings {
+            degrees: false,
+            show_frames: false,
+            precision: 5,
+            presentation: true,
+            lang: Lang::Fi,
+            panels: PanelSet::of(&[PanelKind::Ik]),
+            presentation_panels: PanelSet::NONE,
+        };
+        let mut read = DisplayPatch::default();
+        for part in DisplayPatch::of(&settings).to_parts() {
+            let (k, v) = part.split_once('=').unwrap();
+            assert_eq!(read.read(k, v), Ok(true), "{part}");
+        }
+        let mut back = Settings::default();
+        read.apply(&mut back);
+        assert_eq!(back, settings);
+        assert_eq!(read.read("units", "grad"), Err("deg or rad"));
+        assert_eq!(read.read("decimals", "9"), Err("a whole number from 0 to 8"));
+        assert_eq!(read.read("q", "1"), Ok(false));
+    }
+
+    #[test]
+    fn each_mode_keeps_its_own_open_panels() {
+        let mut s = Settings::default();
+        s.set_panel_open(PanelKind::Robot, false);
+        s.presentation = true;
+        assert!(!s.open_panels().contains(PanelKind::Robot));
+        assert!(s.open_panels().contains(PanelKind::Joints));
+        s.set_panel_open(PanelKind::Ik, true);
+        s.presentation = false;
+        assert!(s.open_panels().contains(PanelKind::Ik));
+        assert!(!s.open_panels().contains(PanelKind::Robot));
+        assert_eq!(s.presentation_panels.iter().count(), 3);
+    }
+}

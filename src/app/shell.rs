@@ -1,0 +1,218 @@
+//! Draws the [`layout::Plan`](super::layout::Plan): the wide layout's side columns with
+//! their edge tabs, or the narrow layout's tab bar and bottom sheet. The panels themselves
+//! draw into whatever room they get; every column and sheet scrolls both ways, so no text
+//! is cut off.
+
+use super::Panel;
+use super::hook::ScreenPoints;
+use super::layout::{Column, EDGE_TAB_WIDTH, Plan, Side};
+use super::model::Model;
+use super::settings::PanelKind;
+use super::{ik_panel, joints, matrices, robot_panel, tr as t};
+use crate::i18n::Key;
+
+/// The four side panels.
+pub struct SidePanels {
+    /// The joint sliders.
+    pub joints: joints::JointsPanel,
+    /// Task, method, solve and replay.
+    pub ik: ik_panel::IkPanel,
+    /// Presets, the DH editor, files.
+    pub robot: robot_panel::RobotPanel,
+    /// The matrices and the Jacobian.
+    pub matrices: matrices::MatricesPanel,
+}
+
+impl SidePanels {
+    /// Draws one panel.
+    pub fn ui(
+        &mut self,
+        kind: PanelKind,
+        model: &mut Model,
+        ui: &mut egui::Ui,
+        points: &mut ScreenPoints,
+    ) {
+        match kind {
+            PanelKind::Joints => self.joints.ui(model, ui, points),
+            PanelKind::Ik => self.ik.ui(model, ui, points),
+            PanelKind::Matrices => self.matrices.ui(model, ui, points),
+            PanelKind::Robot => self.robot.ui(model, ui, points),
+        }
+    }
+
+    /// The wide layout's columns; returns nothing, the central view takes what is left.
+    pub fn wide(
+        &mut self,
+        plan: &Plan,
+        model: &mut Model,
+        ui: &mut egui::Ui,
+        points: &mut ScreenPoints,
+    ) {
+        let mut used = 0.0;
+        for (index, column) in plan.columns.iter().enumerate() {
+            edge_tabs(column, model, ui, points);
+            if column.open.is_empty() {
+                continue;
+            }
+            let max = plan.max_width_after(index, used);
+            let id = match column.side {
+                Side::Left => "armlab_left",
+                Side::Right => "armlab_right",
+            };
+            let panel = match column.side {
+                Side::Left => egui::Panel::left(id),
+                Side::Right => egui::Panel::right(id),
+            };
+            let response = panel
+                .default_size(column.default_width.min(max))
+                .size_range(column.min_width.min(max)..=max)
+                .resizable(true)
+                .show(ui, |ui| {
+                    egui::ScrollArea::both()
+                        .id_salt(id)
+                        .auto_shrink([false, false])
+                        .show(ui, |ui| {
+                            for (i, kind) in column.open.iter().enumerate() {
+                                if i > 0 {
+                                    ui.separator();
+                                }
+                                if section_header(*kind, model, ui) {
+                                    let mut settings = model.settings().clone();
+                                    settings.set_panel_open(*kind, false);
+                                    model.set_settings(settings);
+                                }
+                                self.ui(*kind, model, ui, points);
+                            }
+                        });
+                });
+            used += response.response.rect.width();
+        }
+    }
+
+    /// The narrow layout: a tab bar at the bottom and, when a tab is chosen, its panel as
+    /// a sheet above the bar (the 3D view keeps the rest).
+    pub fn narrow(
+        &mut self,
+        plan: &Plan,
+        sheet: &mut Option<PanelKind>,
+        model: &mut Model,
+        ui: &mut egui::Ui,
+        points: &mut ScreenPoints,
+    ) {
+        egui::Panel::bottom("armlab_tabs")
+            .resizable(false)
+            .show(ui, |ui| {
+                ui.columns(PanelKind::ALL.len(), |cols| {
+                    for (col, kind) in cols.iter_mut().zip(PanelKind::ALL) {
+                        let open = *sheet == Some(kind);
+                        let size = egui::vec2(col.available_width(), 40.0);
+                        let response = col.add_sized(
+                            size,
+                            egui::Button::selectable(open, t(model, tab_title(kind))),
+                        );
+                        points.insert(format!("tab-{}", kind.id()), response.rect.center());
+                        if response.clicked() {
+                            *sheet = if open { None } else { Some(kind) };
+                        }
+                    }
+                });
+            });
+        let Some(kind) = *sheet else {
+            return;
+        };
+        egui::Panel::bottom("armlab_sheet")
+            .exact_size(plan.sheet_height)
+            .resizable(false)
+            .show(ui, |ui| {
+                if section_header(kind, model, ui) {
+                    *sheet = None;
+                }
+                egui::ScrollArea::both()
+                    .id_salt("armlab_sheet_scroll")
+                    .auto_shrink([false, false])
+                    .show(ui, |ui| self.ui(kind, model, ui, points));
+            });
+    }
+}
+
+/// A panel's title.
+pub fn title(kind: PanelKind) -> Key {
+    match kind {
+        PanelKind::Joints => Key::PanelJoints,
+        PanelKind::Ik => Key::PanelIk,
+        PanelKind::Matrices => Key::PanelMatrices,
+        PanelKind::Robot => Key::PanelRobot,
+    }
+}
+
+/// A panel's short title, for the narrow layout's tab bar.
+pub fn tab_title(kind: PanelKind) -> Key {
+    match kind {
+        PanelKind::Ik => Key::TabIk,
+        other => title(other),
+    }
+}
+
+/// A panel's title row with a close button; returns whether it was closed.
+fn section_header(kind: PanelKind, model: &Model, ui: &mut egui::Ui) -> bool {
+    let mut close = false;
+    ui.horizontal(|ui| {
+        close = ui
+            .small_button("×")
+            .on_hover_text(t(model, Key::ClosePanel))
+            .clicked();
+        ui.strong(t(model, title(kind)));
+    });
+    close
+}
+
+/// A column's strip of edge tabs: one vertical tab per panel, lit when open; a click
+/// opens or closes that panel.
+fn edge_tabs(column: &Column, model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
+    let id = match column.side {
+        Side::Left => "armlab_left_tabs",
+        Side::Right => "armlab_right_tabs",
+    };
+    let panel = match column.side {
+        Side::Left => egui::Panel::left(id),
+        Side::Right => egui::Panel::right(id),
+    };
+    panel
+        .exact_size(EDGE_TAB_WIDTH)
+        .resizable(false)
+        .frame(egui::Frame::side_top_panel(ui.style()).inner_margin(egui::Margin::symmetric(2, 6)))
+        .show(ui, |ui| {
+            ui.spacing_mut().item_spacing.y = 6.0;
+            for kind in &column.tabs {
+                let open = column.open.contains(kind);
+                let response = edge_tab(ui, t(model, title(*kind)), open);
+                points.insert(format!("tab-{}", kind.id()), response.rect.center());
+                if response.clicked() {
+                    let mut settings = model.settings().clone();
+                    settings.set_panel_open(*kind, !open);
+                    model.set_settings(settings);
+                }
+            }
+        });
+}
+
+/// One vertical tab: its label turned a quarter, reading upward.
+fn edge_tab(ui: &mut egui::Ui, text: &str, open: bool) -> egui::Response {
+    let font = egui::TextStyle::Button.resolve(ui.style());
+    let color = ui.visuals().text_color();
+    let galley = ui.painter().layout_no_wrap(text.to_owned(), font, color);
+    let size = egui::vec2(EDGE_TAB_WIDTH - 4.0, galley.size().x + 18.0);
+    let (rect, response) = ui.allocate_exact_size(size, egui::Sense::click());
+    let visuals = ui.style().interact_selectable(&response, open);
+    ui.painter()
+        .rect_filled(rect, 4.0, if open { visuals.bg_fill } else { visuals.weak_bg_fill });
+    let at = egui::pos2(rect.center().x - galley.size().y / 2.0, rect.bottom() - 9.0);
+    ui.painter().add(
+        egui::epaint::TextShape::new(at, galley, visuals.text_color())
+            .with_angle(-std::f32::consts::FRAC_PI_2),
+    );
+    response.widget_info(|| {
+        egui::WidgetInfo::selected(egui::Role::Button, true, open, text)
+    });
+    response
+}

@@ -1,0 +1,129 @@
+//! The one catalogue of user-facing text, in English and Finnish.
+//!
+//! Every sentence the app shows, and the core's error sentences, come from here: a [`Key`]
+//! names a text, and each language's module answers every key (the `match` in `en.rs` and
+//! `fi.rs` is exhaustive, so both catalogues have the same keys by construction). Texts with
+//! values carry numbered places, `{0}`, `{1}`, …, filled by [`fill`]. The JSON API keeps to
+//! English.
+
+mod catalogue;
+
+pub use catalogue::Key;
+
+/// The text of `key` in `lang`.
+pub fn text(lang: Lang, key: Key) -> &'static str {
+    match lang {
+        Lang::En => catalogue::en(key),
+        Lang::Fi => catalogue::fi(key),
+    }
+}
+
+/// The text of `key` in `lang` with its places `{0}`, `{1}`, … filled by `args` in order.
+pub fn fill(lang: Lang, key: Key, args: &[&dyn std::fmt::Display]) -> String {
+    let mut out = text(lang, key).to_string();
+    for (i, arg) in args.iter().enumerate() {
+        out = out.replace(&format!("{{{i}}}"), &arg.to_string());
+    }
+    out
+}
+
+/// The numbered places a text has (`{0}` → 0), sorted.
+pub fn places(text: &str) -> Vec<usize> {
+    let mut found: Vec<usize> = text
+        .split('{')
+        .skip(1)
+        .filter_map(|rest| rest.split_once('}').and_then(|(n, _)| n.parse().ok()))
+        .collect();
+    found.sort_unstable();
+    found.dedup();
+    found
+}
+
+/// A language of the interface.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Lang {
+    /// English.
+    #[default]
+    En,
+    /// Finnish (suomi): the Metrover thesis and the lecture slides are Finnish.
+    Fi,
+}
+
+impl Lang {
+    /// Every language, in the order of the switch.
+    pub const ALL: [Lang; 2] = [Lang::En, Lang::Fi];
+
+    /// The id a link uses (`en`, `fi`).
+    pub fn id(self) -> &'static str {
+        match self {
+            Lang::En => "en",
+            Lang::Fi => "fi",
+        }
+    }
+
+    /// The language of an id.
+    pub fn from_id(id: &str) -> Option<Lang> {
+        Lang::ALL.into_iter().find(|l| l.id() == id)
+    }
+
+    /// The language's own name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Lang::En => "English",
+            Lang::Fi => "Suomi",
+        }
+    }
+
+    /// The first language ArmLab has among a browser's preferred languages (BCP 47 tags
+    /// such as `fi-FI`, `en-GB`), English when none.
+    pub fn from_tags<'a>(tags: impl IntoIterator<Item = &'a str>) -> Lang {
+        tags.into_iter()
+            .find_map(|tag| {
+                let primary = tag.split(['-', '_']).next().unwrap_or_default();
+                Lang::from_id(&primary.to_ascii_lowercase())
+            })
+            .unwrap_or_default()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn both_catalogues_answer_every_key_with_the_same_places() {
+        for key in Key::ALL {
+            let (en, fi) = (text(Lang::En, *key), text(Lang::Fi, *key));
+            assert!(!en.trim().is_empty() && !fi.trim().is_empty(), "{key:?} is empty");
+            assert_eq!(places(en), places(fi), "{key:?}: {en:?} / {fi:?}");
+            let n = places(en).len();
+            assert_eq!(places(en), (0..n).collect::<Vec<_>>(), "{key:?} numbers its places from 0");
+        }
+    }
+
+    #[test]
+    fn the_finnish_catalogue_is_translated() {
+        // Symbols and names read the same in both languages.
+        let same: Vec<&Key> = Key::ALL
+            .iter()
+            .filter(|k| text(Lang::En, **k) == text(Lang::Fi, **k))
+            .filter(|k| !catalogue::SAME_IN_BOTH.contains(k))
+            .collect();
+        assert!(same.is_empty(), "untranslated: {same:?}");
+    }
+
+    #[test]
+    fn fill_puts_values_in_their_places() {
+        assert_eq!(places("a {1} b {0} {1}"), vec![0, 1]);
+        let s = fill(Lang::En, Key::ReachedIn, &[&3, &"x"]);
+        assert!(s.contains('3'), "{s}");
+    }
+
+    #[test]
+    fn the_browser_language_picks_the_first_one_armlab_has() {
+        assert_eq!(Lang::from_tags(["fi-FI", "en-US"]), Lang::Fi);
+        assert_eq!(Lang::from_tags(["sv-FI", "FI", "en"]), Lang::Fi);
+        assert_eq!(Lang::from_tags(["de-DE", "en-GB"]), Lang::En);
+        assert_eq!(Lang::from_tags([]), Lang::En);
+    }
+}
