@@ -439,3 +439,85 @@ fn a_link_naming_only_the_robot_opens_its_default_task() {
         "a task the link names wins"
     );
 }
+
+fn harness_at(hash: &str, size: [f32; 2]) -> Harness<'static, ArmLabApp> {
+    let hash = hash.to_string();
+    let mut h = Harness::builder()
+        .with_size(size)
+        .wgpu()
+        .build_eframe(move |cc| ArmLabApp::new(cc, &hash));
+    h.run_steps(4);
+    h
+}
+
+/// The view's share of the window's width, and whether the named points lie in the view.
+fn view_share_and_points(h: &Harness<'_, ArmLabApp>, width: f32) -> f32 {
+    let app = h.state();
+    let rect = app.viewport().rect().expect("the view was laid out");
+    for name in ["base", "tool", "target"] {
+        let [x, y] = app.points().get(name).expect("the point is drawn");
+        assert!(
+            rect.contains(egui::pos2(x, y)),
+            "{name} ({x}, {y}) lies in the view {rect:?}"
+        );
+    }
+    // The view's width in CSS pixels (points times the zoom) against the window's.
+    rect.width() * h.ctx.zoom_factor() / width
+}
+
+#[test]
+fn at_every_screen_size_the_view_keeps_its_share_and_shows_the_arm() {
+    for (size, min_share) in [
+        ([1024.0, 768.0], 0.5),
+        ([1280.0, 720.0], 0.5),
+        ([1366.0, 768.0], 0.5),
+        ([1920.0, 1080.0], 0.5),
+        ([820.0, 1180.0], 0.99),
+        ([390.0, 844.0], 0.99),
+    ] {
+        let h = harness_at("#robot=ur10", size);
+        let share = view_share_and_points(&h, size[0]);
+        assert!(share >= min_share, "{size:?}: the view has {share} of the width");
+    }
+    // Presentation mode on a projector: at least 60 %.
+    let h = harness_at("#robot=ur10&present=on", [1024.0, 768.0]);
+    let share = view_share_and_points(&h, 1024.0);
+    assert!(share >= 0.6, "presentation: the view has {share} of the width");
+}
+
+#[test]
+fn narrow_layout_snapshot_with_the_joints_sheet() {
+    let mut h = harness_at("#robot=ur10", [390.0, 844.0]);
+    h.get_by_label("Joints").click();
+    h.run_steps(3);
+    assert_eq!(
+        h.state().sheet(),
+        Some(armlab::app::settings::PanelKind::Joints)
+    );
+    let share = view_share_and_points(&h, 390.0);
+    assert!(share >= 0.99, "the view keeps the full width above the sheet");
+    h.snapshot("narrow_joints_sheet");
+}
+
+#[test]
+fn presentation_snapshot_at_a_projectors_size() {
+    let mut h = harness_at("#robot=ur10&present=on", [1024.0, 768.0]);
+    h.run_steps(2);
+    h.snapshot("presentation_1024x768");
+}
+
+#[test]
+fn a_closed_panel_reopens_from_its_edge_tab_and_shortcuts_skip_text_fields() {
+    let mut h = harness_at("#robot=ur10&panels=joints,ik,robot", [1280.0, 800.0]);
+    assert!(h.query_by_label("decimals:").is_none(), "the matrices are closed");
+    h.get_by_label("Matrices").click();
+    h.run_steps(3);
+    assert!(h.query_by_label("decimals:").is_some(), "the edge tab opened them");
+    // P toggles presentation mode; typed into a text field it does not.
+    h.key_press(egui::Key::P);
+    h.run_steps(2);
+    assert!(h.state().model().settings().presentation);
+    h.key_press(egui::Key::P);
+    h.run_steps(2);
+    assert!(!h.state().model().settings().presentation);
+}

@@ -93,8 +93,9 @@ async function ready(page) {
 /** Waits until the app has drawn a few more frames (egui draws on input: nudge it). */
 async function settle(page, frames = 3) {
   const start = (await state(page)).frame;
+  const size = page.viewportSize() ?? VIEW;
   for (let i = 0; i < 400; i++) {
-    await page.mouse.move(VIEW.width - 2 - (i % 2), VIEW.height - 2);
+    await page.mouse.move(size.width / 2 - (i % 2), 40);
     if ((await state(page)).frame >= start + frames) return;
     await page.waitForTimeout(20);
   }
@@ -396,4 +397,187 @@ test('a reload restores the last session', async () => {
   assert.equal(fresh.robot, before.robot);
   assert.deepEqual(fresh.q.map((v) => +v.toFixed(5)), before.q.map((v) => +v.toFixed(5)));
   await context.close();
+});
+
+// --- The screens of a lecture -------------------------------------------------------------
+
+/** The screens people use: projectors, laptops, a portrait tablet, a phone (touch, DPR 2). */
+const SCREENS = [
+  { name: 'projector-1024x768', width: 1024, height: 768 },
+  { name: 'projector-1280x720', width: 1280, height: 720 },
+  { name: 'laptop-1366x768', width: 1366, height: 768 },
+  { name: 'laptop-1920x1080', width: 1920, height: 1080 },
+  { name: 'tablet-820x1180', width: 820, height: 1180, touch: true },
+  { name: 'phone-390x844', width: 390, height: 844, touch: true, dpr: 2 },
+];
+// The target sits 300 mm in front of the tool, so the tool point is not under the ball.
+const LAYOUT_HASH = '#robot=ur10&q=0,-1.0472,-1.5708,-2.0944,1.5708,0&target=985.77,-163.9,465.19,1.5708,0,0&task=full';
+
+async function openAt(screen, hash, extra = {}) {
+  const context = await browser.newContext({
+    viewport: { width: screen.width, height: screen.height },
+    deviceScaleFactor: screen.dpr ?? 1,
+    hasTouch: Boolean(screen.touch),
+    isMobile: Boolean(screen.touch),
+    ...extra,
+  });
+  return open(hash, { context });
+}
+
+const inside = (p, r) => p.x > r.x && p.x < r.x + r.width && p.y > r.y && p.y < r.y + r.height;
+
+/** The view's rectangle, its share of the width, and the base, tool and target inside it. */
+async function checkView(page, screen, minShare) {
+  const rect = await page.evaluate(() => window.armlab.viewRect());
+  assert.ok(rect, 'viewRect() is published');
+  const share = rect.width / screen.width;
+  assert.ok(share >= minShare, `${screen.name}: the 3D view has ${(share * 100).toFixed(1)} % of the width (at least ${minShare * 100} %)`);
+  for (const name of ['base', 'tool', 'target']) {
+    const p = await point(page, name);
+    assert.ok(inside(p, rect), `${screen.name}: the ${name} (${p.x.toFixed(0)}, ${p.y.toFixed(0)}) lies in the view ${JSON.stringify(rect)}`);
+  }
+  return { rect, share };
+}
+
+for (const screen of SCREENS) {
+  test(`${screen.name}: the arm, its tool and target are in the 3D view and nothing covers them`, async () => {
+    const { page, ctx, errors } = await openAt(screen, LAYOUT_HASH);
+    const narrow = screen.width < 900;
+    const { share } = await checkView(page, screen, narrow ? 0.99 : 0.5);
+    measurements[`view_share_${screen.name}`] = +share.toFixed(3);
+    // Nothing covers the tool: the pointer there hovers the last link (the view answers).
+    if (!screen.touch) {
+      const tool = await point(page, 'tool');
+      await page.mouse.move(tool.x, tool.y);
+      await settle(page, 2);
+      await page.mouse.move(tool.x + 0.5, tool.y);
+      const s = await state(page);
+      assert.equal(s.hovered_link, 6, `${screen.name}: the pointer on the tool hovers link 6`);
+    }
+    const s = await state(page);
+    assert.equal(s.touch, Boolean(screen.touch), 'touch sizing follows the pointer');
+    if (narrow) {
+      // The bottom tab opens the joints as a sheet; the view shrinks above it and still
+      // shows the whole arm.
+      const tab = await point(page, 'tab-joints');
+      await page.mouse.click(tab.x, tab.y);
+      await settle(page, 4);
+      assert.equal((await state(page)).sheet, 'joints');
+      const open = await checkView(page, screen, 0.99);
+      assert.ok(open.rect.height < screen.height * 0.6, 'the sheet takes the lower part');
+      await page.screenshot({ path: path.join(shots, `layout-${screen.name}-sheet.png`) });
+      await page.mouse.click(tab.x, tab.y);
+      await settle(page, 4);
+    }
+    await page.screenshot({ path: path.join(shots, `layout-${screen.name}.png`) });
+    assert.deepEqual(errors, []);
+    await ctx.close();
+  });
+}
+
+test('presentation mode at 1024×768: the view keeps 60 % and the arm, the chosen panels beside it', async () => {
+  const screen = SCREENS[0];
+  const { page, ctx, errors } = await openAt(screen, `${LAYOUT_HASH}&present=on&ppanels=joints,matrices`);
+  const s = await state(page);
+  assert.equal(s.presentation, true);
+  assert.equal(s.open_panels, 'joints,matrices');
+  const { share } = await checkView(page, screen, 0.6);
+  measurements.view_share_presentation_1024x768 = +share.toFixed(3);
+  // The P key leaves presentation mode (no text field has the keyboard).
+  await page.screenshot({ path: path.join(shots, 'layout-presentation-1024x768.png') });
+  await page.keyboard.press('p');
+  await settle(page, 3);
+  assert.equal((await state(page)).presentation, false);
+  assert.deepEqual(errors, []);
+  await ctx.close();
+});
+
+test('the UI has the same size in CSS pixels at device pixel ratios 1, 2 and 3', async () => {
+  const seen = [];
+  for (const dpr of [1, 2, 3]) {
+    const { page, ctx } = await openAt({ width: 1280, height: 720, dpr }, LAYOUT_HASH);
+    const rect = await page.evaluate(() => window.armlab.viewRect());
+    const tab = await point(page, 'tab-joints');
+    seen.push({ dpr, rect, tab });
+    await ctx.close();
+  }
+  for (const { dpr, rect, tab } of seen.slice(1)) {
+    for (const k of ['x', 'y', 'width', 'height']) {
+      assert.ok(Math.abs(rect[k] - seen[0].rect[k]) <= 1.5, `DPR ${dpr}: view ${k} ${rect[k]} vs ${seen[0].rect[k]}`);
+    }
+    assert.ok(Math.abs(tab.y - seen[0].tab.y) <= 1.5, `DPR ${dpr}: the joints tab sits at the same CSS height`);
+  }
+});
+
+test('typing 1e999 into a DH cell at 1024×768 leaves the 3D view its share', async () => {
+  const screen = SCREENS[0];
+  const { page, ctx } = await openAt(screen, '#robot=rrr');
+  const before = await page.evaluate(() => window.armlab.viewRect());
+  const header = await point(page, 'dh-header');
+  await page.mouse.click(header.x, header.y);
+  await settle(page);
+  const cell = await point(page, 'dh-1-2');
+  await page.mouse.click(cell.x, cell.y);
+  await settle(page);
+  await page.keyboard.press('Control+A');
+  await page.keyboard.type('1e999');
+  await settle(page, 4);
+  const after = await page.evaluate(() => window.armlab.viewRect());
+  assert.ok(Math.abs(after.width - before.width) <= 1, `the view stays ${before.width} px wide (now ${after.width})`);
+  // The keys typed into the cell did not act as shortcuts (1 = focus joint 1, P, F).
+  assert.match((await state(page)).editor_error ?? '', /1e999/);
+  await page.screenshot({ path: path.join(shots, 'dh-cell-1e999-1024x768.png') });
+  await ctx.close();
+});
+
+test('a touch drag of the target moves the arm, with no console errors', async () => {
+  const screen = SCREENS[5];
+  const { page, ctx, errors } = await openAt(screen, '#robot=ur10&task=position');
+  const warnings = [];
+  page.on('console', (m) => { if (/preventDefault|passive/i.test(m.text())) warnings.push(m.text()); });
+  const before = await state(page);
+  const from = await point(page, 'target');
+  const cdp = await ctx.newCDPSession(page);
+  const touch = (type, x, y) => cdp.send('Input.dispatchTouchEvent', {
+    type, touchPoints: type === 'touchEnd' ? [] : [{ x, y, id: 1, radiusX: 4, radiusY: 4 }],
+  });
+  await touch('touchStart', from.x, from.y);
+  for (let i = 1; i <= 12; i++) {
+    await touch('touchMove', from.x - 4 * i, from.y + 3 * i);
+    await page.waitForTimeout(30);
+  }
+  await touch('touchEnd');
+  await settle(page, 4);
+  const after = await state(page);
+  const moved = Math.hypot(...after.target.position.map((v, i) => v - before.target.position[i]));
+  assert.ok(moved > 20, `the target moved ${moved.toFixed(1)} mm under the finger`);
+  assert.notDeepEqual(after.q, before.q, 'the arm followed');
+  assert.deepEqual(errors, []);
+  assert.deepEqual(warnings, [], 'no passive-listener complaints');
+  await ctx.close();
+});
+
+test('with the browser language fi the page opens in Finnish; a link and the switch choose too', async () => {
+  const { page, ctx } = await openAt({ width: 1280, height: 720 }, '#robot=ur10', { locale: 'fi-FI' });
+  assert.equal((await state(page)).lang, 'fi');
+  await page.screenshot({ path: path.join(shots, 'finnish-1280x720.png') });
+  await ctx.close();
+  const en = await openAt({ width: 1280, height: 720 }, '#robot=ur10&lang=en', { locale: 'fi-FI' });
+  assert.equal((await state(en.page)).lang, 'en', 'the link wins over the browser');
+  await en.ctx.close();
+});
+
+test('a link carries the angle unit, presentation, language, panels and camera', async () => {
+  const hash = '#robot=scara&units=rad&frames=off&decimals=5&present=off&lang=fi&panels=joints,matrices'
+    + '&camera=0.3,0.2,1800,100,50,200';
+  const { page, ctx } = await open(hash);
+  const s = await state(page);
+  assert.equal(s.degrees, false);
+  assert.equal(s.lang, 'fi');
+  assert.equal(s.open_panels, 'joints,matrices');
+  const camera = /camera=([^&]+)/.exec(s.hash)[1].split(',').map(Number);
+  assert.deepEqual(camera.map((v) => +v.toFixed(3)), [0.3, 0.2, 1800, 100, 50, 200]);
+  assert.match(s.hash, /units=rad/);
+  assert.match(s.hash, /decimals=5/);
+  await ctx.close();
 });

@@ -111,20 +111,28 @@ pub fn plan(size: egui::Vec2, zoom: f32, settings: &Settings) -> Plan {
     // Each open column may grow to the budget less the others' narrowest.
     let min_width = MIN_COLUMN.min(budget / open_columns);
     let max_width = budget - min_width * (open_columns - 1.0);
+    let wish = |side: Side| match (side, settings.presentation) {
+        (_, true) => budget,
+        (Side::Left, false) => (size.x * 0.24).clamp(220.0, 340.0),
+        (Side::Right, false) => (size.x * 0.30).clamp(240.0, 480.0),
+    };
+    // The open columns' wishes, scaled down together when they exceed the budget.
+    let wished: f32 = sides
+        .iter()
+        .filter(|(_, tabs)| tabs.iter().any(|k| open.contains(*k)))
+        .map(|(side, _)| wish(*side))
+        .sum();
+    let scale = if wished > budget { budget / wished } else { 1.0 };
     let columns = sides
         .into_iter()
         .map(|(side, tabs)| {
-            let open_here: Vec<PanelKind> = tabs.iter().copied().filter(|k| open.contains(*k)).collect();
-            let wish = match (side, settings.presentation) {
-                (_, true) => budget,
-                (Side::Left, false) => (size.x * 0.24).clamp(220.0, 340.0),
-                (Side::Right, false) => (size.x * 0.30).clamp(240.0, 480.0),
-            };
+            let open_here: Vec<PanelKind> =
+                tabs.iter().copied().filter(|k| open.contains(*k)).collect();
             Column {
                 side,
                 tabs,
                 open: open_here,
-                default_width: wish.clamp(min_width, budget / open_columns),
+                default_width: (wish(side) * scale).clamp(min_width, max_width),
                 min_width,
                 max_width,
             }

@@ -66,6 +66,16 @@ pub struct FrameTime {
     pub render_ms: f64,
 }
 
+/// What the device says before any link is read: the browser's language and whether its
+/// main pointer is a finger.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Preferences {
+    /// The first of the browser's languages that ArmLab has (English when none).
+    pub lang: crate::i18n::Lang,
+    /// A touch screen: thumb-sized controls.
+    pub touch: bool,
+}
+
 /// How many recent frames' times are kept.
 const RECENT_FRAMES: usize = 600;
 
@@ -91,10 +101,24 @@ pub struct ArmLabApp {
 impl ArmLabApp {
     /// Creates the app, opening the state of `hash` (a URL hash) when it is valid.
     pub fn new(cc: &eframe::CreationContext<'_>, hash: &str) -> Self {
+        ArmLabApp::new_with(cc, hash, Preferences::default())
+    }
+
+    /// Creates the app with the device's preferences; a link's own settings (its
+    /// language) win over them.
+    pub fn new_with(
+        cc: &eframe::CreationContext<'_>,
+        hash: &str,
+        preferences: Preferences,
+    ) -> Self {
         style::install_fonts(&cc.egui_ctx);
-        style::install(&cc.egui_ctx, false, false);
+        style::install(&cc.egui_ctx, false, preferences.touch);
         let mut app = ArmLabApp::with_session(Session::default_session());
         app.viewport = viewport::Viewport::new(cc.wgpu_render_state.as_ref());
+        app.touch = preferences.touch;
+        let mut settings = app.model.settings().clone();
+        settings.lang = preferences.lang;
+        app.model.set_settings(settings);
         app.open_hash(hash);
         app
     }

@@ -16,13 +16,15 @@ struct Published {
     state: String,
     /// Named screen points in egui points.
     points: Vec<(String, [f32; 2])>,
+    /// The 3D view's rectangle (x, y, width, height) in egui points.
+    view_rect: Option<[f32; 4]>,
     /// CSS pixels per egui point.
     css_per_point: f32,
 }
 
 thread_local! {
     static HOOK: RefCell<Published> = const {
-        RefCell::new(Published { state: String::new(), points: Vec::new(), css_per_point: 1.0 })
+        RefCell::new(Published { state: String::new(), points: Vec::new(), view_rect: None, css_per_point: 1.0 })
     };
     /// Recent frame times for `window.armlab.frameTimes()`.
     static FRAMES: RefCell<Vec<super::FrameTime>> = const { RefCell::new(Vec::new()) };
@@ -101,13 +103,21 @@ pub fn start() {
         } else {
             hash
         };
-        let options = eframe::WebOptions::default();
+        let options = eframe::WebOptions {
+            // eframe listens to touchmove on the document, where browsers make listeners
+            // passive: preventing a pointer move's default there only logs "Unable to
+            // preventDefault inside passive event listener". The canvas's CSS
+            // `touch-action: none` already keeps the page from scrolling or zooming.
+            should_prevent_default: Box::new(|e| !matches!(e, egui::Event::PointerMoved(_))),
+            ..eframe::WebOptions::default()
+        };
+        let preferences = browser_preferences(&window);
         let runner = eframe::WebRunner::new();
         let result = runner
             .start(
                 canvas,
                 options,
-                Box::new(move |cc| Ok(Box::new(ArmLabApp::new(cc, &opening)))),
+                Box::new(move |cc| Ok(Box::new(ArmLabApp::new_with(cc, &opening, preferences)))),
             )
             .await;
         match result {
@@ -129,6 +139,27 @@ pub fn start() {
             }
         }
     });
+}
+
+/// The browser's languages (`navigator.languages`) and whether its main pointer is a
+/// finger (`(pointer: coarse)`).
+fn browser_preferences(window: &web_sys::Window) -> super::Preferences {
+    let navigator = window.navigator();
+    let tags: Vec<String> = navigator
+        .languages()
+        .iter()
+        .filter_map(|v| v.as_string())
+        .chain(navigator.language())
+        .collect();
+    let touch = window
+        .match_media("(pointer: coarse)")
+        .ok()
+        .flatten()
+        .is_some_and(|m| m.matches());
+    super::Preferences {
+        lang: crate::i18n::Lang::from_tags(tags.iter().map(String::as_str)),
+        touch,
+    }
 }
 
 /// Writes the link hash into the address bar (without a history entry) and localStorage
@@ -213,6 +244,7 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
         *h.borrow_mut() = Published {
             state,
             points: app.points().all().to_vec(),
+            view_rect: app.viewport().rect().map(|r| [r.min.x, r.min.y, r.width(), r.height()]),
             css_per_point,
         }
     });
@@ -275,6 +307,20 @@ fn install_hook(window: &web_sys::Window) {
     set_field(&obj, "state", &state.into_js_value());
     set_field(&obj, "screenPoint", &point.into_js_value());
     set_field(&obj, "frameTimes", &frames.into_js_value());
+    let view_rect = Closure::<dyn Fn() -> JsValue>::new(|| {
+        HOOK.with(|h| {
+            let h = h.borrow();
+            let Some(r) = h.view_rect else {
+                return JsValue::NULL;
+            };
+            let o = js_sys::Object::new();
+            for (key, v) in ["x", "y", "width", "height"].into_iter().zip(r) {
+                set_field(&o, key, &f64::from(v * h.css_per_point).into());
+            }
+            o.into()
+        })
+    });
+    set_field(&obj, "viewRect", &view_rect.into_js_value());
     set_field(&obj, "open", &open.into_js_value());
     let first = Closure::<dyn Fn() -> JsValue>::new(|| {
         FIRST_FRAME.with(|f| f.borrow().map_or(JsValue::NULL, JsValue::from))
