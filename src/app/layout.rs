@@ -74,9 +74,8 @@ pub struct Plan {
     pub width: f32,
 }
 
-/// The plan for a screen of `size` points at `zoom` CSS pixels per point.
-pub fn plan(size: egui::Vec2, zoom: f32, settings: &Settings) -> Plan {
-    let css_width = size.x * zoom;
+/// The plan for a screen of `size` points, `css_width` CSS pixels wide.
+pub fn plan(size: egui::Vec2, css_width: f32, settings: &Settings) -> Plan {
     if css_width < NARROW_BELOW_CSS_PX || size.x < size.y * 0.9 {
         return Plan {
             mode: Mode::Narrow,
@@ -220,7 +219,7 @@ mod tests {
                             .filter(|k| bits & (1 << (*k as u8)) != 0)
                             .collect::<Vec<_>>(),
                     );
-                    let p = plan(size, zoom, &settings(presentation, open));
+                    let p = plan(size, w, &settings(presentation, open));
                     match p.mode {
                         Mode::Narrow => assert!(w < NARROW_BELOW_CSS_PX || w < h, "{w}×{h}"),
                         Mode::Wide => {
@@ -246,13 +245,13 @@ mod tests {
     fn landscape_screens_are_wide_and_portrait_ones_narrow() {
         let s = Settings::default();
         for (w, h) in SCREENS {
-            let p = plan(egui::vec2(w, h), 1.0, &s);
+            let p = plan(egui::vec2(w, h), w, &s);
             let want = if w >= 900.0 { Mode::Wide } else { Mode::Narrow };
             assert_eq!(p.mode, want, "{w}×{h}");
         }
         // Presentation at a projector's 1024×768 stays wide, every panel on the right.
         let s = settings(true, PanelSet::ALL);
-        let p = plan(egui::vec2(1024.0 / 1.25, 768.0 / 1.25), 1.25, &s);
+        let p = plan(egui::vec2(1024.0 / 1.25, 768.0 / 1.25), 1024.0, &s);
         assert_eq!(p.mode, Mode::Wide);
         assert_eq!(p.columns.len(), 1);
         assert_eq!(p.columns[0].side, Side::Right);

@@ -112,7 +112,12 @@ impl ArmLabApp {
         preferences: Preferences,
     ) -> Self {
         style::install_fonts(&cc.egui_ctx);
-        style::install(&cc.egui_ctx, false, preferences.touch);
+        style::install(
+            &cc.egui_ctx,
+            false,
+            preferences.touch,
+            style::Screen::of(&cc.egui_ctx),
+        );
         let mut app = ArmLabApp::with_session(Session::default_session());
         app.viewport = viewport::Viewport::new(cc.wgpu_render_state.as_ref());
         app.touch = preferences.touch;
@@ -266,8 +271,9 @@ impl ArmLabApp {
         self.points.clear();
         let ctx = ui.ctx().clone();
         self.touch |= ctx.input(|i| i.any_touches());
-        style::install(&ctx, self.model.settings().presentation, self.touch);
-        let plan = layout::plan(ui.max_rect().size(), ctx.zoom_factor(), self.model.settings());
+        let screen = screen(&ctx);
+        style::install(&ctx, self.model.settings().presentation, self.touch, screen);
+        let plan = layout::plan(ui.max_rect().size(), screen.css_width, self.model.settings());
         let narrow = plan.mode == layout::Mode::Narrow;
         if let Some(action) = self.shortcuts(&ctx, narrow) {
             self.viewport.apply(action, &ctx);
@@ -354,6 +360,19 @@ impl ArmLabApp {
         }
         pressed(egui::Key::F).then_some(top_bar::ViewAction::Fit)
     }
+}
+
+/// The window's width in CSS pixels and the zoom at which a point is a CSS pixel.
+fn screen(ctx: &egui::Context) -> style::Screen {
+    #[cfg(target_arch = "wasm32")]
+    if let Some(c) = web::canvas_scale() {
+        let dpr = ctx.native_pixels_per_point().unwrap_or(1.0);
+        return style::Screen {
+            css_width: c.css_width,
+            base_zoom: c.pixels_per_css / dpr,
+        };
+    }
+    style::Screen::of(ctx)
 }
 
 /// A side panel: a type that owns its own state and draws itself from the model, asking

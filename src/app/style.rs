@@ -58,6 +58,26 @@ pub fn install_fonts(ctx: &egui::Context) {
     ctx.set_fonts(fonts);
 }
 
+/// The window as the layout needs it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Screen {
+    /// Its width in CSS pixels.
+    pub css_width: f32,
+    /// The zoom at which one egui point is one CSS pixel.
+    pub base_zoom: f32,
+}
+
+impl Screen {
+    /// The screen of a context whose points are CSS pixels at zoom 1 (native windows,
+    /// tests): its width in points times the zoom.
+    pub fn of(ctx: &egui::Context) -> Screen {
+        Screen {
+            css_width: ctx.content_rect().width() * ctx.zoom_factor(),
+            base_zoom: 1.0,
+        }
+    }
+}
+
 /// The zoom of presentation mode for a screen `css_width` CSS pixels wide: large text,
 /// but the 3D view and a panel must still fit a 1024-pixel projector.
 pub fn presentation_zoom(css_width: f32) -> f32 {
@@ -71,13 +91,16 @@ pub const TOUCH_TARGET: f32 = 40.0;
 /// Applies the dark theme, larger and higher-contrast in presentation mode, with
 /// thumb-sized controls on a touch screen. Cheap to call every frame: it only writes when
 /// the mode, the touch sizing or the screen's zoom step changed.
-pub fn install(ctx: &egui::Context, presentation: bool, touch: bool) {
-    let css_width = ctx.content_rect().width() * ctx.zoom_factor();
-    let zoom = if presentation {
-        presentation_zoom(css_width)
-    } else {
-        1.0
-    };
+///
+/// `screen` is the window's width in CSS pixels and the zoom that makes one point one CSS
+/// pixel (1 everywhere but where a browser misreports the canvas's device pixels).
+pub fn install(ctx: &egui::Context, presentation: bool, touch: bool, screen: Screen) {
+    let zoom = screen.base_zoom
+        * if presentation {
+            presentation_zoom(screen.css_width)
+        } else {
+            1.0
+        };
     let id = egui::Id::unique("armlab_style_mode");
     let wanted = (presentation, touch, (zoom * 100.0).round() as i32);
     let current: Option<(bool, bool, i32)> = ctx.data(|d| d.get_temp(id));

@@ -141,6 +141,33 @@ pub fn start() {
     });
 }
 
+/// The canvas's size as the page lays it out.
+#[derive(Debug, Clone, Copy)]
+pub struct CanvasScale {
+    /// Its width in CSS pixels.
+    pub css_width: f32,
+    /// Its backing pixels per CSS pixel: the device pixel ratio, where the browser reports
+    /// the canvas's device-pixel size truly.
+    pub pixels_per_css: f32,
+}
+
+/// Measures the canvas. eframe sizes its backing store from the ResizeObserver's
+/// `devicePixelContentBoxSize` and draws at the device pixel ratio; where a browser reports
+/// that size in CSS pixels (Chromium's device emulation does), the UI would come out the
+/// ratio times too large. The app compares the two and zooms by their quotient.
+pub fn canvas_scale() -> Option<CanvasScale> {
+    let canvas = web_sys::window()?
+        .document()?
+        .get_element_by_id("armlab_canvas")?
+        .dyn_into::<web_sys::HtmlCanvasElement>()
+        .ok()?;
+    let css_width = canvas.client_width() as f32;
+    (css_width > 0.0 && canvas.width() > 0).then(|| CanvasScale {
+        css_width,
+        pixels_per_css: canvas.width() as f32 / css_width,
+    })
+}
+
 /// The browser's languages (`navigator.languages`) and whether its main pointer is a
 /// finger (`(pointer: coarse)`).
 fn browser_preferences(window: &web_sys::Window) -> super::Preferences {
@@ -238,7 +265,7 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
         app.open_hash(&hash);
     }
     // egui points to CSS pixels: the canvas fills the page from (0, 0).
-    let css_per_point = ctx.pixels_per_point() / ctx.native_pixels_per_point().unwrap_or(1.0);
+    let css_per_point = ctx.pixels_per_point() / canvas_scale().map_or(1.0, |c| c.pixels_per_css);
     let state = app.state_json();
     HOOK.with(|h| {
         *h.borrow_mut() = Published {

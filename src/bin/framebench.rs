@@ -30,7 +30,7 @@ fn main() {
     };
     let ctx = egui::Context::default();
     style::install_fonts(&ctx);
-    style::install(&ctx, false, false);
+    style::install(&ctx, false, false, style::Screen::of(&ctx));
     let mut app = ArmLabApp::with_session(session);
     let start = *app.model().target();
     let radius = app.model().robot().reach() * 0.25;
