@@ -477,12 +477,18 @@ fn at_every_screen_size_the_view_keeps_its_share_and_shows_the_arm() {
     ] {
         let h = harness_at("#robot=ur10", size);
         let share = view_share_and_points(&h, size[0]);
-        assert!(share >= min_share, "{size:?}: the view has {share} of the width");
+        assert!(
+            share >= min_share,
+            "{size:?}: the view has {share} of the width"
+        );
     }
     // Presentation mode on a projector: at least 60 %.
     let h = harness_at("#robot=ur10&present=on", [1024.0, 768.0]);
     let share = view_share_and_points(&h, 1024.0);
-    assert!(share >= 0.6, "presentation: the view has {share} of the width");
+    assert!(
+        share >= 0.6,
+        "presentation: the view has {share} of the width"
+    );
 }
 
 #[test]
@@ -495,7 +501,10 @@ fn narrow_layout_snapshot_with_the_joints_sheet() {
         Some(armlab::app::settings::PanelKind::Joints)
     );
     let share = view_share_and_points(&h, 390.0);
-    assert!(share >= 0.99, "the view keeps the full width above the sheet");
+    assert!(
+        share >= 0.99,
+        "the view keeps the full width above the sheet"
+    );
     h.snapshot("narrow_joints_sheet");
 }
 
@@ -509,10 +518,16 @@ fn presentation_snapshot_at_a_projectors_size() {
 #[test]
 fn a_closed_panel_reopens_from_its_edge_tab_and_shortcuts_skip_text_fields() {
     let mut h = harness_at("#robot=ur10&panels=joints,ik,robot", [1280.0, 800.0]);
-    assert!(h.query_by_label("decimals:").is_none(), "the matrices are closed");
+    assert!(
+        h.query_by_label("decimals:").is_none(),
+        "the matrices are closed"
+    );
     h.get_by_label("Matrices").click();
     h.run_steps(3);
-    assert!(h.query_by_label("decimals:").is_some(), "the edge tab opened them");
+    assert!(
+        h.query_by_label("decimals:").is_some(),
+        "the edge tab opened them"
+    );
     // P toggles presentation mode; typed into a text field it does not.
     h.key_press(egui::Key::P);
     h.run_steps(2);

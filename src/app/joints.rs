@@ -3,10 +3,10 @@
 
 use crate::kinematics::{Joint, JointKind};
 
-use super::{Panel, tr};
-use crate::i18n::Key;
 use super::hook::ScreenPoints;
 use super::model::Model;
+use super::{Panel, tr};
+use crate::i18n::Key;
 
 /// The joint sliders. Every value is the model's q; the panel keeps only its sliders'
 /// ids, so a shortcut can focus one.

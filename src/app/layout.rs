@@ -121,7 +121,11 @@ pub fn plan(size: egui::Vec2, css_width: f32, settings: &Settings) -> Plan {
         .filter(|(_, tabs)| tabs.iter().any(|k| open.contains(*k)))
         .map(|(side, _)| wish(*side))
         .sum();
-    let scale = if wished > budget { budget / wished } else { 1.0 };
+    let scale = if wished > budget {
+        budget / wished
+    } else {
+        1.0
+    };
     let columns = sides
         .into_iter()
         .map(|(side, tabs)| {

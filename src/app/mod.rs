@@ -273,7 +273,11 @@ impl ArmLabApp {
         self.touch |= ctx.input(|i| i.any_touches());
         let screen = screen(&ctx);
         style::install(&ctx, self.model.settings().presentation, self.touch, screen);
-        let plan = layout::plan(ui.max_rect().size(), screen.css_width, self.model.settings());
+        let plan = layout::plan(
+            ui.max_rect().size(),
+            screen.css_width,
+            self.model.settings(),
+        );
         let narrow = plan.mode == layout::Mode::Narrow;
         if let Some(action) = self.shortcuts(&ctx, narrow) {
             self.viewport.apply(action, &ctx);

@@ -70,7 +70,9 @@ pub enum LinkError {
         allowed: &'static str,
     },
     /// A camera that is not six numbers with a positive distance.
-    #[error("the link's camera needs six numbers (yaw, pitch, distance, x, y, z), the distance above 0")]
+    #[error(
+        "the link's camera needs six numbers (yaw, pitch, distance, x, y, z), the distance above 0"
+    )]
     BadCamera,
     /// A method id that is not known.
     #[error("the link's method \"{0}\" is not known")]
@@ -171,7 +173,10 @@ impl Session {
         parts.push(format!("method={}", self.method.id()));
         parts.extend(self.display.to_parts());
         if let Some(c) = &self.camera {
-            parts.push(format!("camera={}", number_list(&c.to_array(), LINK_DECIMALS)));
+            parts.push(format!(
+                "camera={}",
+                number_list(&c.to_array(), LINK_DECIMALS)
+            ));
         }
         parts.join("&")
     }

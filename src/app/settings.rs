@@ -77,7 +77,9 @@ impl PanelSet {
 
     /// The panels in the set, in tab order.
     pub fn iter(self) -> impl Iterator<Item = PanelKind> {
-        PanelKind::ALL.into_iter().filter(move |k| self.contains(*k))
+        PanelKind::ALL
+            .into_iter()
+            .filter(move |k| self.contains(*k))
     }
 
     /// The link form: ids joined by commas, `none` for the empty set.
@@ -346,7 +348,10 @@ mod tests {
         read.apply(&mut back);
         assert_eq!(back, settings);
         assert_eq!(read.read("units", "grad"), Err("deg or rad"));
-        assert_eq!(read.read("decimals", "9"), Err("a whole number from 0 to 8"));
+        assert_eq!(
+            read.read("decimals", "9"),
+            Err("a whole number from 0 to 8")
+        );
         assert_eq!(read.read("q", "1"), Ok(false));
     }
 

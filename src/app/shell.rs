@@ -204,15 +204,20 @@ fn edge_tab(ui: &mut egui::Ui, text: &str, open: bool) -> egui::Response {
     let size = egui::vec2(EDGE_TAB_WIDTH - 4.0, galley.size().x + 18.0);
     let (rect, response) = ui.allocate_exact_size(size, egui::Sense::click());
     let visuals = ui.style().interact_selectable(&response, open);
-    ui.painter()
-        .rect_filled(rect, 4.0, if open { visuals.bg_fill } else { visuals.weak_bg_fill });
+    ui.painter().rect_filled(
+        rect,
+        4.0,
+        if open {
+            visuals.bg_fill
+        } else {
+            visuals.weak_bg_fill
+        },
+    );
     let at = egui::pos2(rect.center().x - galley.size().y / 2.0, rect.bottom() - 9.0);
     ui.painter().add(
         egui::epaint::TextShape::new(at, galley, visuals.text_color())
             .with_angle(-std::f32::consts::FRAC_PI_2),
     );
-    response.widget_info(|| {
-        egui::WidgetInfo::selected(egui::Role::Button, true, open, text)
-    });
+    response.widget_info(|| egui::WidgetInfo::selected(egui::Role::Button, true, open, text));
     response
 }

@@ -27,7 +27,11 @@ pub fn ui(model: &mut Model, ui: &mut egui::Ui, narrow: bool) -> Option<ViewActi
         }
         ui.label(egui::RichText::new(&model.robot().name).strong());
         ui.separator();
-        if ui.button(tr(model, Key::Fit)).on_hover_text(tr(model, Key::FitHint)).clicked() {
+        if ui
+            .button(tr(model, Key::Fit))
+            .on_hover_text(tr(model, Key::FitHint))
+            .clicked()
+        {
             action = Some(ViewAction::Fit);
         }
         if narrow {

@@ -271,7 +271,10 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
         *h.borrow_mut() = Published {
             state,
             points: app.points().all().to_vec(),
-            view_rect: app.viewport().rect().map(|r| [r.min.x, r.min.y, r.width(), r.height()]),
+            view_rect: app
+                .viewport()
+                .rect()
+                .map(|r| [r.min.x, r.min.y, r.width(), r.height()]),
             css_per_point,
         }
     });

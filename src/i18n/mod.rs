@@ -94,10 +94,17 @@ mod tests {
     fn both_catalogues_answer_every_key_with_the_same_places() {
         for key in Key::ALL {
             let (en, fi) = (text(Lang::En, *key), text(Lang::Fi, *key));
-            assert!(!en.trim().is_empty() && !fi.trim().is_empty(), "{key:?} is empty");
+            assert!(
+                !en.trim().is_empty() && !fi.trim().is_empty(),
+                "{key:?} is empty"
+            );
             assert_eq!(places(en), places(fi), "{key:?}: {en:?} / {fi:?}");
             let n = places(en).len();
-            assert_eq!(places(en), (0..n).collect::<Vec<_>>(), "{key:?} numbers its places from 0");
+            assert_eq!(
+                places(en),
+                (0..n).collect::<Vec<_>>(),
+                "{key:?} numbers its places from 0"
+            );
         }
     }
 

@@ -21,8 +21,19 @@ pub fn draw(model: &Model, painter: &egui::Painter, rect: Rect, grid_step: f64, 
         Color32::from_gray(200)
     };
     let wrap = (rect.width() - 20.0).max(40.0);
-    let controls = tr(model, if touch { Key::TouchControls } else { Key::MouseControls });
-    let mut bottom = trf(model, Key::GridControls, &[&number(grid_step, 4), &unit, &controls]);
+    let controls = tr(
+        model,
+        if touch {
+            Key::TouchControls
+        } else {
+            Key::MouseControls
+        },
+    );
+    let mut bottom = trf(
+        model,
+        Key::GridControls,
+        &[&number(grid_step, 4), &unit, &controls],
+    );
     if !touch {
         bottom = format!("{bottom}\n{}", tr(model, Key::ShortcutHint));
     }
