@@ -335,13 +335,13 @@ test('a joint slider moved with the mouse changes that joint and T_0n', async ()
   await settle(page);
   const after = await state(page);
   // The points are where the slider's −360° and +360° sit: 80 % along is 216° = 3.770 rad.
-  // egui's "smart aim" then takes the roundest value within a pixel of the pointer (here
-  // 200°: a pixel is 8.6° on this rail), so allow 2.5 pixels' worth of angle.
+  // egui's "smart aim" then takes the roundest value near the pointer (here 200°, 2.7
+  // pixels away on a 120-pixel rail), so allow 3 pixels' worth of angle.
   const expected = -2 * Math.PI + 0.8 * 4 * Math.PI;
   const perPixel = (4 * Math.PI) / (hi.x - lo.x);
   assert.ok(Math.abs(after.q[1] - before.q[1]) > 0.5, `the click moved θ2 (${before.q[1]} → ${after.q[1]})`);
-  assert.ok(Math.abs(after.q[1] - expected) <= 2.5 * perPixel,
-    `θ2 = ${after.q[1]} rad, expected ${expected.toFixed(4)} ± ${(2.5 * perPixel).toFixed(4)}`);
+  assert.ok(Math.abs(after.q[1] - expected) <= 3 * perPixel,
+    `θ2 = ${after.q[1]} rad, expected ${expected.toFixed(4)} ± ${(3 * perPixel).toFixed(4)}`);
   after.q.forEach((v, i) => { if (i !== 1) assert.equal(v, before.q[i]); });
   assert.ok(Math.hypot(...after.tool.map((v, i) => v - before.tool[i])) > 10, 'T_0n changed');
   await ctx.close();
@@ -460,13 +460,14 @@ for (const screen of SCREENS) {
       // The bottom tab opens the joints as a sheet; the view shrinks above it and still
       // shows the whole arm.
       const tab = await point(page, 'tab-joints');
-      await page.mouse.click(tab.x, tab.y);
+      const tap = () => (screen.touch ? page.touchscreen.tap(tab.x, tab.y) : page.mouse.click(tab.x, tab.y));
+      await tap();
       await settle(page, 4);
       assert.equal((await state(page)).sheet, 'joints');
       const open = await checkView(page, screen, 0.99);
       assert.ok(open.rect.height < screen.height * 0.6, 'the sheet takes the lower part');
       await page.screenshot({ path: path.join(shots, `layout-${screen.name}-sheet.png`) });
-      await page.mouse.click(tab.x, tab.y);
+      await tap();
       await settle(page, 4);
     }
     await page.screenshot({ path: path.join(shots, `layout-${screen.name}.png`) });

@@ -366,15 +366,11 @@ impl ArmLabApp {
     }
 }
 
-/// The window's width in CSS pixels and the zoom at which a point is a CSS pixel.
+/// The window's width in CSS pixels.
 fn screen(ctx: &egui::Context) -> style::Screen {
     #[cfg(target_arch = "wasm32")]
-    if let Some(c) = web::canvas_scale() {
-        let dpr = ctx.native_pixels_per_point().unwrap_or(1.0);
-        return style::Screen {
-            css_width: c.css_width,
-            base_zoom: c.pixels_per_css / dpr,
-        };
+    if let Some(css_width) = web::canvas_css_width() {
+        return style::Screen { css_width };
     }
     style::Screen::of(ctx)
 }

@@ -59,9 +59,13 @@ impl SidePanels {
                 Side::Left => "armlab_left",
                 Side::Right => "armlab_right",
             };
+            // A column remembers the width it was dragged to, per zoom: a width kept from
+            // another zoom (presentation mode, or the first frame before the page measured
+            // its canvas) would not fit this one.
+            let salt = (id, (ui.ctx().zoom_factor() * 100.0).round() as i32);
             let panel = match column.side {
-                Side::Left => egui::Panel::left(id),
-                Side::Right => egui::Panel::right(id),
+                Side::Left => egui::Panel::left(salt),
+                Side::Right => egui::Panel::right(salt),
             };
             let response = panel
                 .default_size(column.default_width.min(max))

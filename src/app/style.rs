@@ -63,17 +63,14 @@ pub fn install_fonts(ctx: &egui::Context) {
 pub struct Screen {
     /// Its width in CSS pixels.
     pub css_width: f32,
-    /// The zoom at which one egui point is one CSS pixel.
-    pub base_zoom: f32,
 }
 
 impl Screen {
-    /// The screen of a context whose points are CSS pixels at zoom 1 (native windows,
-    /// tests): its width in points times the zoom.
+    /// The screen of a context: its width in points times the zoom (a point is a CSS
+    /// pixel at zoom 1).
     pub fn of(ctx: &egui::Context) -> Screen {
         Screen {
             css_width: ctx.content_rect().width() * ctx.zoom_factor(),
-            base_zoom: 1.0,
         }
     }
 }
@@ -92,15 +89,13 @@ pub const TOUCH_TARGET: f32 = 40.0;
 /// thumb-sized controls on a touch screen. Cheap to call every frame: it only writes when
 /// the mode, the touch sizing or the screen's zoom step changed.
 ///
-/// `screen` is the window's width in CSS pixels and the zoom that makes one point one CSS
-/// pixel (1 everywhere but where a browser misreports the canvas's device pixels).
+/// `screen` is the window's width in CSS pixels.
 pub fn install(ctx: &egui::Context, presentation: bool, touch: bool, screen: Screen) {
-    let zoom = screen.base_zoom
-        * if presentation {
-            presentation_zoom(screen.css_width)
-        } else {
-            1.0
-        };
+    let zoom = if presentation {
+        presentation_zoom(screen.css_width)
+    } else {
+        1.0
+    };
     let id = egui::Id::unique("armlab_style_mode");
     let wanted = (presentation, touch, (zoom * 100.0).round() as i32);
     let current: Option<(bool, bool, i32)> = ctx.data(|d| d.get_temp(id));

@@ -141,31 +141,43 @@ pub fn start() {
     });
 }
 
-/// The canvas's size as the page lays it out.
-#[derive(Debug, Clone, Copy)]
-pub struct CanvasScale {
-    /// Its width in CSS pixels.
-    pub css_width: f32,
-    /// Its backing pixels per CSS pixel: the device pixel ratio, where the browser reports
-    /// the canvas's device-pixel size truly.
-    pub pixels_per_css: f32,
+/// The canvas's width in CSS pixels.
+pub fn canvas_css_width() -> Option<f32> {
+    let width = canvas()?.client_width() as f32;
+    (width > 0.0).then_some(width)
 }
 
-/// Measures the canvas. eframe sizes its backing store from the ResizeObserver's
-/// `devicePixelContentBoxSize` and draws at the device pixel ratio; where a browser reports
-/// that size in CSS pixels (Chromium's device emulation does), the UI would come out the
-/// ratio times too large. The app compares the two and zooms by their quotient.
-pub fn canvas_scale() -> Option<CanvasScale> {
-    let canvas = web_sys::window()?
+fn canvas() -> Option<web_sys::HtmlCanvasElement> {
+    web_sys::window()?
         .document()?
         .get_element_by_id("armlab_canvas")?
         .dyn_into::<web_sys::HtmlCanvasElement>()
-        .ok()?;
-    let css_width = canvas.client_width() as f32;
-    (css_width > 0.0 && canvas.width() > 0).then(|| CanvasScale {
-        css_width,
-        pixels_per_css: canvas.width() as f32 / css_width,
-    })
+        .ok()
+}
+
+/// Keeps the canvas's backing store at its CSS size times the device pixel ratio.
+///
+/// eframe sizes it from the ResizeObserver's `devicePixelContentBoxSize`; where a browser
+/// reports that size in CSS pixels (Chromium's device emulation does), the canvas gets a
+/// ratio's worth too few pixels, and since eframe maps the pointer from CSS pixels but
+/// the screen from canvas pixels, the pointer and the picture disagree (at ratio 2 the UI
+/// is drawn twice too large and a tap lands at half its place). A real device reports
+/// device pixels, within a pixel of the product, and is left alone. Returns whether it
+/// resized the canvas (the next frame draws at the new size).
+fn keep_canvas_resolution() -> bool {
+    let (Some(window), Some(canvas)) = (web_sys::window(), canvas()) else {
+        return false;
+    };
+    let dpr = window.device_pixel_ratio();
+    let want = |css: i32| (f64::from(css) * dpr).round() as u32;
+    let (w, h) = (want(canvas.client_width()), want(canvas.client_height()));
+    let off = |have: u32, want: u32| have.abs_diff(want) > 2;
+    if w == 0 || h == 0 || !(off(canvas.width(), w) || off(canvas.height(), h)) {
+        return false;
+    }
+    canvas.set_width(w);
+    canvas.set_height(h);
+    true
 }
 
 /// The browser's languages (`navigator.languages`) and whether its main pointer is a
@@ -265,7 +277,10 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
         app.open_hash(&hash);
     }
     // egui points to CSS pixels: the canvas fills the page from (0, 0).
-    let css_per_point = ctx.pixels_per_point() / canvas_scale().map_or(1.0, |c| c.pixels_per_css);
+    if keep_canvas_resolution() {
+        ctx.request_repaint();
+    }
+    let css_per_point = ctx.pixels_per_point() / ctx.native_pixels_per_point().unwrap_or(1.0);
     let state = app.state_json();
     HOOK.with(|h| {
         *h.borrow_mut() = Published {
