@@ -536,3 +536,22 @@ fn a_closed_panel_reopens_from_its_edge_tab_and_shortcuts_skip_text_fields() {
     h.run_steps(2);
     assert!(!h.state().model().settings().presentation);
 }
+
+#[test]
+fn on_a_touch_screen_every_control_is_at_least_40_points_tall() {
+    let mut h = harness_at("#robot=ur10", [820.0, 1180.0]);
+    h.state_mut().set_touch(true);
+    h.run_steps(3);
+    let tabs = ["Fit", "Joints", "IK", "Matrices"].map(|l| (l, h.get_by_label(l).rect()));
+    h.get_by_label("Joints").click();
+    h.run_steps(3);
+    for (label, rect) in tabs {
+        assert!(rect.height() >= 40.0, "{label} is {} tall", rect.height());
+    }
+    for label in ["Zero", "Home"] {
+        let rect = h.get_by_label(label).rect();
+        assert!(rect.height() >= 40.0, "{label} is {} tall", rect.height());
+    }
+    let slider = h.get_all_by_role(Role::Slider).next().expect("a joint slider");
+    assert!(slider.rect().height() >= 40.0, "a slider is {} tall", slider.rect().height());
+}
