@@ -1,0 +1,47 @@
+// Writes the page's service worker into a build: trunk runs this as a post_build hook
+// (Trunk.toml), after it has written the finished index.html into its staging directory
+// (dist/.stage, in $TRUNK_STAGING_DIR) and before it moves that directory's files into
+// dist/. So the files listed here are exactly the build's files, with trunk's hashed names
+// (armlab-<hash>.js, armlab-<hash>_bg.wasm), and the worker is part of the same build.
+//
+// The worker (dist/service-worker.js) is web/service-worker.js preceded by one line,
+//   const ARMLAB_BUILD = {"version":"…","files":["icon.svg","index.html",…]};
+// `files`: every file of the build except the worker itself and dot files, relative to the
+// folder, sorted; `version`: the first 16 hex digits of the SHA-256 of, for each file in
+// that order, its path, a newline, the SHA-256 (hex) of its contents and a newline. Every
+// build whose files differ has another version, so its worker installs and replaces the
+// cache (web/offline.test.mjs recomputes it from dist/).
+//
+// Run by hand on a built folder: TRUNK_STAGING_DIR=dist node web/service-worker-build.mjs
+import crypto from 'node:crypto';
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const WORKER = 'service-worker.js';
+const template = path.join(path.dirname(fileURLToPath(import.meta.url)), 'service-worker.js');
+
+/** The build's files under `dir`, as sorted relative paths with forward slashes. */
+function buildFiles(dir, prefix = '') {
+  const files = [];
+  for (const entry of fs.readdirSync(path.join(dir, prefix), { withFileTypes: true })) {
+    if (entry.name.startsWith('.')) continue;
+    const rel = prefix ? `${prefix}/${entry.name}` : entry.name;
+    if (entry.isDirectory()) files.push(...buildFiles(dir, rel));
+    else if (entry.isFile() && rel !== WORKER) files.push(rel);
+  }
+  return files.sort();
+}
+
+const sha256 = (data) => crypto.createHash('sha256').update(data).digest('hex');
+
+const dir = process.env.TRUNK_STAGING_DIR;
+if (!dir || !fs.existsSync(path.join(dir, 'index.html'))) {
+  console.error(`service-worker-build: TRUNK_STAGING_DIR (${dir}) must be a folder holding a built index.html`);
+  process.exit(1);
+}
+const files = buildFiles(dir);
+const version = sha256(files.map((f) => `${f}\n${sha256(fs.readFileSync(path.join(dir, f)))}\n`).join('')).slice(0, 16);
+const header = `const ARMLAB_BUILD = ${JSON.stringify({ version, files })};\n`;
+fs.writeFileSync(path.join(dir, WORKER), header + fs.readFileSync(template, 'utf8'));
+console.log(`service-worker-build: ${WORKER} caches ${files.length} files as version ${version}`);
