@@ -110,9 +110,12 @@ impl DhEditor {
                     max: v[5],
                 },
             };
+            // Not `limits.clamp`: it panics on reversed or NaN limits, which the core's
+            // check below turns into the sentence beside the cell.
+            let within = |v: f64| v.max(limits.min).min(limits.max);
             let home = old
                 .filter(|o| o.kind == row.kind)
-                .map_or(limits.clamp(0.0), |o| limits.clamp(o.home));
+                .map_or(within(0.0), |o| within(o.home));
             joints.push(Joint {
                 name: old.map_or_else(|| format!("joint {}", i + 1), |o| o.name.clone()),
                 kind: row.kind,
@@ -526,4 +529,26 @@ fn apply_edit(editor: &mut DhEditor, mut edited: DhEditor, model: &mut Model) {
 /// The file name a robot is saved under: its name in lower case, spaces as dashes.
 pub fn robot_file_name(robot: &Robot) -> String {
     format!("{}.json", robot.name.to_lowercase().replace(' ', "-"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reversed_or_nan_limits_give_the_cores_sentence_not_a_panic() {
+        let robot = preset("rrr").expect("a preset");
+        let mut editor = DhEditor::from_robot(&robot);
+        editor.rows[0].cells[4] = "90".into();
+        editor.rows[0].cells[5] = "-90".into();
+        let (row, column, _) = editor.to_robot(&robot).expect_err("reversed limits");
+        assert_eq!((row, column), (0, 4));
+        editor.rows[0].cells[4] = "NaN".into();
+        let (row, column, message) = editor.to_robot(&robot).expect_err("not finite");
+        assert_eq!((row, column), (0, 4));
+        assert_eq!(
+            message,
+            "In joint 1, the field \"min\" is not a finite number (NaN)."
+        );
+    }
 }
