@@ -184,6 +184,9 @@ mod tests {
         // A value holding a place is written as it is.
         let s = fill(Lang::En, Key::JointHighlighted, &[&"{1}", &"x"]);
         assert_eq!(s, "joint {1}: x — A_{1} and T_0{1} highlighted");
+        // Braces that are not places stay.
+        let s = fill(Lang::En, Key::ModifiedFormula, &[]);
+        assert!(s.contains("α_{i−1}"), "{s}");
     }
 
     #[test]
