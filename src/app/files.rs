@@ -5,6 +5,8 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::i18n::{Key, Lang, fill, text};
+
 /// Open a robot file, or save the current robot.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mode {
@@ -38,7 +40,7 @@ pub struct FileDialog {
     /// The file name field (Save) or the selected file (Open).
     name: String,
     entries: Vec<Entry>,
-    /// Why the folder could not be listed, as a sentence.
+    /// Why the folder could not be listed: the system's words.
     error: Option<String>,
 }
 
@@ -77,10 +79,7 @@ impl FileDialog {
                 });
             }
             Err(e) => {
-                self.error = Some(format!(
-                    "The folder {} cannot be read: {e}.",
-                    self.folder.display()
-                ));
+                self.error = Some(e.to_string());
             }
         }
     }
@@ -107,21 +106,30 @@ impl FileDialog {
         Some(self.folder.join(name))
     }
 
-    /// Shows the dialog; returns the choice once the user makes it, and sets `open` to
-    /// false when the dialog should close.
-    pub fn show(&mut self, ctx: &egui::Context, open: &mut bool) -> Option<Choice> {
+    /// Why the folder could not be listed, as a sentence in `lang`.
+    fn error_sentence(&self, lang: Lang) -> Option<String> {
+        let folder = self.folder.display();
+        self.error
+            .as_ref()
+            .map(|e| fill(lang, Key::FolderUnreadable, &[&folder, e]))
+    }
+
+    /// Shows the dialog in `lang`; returns the choice once the user makes it, and sets
+    /// `open` to false when the dialog should close.
+    pub fn show(&mut self, ctx: &egui::Context, lang: Lang, open: &mut bool) -> Option<Choice> {
         let mut choice = None;
         let title = match self.mode {
-            Mode::Open => "Open a robot file",
-            Mode::Save => "Save the robot file",
+            Mode::Open => Key::OpenDialogTitle,
+            Mode::Save => Key::SaveDialogTitle,
         };
         let mut still_open = *open;
-        egui::Window::new(title)
+        egui::Window::new(text(lang, title))
+            .id(egui::Id::unique("armlab_file_dialog"))
             .collapsible(false)
             .resizable(true)
             .default_size([460.0, 380.0])
             .open(&mut still_open)
-            .show(ctx, |ui| choice = self.contents(ui));
+            .show(ctx, |ui| choice = self.contents(ui, lang));
         *open = still_open && choice.is_none() && !self.cancelled(ctx);
         choice
     }
@@ -130,25 +138,26 @@ impl FileDialog {
         ctx.input(|i| i.key_pressed(egui::Key::Escape))
     }
 
-    fn contents(&mut self, ui: &mut egui::Ui) -> Option<Choice> {
-        let mut go_to = self.folder_bar(ui);
+    fn contents(&mut self, ui: &mut egui::Ui, lang: Lang) -> Option<Choice> {
+        let mut go_to = self.folder_bar(ui, lang);
         ui.separator();
-        let (entered, pick) = self.listing(ui);
+        let (entered, pick) = self.listing(ui, lang);
         go_to = go_to.or(entered);
         if let Some(folder) = go_to {
             self.enter(folder);
         }
         ui.separator();
-        self.confirm_row(ui, pick)
+        self.confirm_row(ui, lang, pick)
     }
 
     /// The folder's path with an "Up" button; returns the folder to go to.
-    fn folder_bar(&self, ui: &mut egui::Ui) -> Option<PathBuf> {
+    fn folder_bar(&self, ui: &mut egui::Ui, lang: Lang) -> Option<PathBuf> {
         let mut go_to = None;
         ui.horizontal(|ui| {
+            let up = egui::Button::new(text(lang, Key::Up));
             if ui
-                .add_enabled(self.folder.parent().is_some(), egui::Button::new("Up"))
-                .on_hover_text("The folder above")
+                .add_enabled(self.folder.parent().is_some(), up)
+                .on_hover_text(text(lang, Key::UpHint))
                 .clicked()
             {
                 go_to = self.folder.parent().map(Path::to_path_buf);
@@ -160,17 +169,17 @@ impl FileDialog {
 
     /// Folders and .json files: a click on a folder enters it, on a file takes its name,
     /// a double click on a file picks it. Returns (folder to enter, file picked).
-    fn listing(&mut self, ui: &mut egui::Ui) -> (Option<PathBuf>, Option<String>) {
+    fn listing(&mut self, ui: &mut egui::Ui, lang: Lang) -> (Option<PathBuf>, Option<String>) {
         let (mut go_to, mut pick) = (None, None);
         egui::ScrollArea::vertical()
             .max_height(240.0)
             .auto_shrink([false, true])
             .show(ui, |ui| {
-                if let Some(error) = &self.error {
+                if let Some(error) = self.error_sentence(lang) {
                     ui.colored_label(super::style::ERROR, error);
                 }
                 if self.entries.is_empty() && self.error.is_none() {
-                    ui.label("No folders or .json files here.");
+                    ui.label(text(lang, Key::NoFiles));
                 }
                 for entry in &self.entries {
                     let label = if entry.folder {
@@ -197,10 +206,15 @@ impl FileDialog {
 
     /// The name field, the overwrite warning and the Open/Save button; returns the
     /// choice once confirmed.
-    fn confirm_row(&mut self, ui: &mut egui::Ui, pick: Option<String>) -> Option<Choice> {
+    fn confirm_row(
+        &mut self,
+        ui: &mut egui::Ui,
+        lang: Lang,
+        pick: Option<String>,
+    ) -> Option<Choice> {
         let mut confirm = pick.is_some();
         ui.horizontal(|ui| {
-            let label = ui.label("File name");
+            let label = ui.label(text(lang, Key::FileName));
             let field = ui
                 .text_edit_singleline(&mut self.name)
                 .labelled_by(label.id);
@@ -211,10 +225,7 @@ impl FileDialog {
             .or_else(|| self.chosen_path());
         let exists = path.as_ref().is_some_and(|p| p.is_file());
         if self.mode == Mode::Save && exists {
-            ui.colored_label(
-                super::style::PENDING,
-                "A file of that name is there: saving replaces it.",
-            );
+            ui.colored_label(super::style::PENDING, text(lang, Key::OverwriteWarning));
         }
         let ready = match self.mode {
             Mode::Open => exists,
@@ -222,10 +233,11 @@ impl FileDialog {
         };
         ui.horizontal(|ui| {
             let verb = match self.mode {
-                Mode::Open => "Open",
-                Mode::Save => "Save",
+                Mode::Open => Key::Open,
+                Mode::Save => Key::Save,
             };
-            confirm |= ui.add_enabled(ready, egui::Button::new(verb)).clicked();
+            let button = egui::Button::new(text(lang, verb));
+            confirm |= ui.add_enabled(ready, button).clicked();
         });
         match (confirm && ready, path) {
             (true, Some(path)) => Some(match self.mode {
@@ -262,9 +274,12 @@ mod tests {
         assert_eq!(d.chosen_path(), None);
         d.enter(dir.join("missing"));
         assert!(
-            d.error
-                .as_deref()
+            d.error_sentence(Lang::En)
                 .is_some_and(|e| e.contains("cannot be read"))
+        );
+        assert!(
+            d.error_sentence(Lang::Fi)
+                .is_some_and(|e| e.contains("ei voi lukea"))
         );
         std::fs::remove_dir_all(&dir).expect("clean up");
     }

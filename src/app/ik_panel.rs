@@ -5,10 +5,11 @@
 use crate::kinematics::ik::{IkResult, Reach};
 use crate::kinematics::{IkMethod, Task};
 
-use super::Panel;
+use crate::i18n::Key;
+
 use super::hook::ScreenPoints;
 use super::model::Model;
-use super::style;
+use super::{Panel, style, tr, trf};
 
 /// The replay of the last full solve.
 #[derive(Debug, Clone, Default)]
@@ -53,14 +54,12 @@ impl Panel for IkPanel {
                 ui.end_row();
             });
         ui.horizontal_wrapped(|ui| {
-            if ui.button("Snap target to gripper").clicked() {
+            if ui.button(tr(model, Key::SnapTarget)).clicked() {
                 model.snap_target();
             }
             if ui
-                .button("Solve")
-                .on_hover_text(
-                    "Run the method to convergence from the current pose and record every iteration",
-                )
+                .button(tr(model, Key::Solve))
+                .on_hover_text(tr(model, Key::SolveHint))
                 .clicked()
             {
                 self.solve(model);
@@ -72,14 +71,14 @@ impl Panel for IkPanel {
 }
 
 fn task_menu(model: &mut Model, ui: &mut egui::Ui) {
-    let label = ui.label("Task").id;
+    let label = ui.label(tr(model, Key::Task)).id;
     let mut task = model.task();
     egui::ComboBox::from_id_salt("ik_task")
-        .selected_text(task.label())
+        .selected_text(tr(model, task.label_key()))
         .width(ui.available_width().clamp(120.0, 200.0))
         .show_ui(ui, |ui| {
             for t in Task::ALL {
-                ui.selectable_value(&mut task, t, t.label());
+                ui.selectable_value(&mut task, t, tr(model, t.label_key()));
             }
         })
         .response
@@ -88,18 +87,18 @@ fn task_menu(model: &mut Model, ui: &mut egui::Ui) {
 }
 
 fn method_menu(model: &mut Model, ui: &mut egui::Ui) {
-    let label = ui.label("Method").id;
+    let label = ui.label(tr(model, Key::Method)).id;
     let has_closed_form = model.has_closed_form();
     let mut method = model.method();
     egui::ComboBox::from_id_salt("ik_method")
-        .selected_text(method.label())
+        .selected_text(tr(model, method.label_key()))
         .width(ui.available_width().clamp(120.0, 200.0))
         .show_ui(ui, |ui| {
             for m in IkMethod::ALL {
                 let enabled = m != IkMethod::ClosedForm || has_closed_form;
                 ui.add_enabled_ui(enabled, |ui| {
-                    ui.selectable_value(&mut method, m, m.label())
-                        .on_disabled_hover_text("This robot has no closed-form IK here (the planar 2R, the RRR and the UR10 do).");
+                    ui.selectable_value(&mut method, m, tr(model, m.label_key()))
+                        .on_disabled_hover_text(tr(model, Key::NoClosedFormHint));
                 });
             }
         })
@@ -114,17 +113,20 @@ fn method_menu(model: &mut Model, ui: &mut egui::Ui) {
 fn status(model: &Model, ui: &mut egui::Ui) {
     let ik = model.ik();
     let text = match ik.reach {
-        Reach::Reached => "reached",
-        Reach::OutOfReach => "out of reach (closest pose shown)",
-        Reach::Pending => "not at the target",
+        Reach::Reached => Key::TargetReached,
+        Reach::OutOfReach => Key::TargetOutOfReach,
+        Reach::Pending => Key::TargetPending,
     };
-    ui.colored_label(style::reach_color(ik.reach), format!("Target {text}"));
-    ui.label(format!(
-        "error: {:.3e} {}, {:.3e} rad  ·  {} iterations",
-        ik.position_error,
-        model.robot().length_unit.symbol(),
-        ik.orientation_error,
-        ik.iterations
+    ui.colored_label(style::reach_color(ik.reach), tr(model, text));
+    ui.label(trf(
+        model,
+        Key::IkErrors,
+        &[
+            &format!("{:.3e}", ik.position_error),
+            &model.robot().length_unit.symbol(),
+            &format!("{:.3e}", ik.orientation_error),
+            &ik.iterations,
+        ],
     ));
 }
 
@@ -136,33 +138,39 @@ fn replay_ui(replay: &mut Replay, model: &mut Model, ui: &mut egui::Ui) {
         return;
     }
     ui.separator();
-    ui.label(format!(
-        "Last solve: {} iterations, {}",
-        run.iterations,
-        if run.success {
-            "converged"
-        } else if run.unreachable {
-            "target out of reach"
-        } else {
-            "stopped"
-        }
+    let outcome = if run.success {
+        Key::SolveConverged
+    } else if run.unreachable {
+        Key::SolveOutOfReach
+    } else {
+        Key::SolveStopped
+    };
+    ui.label(trf(
+        model,
+        Key::LastSolve,
+        &[&run.iterations, &tr(model, outcome)],
     ));
     let last = run.trace.len() - 1;
     let mut step = replay.step.min(last);
     let changed = ui
-        .add(egui::Slider::new(&mut step, 0..=last).text("iteration"))
-        .on_hover_text("Replay the run: the arm shows q after this iteration")
+        .add(egui::Slider::new(&mut step, 0..=last).text(tr(model, Key::Iteration)))
+        .on_hover_text(tr(model, Key::ReplayHint))
         .changed();
     let s = &run.trace[step];
-    ui.monospace(format!(
-        "‖e‖ = {:.3e}   step = {:.3e}   λ = {:.2e}",
-        s.error, s.step, s.damping
+    ui.monospace(trf(
+        model,
+        Key::StepLine,
+        &[
+            &format!("{:.3e}", s.error),
+            &format!("{:.3e}", s.step),
+            &format!("{:.2e}", s.damping),
+        ],
     ));
     let raw: Vec<String> = s.raw_q.iter().map(|v| format!("{v:.3}")).collect();
     let kept: Vec<String> = s.q.iter().map(|v| format!("{v:.3}")).collect();
-    ui.label(format!("raw q: {}", raw.join(", ")));
-    ui.label(format!("kept q: {}", kept.join(", ")));
-    error_plot(ui, run, step);
+    ui.label(trf(model, Key::RawQ, &[&raw.join(", ")]));
+    ui.label(trf(model, Key::KeptQ, &[&kept.join(", ")]));
+    error_plot(model, ui, run, step);
     if changed {
         let q = run.trace[step].q.clone();
         replay.step = step;
@@ -171,7 +179,7 @@ fn replay_ui(replay: &mut Replay, model: &mut Model, ui: &mut egui::Ui) {
 }
 
 /// The error per iteration on a log scale.
-fn error_plot(ui: &mut egui::Ui, run: &IkResult, current: usize) {
+fn error_plot(model: &Model, ui: &mut egui::Ui, run: &IkResult, current: usize) {
     let (rect, _) = ui.allocate_exact_size(
         egui::vec2(ui.available_width().min(300.0), 90.0),
         egui::Sense::hover(),
@@ -216,7 +224,11 @@ fn error_plot(ui: &mut egui::Ui, run: &IkResult, current: usize) {
     painter.text(
         rect.left_top() + egui::vec2(4.0, 2.0),
         egui::Align2::LEFT_TOP,
-        format!("log10 ‖e‖: {hi:.1} … {lo:.1}"),
+        trf(
+            model,
+            Key::ErrorPlotRange,
+            &[&format!("{hi:.1}"), &format!("{lo:.1}")],
+        ),
         egui::FontId::proportional(11.0),
         ui.visuals().text_color(),
     );

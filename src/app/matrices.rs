@@ -8,11 +8,12 @@ use crate::kinematics::{
     Convention, JacobianAnalysis, JacobianMeasures, JointKind, Orientation, Robot, Task,
 };
 
-use super::Panel;
+use crate::i18n::{Key, Lang, text};
+
 use super::format::number;
 use super::hook::ScreenPoints;
 use super::model::{HoverSource, Model};
-use super::style;
+use super::{Panel, style, tr, trf};
 
 /// Plain text rows, space-aligned.
 pub fn to_plain(m: &DMatrix<f64>, decimals: usize) -> String {
@@ -74,6 +75,7 @@ fn clean(v: f64, decimals: usize) -> f64 {
 /// Blocks scrolled out of sight keep their last size without drawing their numbers.
 fn matrix_block(
     ui: &mut egui::Ui,
+    lang: Lang,
     title: &str,
     hover: &str,
     m: &DMatrix<f64>,
@@ -91,14 +93,17 @@ fn matrix_block(
         // title instead of over it.
         let header = ui.horizontal_wrapped(|ui| {
             let title = ui.strong(title).on_hover_text(hover);
-            ui.label(egui::RichText::new("copy:").weak());
+            ui.label(egui::RichText::new(text(lang, Key::Copy)).weak());
             type Format = fn(&DMatrix<f64>, usize) -> String;
-            let formats: [(&str, Format); 3] =
-                [("Text", to_plain), ("LaTeX", to_latex), ("NumPy", to_numpy)];
-            for (label, format) in formats {
+            let formats: [(Key, Key, Format); 3] = [
+                (Key::CopyText, Key::CopyAsText, to_plain),
+                (Key::CopyLatex, Key::CopyAsLatex, to_latex),
+                (Key::CopyNumpy, Key::CopyAsNumpy, to_numpy),
+            ];
+            for (label, hint, format) in formats {
                 if ui
-                    .small_button(label)
-                    .on_hover_text(format!("Copy as {label}"))
+                    .small_button(text(lang, label))
+                    .on_hover_text(text(lang, hint))
                     .clicked()
                 {
                     ui.ctx().copy_text(format(m, decimals));
@@ -362,26 +367,31 @@ impl Panel for MatricesPanel {
         let decimals = model.settings().precision;
         let n = model.robot().dof();
         let unit = model.robot().length_unit.symbol();
+        let lang = model.settings().lang;
         matrix_block(
             ui,
-            &format!("T_0{n}  (tool pose, {unit})"),
-            "The tool frame in the base frame: the product of every A_i",
+            lang,
+            &trf(model, Key::ToolPoseTitle, &[&n, &unit]),
+            tr(model, Key::ToolPoseHint),
             &homogeneous(&model.fk().base_from_tool),
             decimals,
             false,
         );
         orientation_block(
             ui,
+            lang,
             &Orientation::from_rotation(model.fk().tool_rotation()),
             model.settings().degrees,
             decimals,
         );
-        egui::CollapsingHeader::new("Jacobian")
+        egui::CollapsingHeader::new(tr(model, Key::Jacobian))
+            .id_salt("jacobian")
             .default_open(true)
             .show(ui, |ui| {
                 jacobian_block(model, self.analysis(model), ui, decimals)
             });
-        let hovered = egui::CollapsingHeader::new("Link transforms A_i and running products T_0i")
+        let hovered = egui::CollapsingHeader::new(tr(model, Key::LinkTransforms))
+            .id_salt("link_transforms")
             .default_open(true)
             .show(ui, |ui| link_blocks(model, ui, decimals))
             .body_returned
@@ -392,7 +402,7 @@ impl Panel for MatricesPanel {
 
 fn precision_row(model: &mut Model, ui: &mut egui::Ui) {
     ui.horizontal(|ui| {
-        let label = ui.label("decimals:");
+        let label = ui.label(tr(model, Key::Decimals));
         let mut precision = model.settings().precision;
         if ui
             .add(egui::DragValue::new(&mut precision).range(0..=8))
@@ -409,10 +419,11 @@ fn precision_row(model: &mut Model, ui: &mut egui::Ui) {
 /// Every A_i and T_0i; returns the link whose matrix is under the pointer.
 fn link_blocks(model: &Model, ui: &mut egui::Ui, decimals: usize) -> Option<usize> {
     let convention = match model.robot().convention {
-        Convention::Standard => "standard DH: A_i = Rz(θ)·Tz(d)·Tx(a)·Rx(α)",
-        Convention::Modified => "modified DH: A_i = Rx(α_{i−1})·Tx(a_{i−1})·Rz(θ)·Tz(d)",
+        Convention::Standard => Key::StandardFormula,
+        Convention::Modified => Key::ModifiedFormula,
     };
-    ui.label(convention);
+    ui.label(tr(model, convention));
+    let lang = model.settings().lang;
     let mut hovered = None;
     for (i, joint) in model.robot().joints.iter().enumerate() {
         let highlighted = model.hovered_link() == Some(i + 1);
@@ -421,16 +432,12 @@ fn link_blocks(model: &Model, ui: &mut egui::Ui, decimals: usize) -> Option<usiz
             JointKind::Prismatic => "d",
         };
         let a = homogeneous(&model.fk().link_transforms[i]);
-        let title = format!(
-            "A_{}  ({}, {variable}{} variable)",
-            i + 1,
-            joint.name,
-            i + 1
-        );
+        let title = trf(model, Key::LinkTitle, &[&(i + 1), &joint.name, &variable]);
         if matrix_block(
             ui,
+            lang,
             &title,
-            "Frame i in frame i−1",
+            tr(model, Key::FrameInPrevious),
             &a,
             decimals,
             highlighted,
@@ -439,8 +446,8 @@ fn link_blocks(model: &Model, ui: &mut egui::Ui, decimals: usize) -> Option<usiz
         }
         let t = homogeneous(&model.fk().base_from_frames[i]);
         let title = format!("T_0{}", i + 1);
-        let hover = "Frame i in the base frame: A_1·…·A_i";
-        if matrix_block(ui, &title, hover, &t, decimals, highlighted) {
+        let hover = tr(model, Key::FrameInBase);
+        if matrix_block(ui, lang, &title, hover, &t, decimals, highlighted) {
             hovered = Some(i + 1);
         }
     }
@@ -452,25 +459,25 @@ fn jacobian_block(model: &Model, analysis: &JacobianAnalysis, ui: &mut egui::Ui,
     let jm = DMatrix::from_fn(6, j.ncols(), |r, c| j[(r, c)]);
     matrix_block(
         ui,
-        "J  (6×n, base frame)",
-        "Geometric Jacobian, rows vx vy vz ωx ωy ωz: revolute J_v = z × (o_n − o), J_ω = z; prismatic J_v = z",
+        model.settings().lang,
+        tr(model, Key::JacobianTitle),
+        tr(model, Key::JacobianHint),
         &jm,
         decimals,
         false,
     );
-    let text = format!(
-        "central differences (ε = 1e−6) agree to {}",
-        number(analysis.max_difference, 1)
+    let text = trf(
+        model,
+        Key::CentralDifferences,
+        &[&number(analysis.max_difference, 1)],
     );
     if analysis.agrees {
         ui.label(text);
     } else {
+        let tolerance = number(analysis.tolerance, 1);
         ui.colored_label(
             style::ERROR,
-            format!(
-                "{text}: above the tolerance {}",
-                number(analysis.tolerance, 1)
-            ),
+            trf(model, Key::AboveTolerance, &[&text, &tolerance]),
         );
     }
     measures_grid(model, &analysis.measures, ui);
@@ -479,19 +486,22 @@ fn jacobian_block(model: &Model, analysis: &JacobianAnalysis, ui: &mut egui::Ui,
 fn measures_grid(model: &Model, m: &JacobianMeasures, ui: &mut egui::Ui) {
     let sv: Vec<String> = m.singular_values.iter().map(|s| number(*s, 4)).collect();
     egui::Grid::new("measures").num_columns(2).show(ui, |ui| {
-        ui.label("task rows")
-            .on_hover_text("The rows the IK task uses");
+        ui.label(tr(model, Key::TaskRows))
+            .on_hover_text(tr(model, Key::TaskRowsHint));
         ui.label(format!("{}", model.task().rows()));
         ui.end_row();
-        ui.label("singular values").on_hover_text(format!(
-            "Of the task Jacobian with the linear rows divided by the reach ({} {})",
-            number(m.length_scale, 0),
-            model.robot().length_unit.symbol()
+        ui.label(tr(model, Key::SingularValues)).on_hover_text(trf(
+            model,
+            Key::SingularValuesHint,
+            &[
+                &number(m.length_scale, 0),
+                &model.robot().length_unit.symbol(),
+            ],
         ));
         ui.monospace(sv.join("  "));
         ui.end_row();
-        ui.label("manipulability")
-            .on_hover_text("√det(J Jᵀ): the product of the singular values");
+        ui.label(tr(model, Key::Manipulability))
+            .on_hover_text(tr(model, Key::ManipulabilityHint));
         ui.monospace(number(m.manipulability, 5));
         ui.end_row();
         if let Some(det) = m.determinant {
@@ -499,19 +509,30 @@ fn measures_grid(model: &Model, m: &JacobianMeasures, ui: &mut egui::Ui) {
             ui.monospace(number(det, 5));
             ui.end_row();
         }
-        ui.label("condition number");
+        ui.label(tr(model, Key::ConditionNumber));
         ui.monospace(m.condition_number.map_or("∞".to_string(), |c| number(c, 2)));
         ui.end_row();
     });
     if m.near_singular {
-        ui.colored_label(
-            style::UNREACHABLE,
-            "At or near a singularity: some task direction needs very large joint speeds.",
-        );
+        ui.colored_label(style::UNREACHABLE, tr(model, Key::NearSingular));
     }
 }
 
-fn orientation_block(ui: &mut egui::Ui, o: &Orientation, degrees: bool, decimals: usize) {
+fn orientation_block(
+    ui: &mut egui::Ui,
+    lang: Lang,
+    o: &Orientation,
+    degrees: bool,
+    decimals: usize,
+) {
+    let t = |key| text(lang, key);
+    let note = |degenerate: bool, key| {
+        if degenerate {
+            format!("  {}", text(lang, key))
+        } else {
+            String::new()
+        }
+    };
     let ang = |v: f64| {
         if degrees {
             format!("{:.p$}°", v.to_degrees(), p = decimals.min(4))
@@ -519,28 +540,25 @@ fn orientation_block(ui: &mut egui::Ui, o: &Orientation, degrees: bool, decimals
             format!("{:.p$}", v, p = decimals.max(3))
         }
     };
-    egui::CollapsingHeader::new("Tool orientation")
+    egui::CollapsingHeader::new(t(Key::ToolOrientation))
+        .id_salt("tool_orientation")
         .default_open(true)
         .show(ui, |ui| {
             egui::Grid::new("orientation")
                 .num_columns(2)
                 .show(ui, |ui| {
                     let e = o.zyx_euler;
-                    ui.label("Z-Y-X Euler (α, β, γ)");
+                    ui.label(t(Key::ZyxEuler));
                     ui.monospace(format!(
                         "{}  {}  {}{}",
                         ang(e.alpha),
                         ang(e.beta),
                         ang(e.gamma),
-                        if e.degenerate {
-                            "  (β = ±90°: only α∓γ is defined)"
-                        } else {
-                            ""
-                        }
+                        note(e.degenerate, Key::ZyxDegenerate)
                     ));
                     ui.end_row();
                     let f = o.xyz_fixed;
-                    ui.label("X-Y-Z fixed (γ, β, α)");
+                    ui.label(t(Key::XyzFixed));
                     ui.monospace(format!(
                         "{}  {}  {}",
                         ang(f.gamma),
@@ -549,22 +567,18 @@ fn orientation_block(ui: &mut egui::Ui, o: &Orientation, degrees: bool, decimals
                     ));
                     ui.end_row();
                     let a = o.angle_axis;
-                    ui.label("angle-axis (θ, k̂)");
+                    ui.label(t(Key::AngleAxis));
                     ui.monospace(format!(
                         "{}  ({:.4}, {:.4}, {:.4}){}",
                         ang(a.angle),
                         a.axis.x,
                         a.axis.y,
                         a.axis.z,
-                        if a.degenerate {
-                            "  (θ = 0: any axis)"
-                        } else {
-                            ""
-                        }
+                        note(a.degenerate, Key::AngleAxisDegenerate)
                     ));
                     ui.end_row();
                     let q = o.euler_parameters;
-                    ui.label("Euler parameters (ε1..ε4)");
+                    ui.label(t(Key::EulerParameters));
                     ui.monospace(format!(
                         "{:.5}  {:.5}  {:.5}  {:.5}",
                         q.e1, q.e2, q.e3, q.e4

@@ -152,16 +152,28 @@ impl ArmLabApp {
     }
 
     /// Opens a URL hash; on garbage, shows the reason and falls back to the default
-    /// robot. An empty hash changes nothing.
+    /// robot. An empty hash changes nothing. The reason reads in the language the link
+    /// names (`lang=`), when it names one the app has.
     pub fn open_hash(&mut self, hash: &str) {
         match Session::from_hash(hash) {
             Ok(Some(session)) => self.model.open(session),
             Ok(None) => {}
             Err(reason) => {
                 self.model.open(Session::default_session());
-                self.model.set_message(Message::warning(format!(
-                    "This link could not be opened ({reason}); showing the default robot instead."
-                )));
+                let asked = hash
+                    .trim()
+                    .trim_start_matches('#')
+                    .split('&')
+                    .find_map(|part| part.strip_prefix("lang="))
+                    .and_then(crate::i18n::Lang::from_id);
+                if let Some(lang) = asked {
+                    let mut settings = self.model.settings().clone();
+                    settings.lang = lang;
+                    self.model.set_settings(settings);
+                }
+                let reason = reason.sentence(self.model.settings().lang);
+                let text = trf(&self.model, Key::LinkNotOpened, &[&reason]);
+                self.model.set_message(Message::warning(text));
             }
         }
     }

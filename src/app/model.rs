@@ -469,7 +469,7 @@ impl Model {
                 Some(result)
             }
             Err(e) => {
-                self.message = Some(Message::error(e.to_string()));
+                self.message = Some(Message::error(e.sentence(self.settings.lang)));
                 None
             }
         }

@@ -8,12 +8,13 @@ use crate::kinematics::{
     robot_from_json, robot_to_json,
 };
 
-use super::Panel;
+use crate::i18n::{Key, Lang, fill};
+
 use super::format::number;
 use super::hook::ScreenPoints;
 use super::model::{Message, Model};
 use super::session::RobotSource;
-use super::style;
+use super::{Panel, style, tr, trf};
 
 /// Decimals of a DH cell: enough to show every preset's value whole.
 const CELL_DECIMALS: usize = 6;
@@ -38,8 +39,42 @@ pub struct DhEditor {
     pub convention: Option<Convention>,
     /// One entry per joint.
     pub rows: Vec<RowText>,
-    /// The sentence for the cell that is wrong: (row, column, message).
-    pub error: Option<(usize, usize, String)>,
+    /// The cell that is wrong, and why.
+    pub error: Option<CellError>,
+}
+
+/// A cell of the table that does not give a valid robot.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CellError {
+    /// The row (0-based).
+    pub row: usize,
+    /// The column (0-based, as [`COLUMNS`]).
+    pub column: usize,
+    /// What is wrong.
+    pub problem: CellProblem,
+}
+
+/// What is wrong with a cell.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CellProblem {
+    /// Nothing typed.
+    Empty,
+    /// The text typed, which is not a number.
+    NotANumber(String),
+    /// The numbers parse but the core rejects the table.
+    Robot(RobotError),
+}
+
+impl CellError {
+    /// The sentence shown beside the cell, in `lang`.
+    pub fn sentence(&self, lang: Lang) -> String {
+        let (row, column) = (self.row + 1, COLUMNS[self.column]);
+        match &self.problem {
+            CellProblem::Empty => fill(lang, Key::CellEmpty, &[&row, &column]),
+            CellProblem::NotANumber(text) => fill(lang, Key::CellNotNumber, &[&row, &column, text]),
+            CellProblem::Robot(e) => e.sentence(lang),
+        }
+    }
 }
 
 fn fmt(v: f64) -> String {
@@ -77,26 +112,27 @@ impl DhEditor {
         }
     }
 
-    /// The first error as a sentence, if any.
+    /// The first error as an English sentence, if any.
     pub fn first_error(&self) -> Option<String> {
-        self.error.as_ref().map(|(_, _, m)| m.clone())
+        self.error.as_ref().map(|e| e.sentence(Lang::En))
     }
 
     /// Builds a robot from the texts on top of `base` (names, unit, transforms), or says
     /// which cell is wrong.
-    pub fn to_robot(&self, base: &Robot) -> Result<Robot, (usize, usize, String)> {
+    pub fn to_robot(&self, base: &Robot) -> Result<Robot, CellError> {
         let mut joints = Vec::with_capacity(self.rows.len());
         for (i, row) in self.rows.iter().enumerate() {
             let mut v = [0.0; 6];
             for (c, text) in row.cells.iter().enumerate() {
                 let trimmed = text.trim();
-                v[c] = trimmed.parse::<f64>().map_err(|_| {
-                    let what = if trimmed.is_empty() {
-                        "is empty".to_string()
+                v[c] = trimmed.parse::<f64>().map_err(|_| CellError {
+                    row: i,
+                    column: c,
+                    problem: if trimmed.is_empty() {
+                        CellProblem::Empty
                     } else {
-                        format!("\"{trimmed}\" is not a number")
-                    };
-                    (i, c, format!("Joint {}, {}: {what}.", i + 1, COLUMNS[c]))
+                        CellProblem::NotANumber(trimmed.to_string())
+                    },
                 })?;
             }
             let old = base.joints.get(i);
@@ -110,9 +146,12 @@ impl DhEditor {
                     max: v[5],
                 },
             };
+            // Not `limits.clamp`: it panics on reversed or NaN limits, which the core's
+            // check below turns into the sentence beside the cell.
+            let within = |v: f64| v.max(limits.min).min(limits.max);
             let home = old
                 .filter(|o| o.kind == row.kind)
-                .map_or(limits.clamp(0.0), |o| limits.clamp(o.home));
+                .map_or(within(0.0), |o| within(o.home));
             joints.push(Joint {
                 name: old.map_or_else(|| format!("joint {}", i + 1), |o| o.name.clone()),
                 kind: row.kind,
@@ -134,8 +173,12 @@ impl DhEditor {
             ..base.clone()
         };
         robot.validated().map_err(|e| {
-            let (row, col) = locate(&e);
-            (row, col, e.to_string())
+            let (row, column) = locate(&e);
+            CellError {
+                row,
+                column,
+                problem: CellProblem::Robot(e),
+            }
         })
     }
 }
@@ -199,9 +242,10 @@ impl RobotPanel {
                 self.load_robot(model, robot, RobotSource::Custom);
                 model.dismiss_message();
             }
-            Err(e) => model.set_message(Message::error(format!(
-                "That robot file was not loaded: {e}"
-            ))),
+            Err(e) => {
+                let reason = e.sentence(model.settings().lang);
+                model.set_message(Message::error(trf(model, Key::FileNotLoaded, &[&reason])));
+            }
         }
     }
 
@@ -219,10 +263,10 @@ impl RobotPanel {
             RobotSource::Custom => None,
         };
         let mut chosen = None;
-        egui::ComboBox::new("preset_chooser", "Preset")
+        egui::ComboBox::new("preset_chooser", tr(model, Key::Preset))
             .selected_text(match current {
                 Some(_) => model.robot().name.clone(),
-                None => format!("{} (edited)", model.robot().name),
+                None => trf(model, Key::Edited, &[&model.robot().name]),
             })
             .width((ui.available_width() - 60.0).clamp(120.0, 230.0))
             .show_ui(ui, |ui| {
@@ -238,7 +282,7 @@ impl RobotPanel {
         if let Some(id) = chosen {
             match preset(id) {
                 Ok(robot) => self.load_robot(model, robot, RobotSource::Preset(id.to_string())),
-                Err(e) => model.set_message(Message::error(e.to_string())),
+                Err(e) => model.set_message(Message::error(e.sentence(model.settings().lang))),
             }
         }
     }
@@ -247,15 +291,16 @@ impl RobotPanel {
         ui.horizontal_wrapped(|ui| {
             #[cfg(target_arch = "wasm32")]
             {
-                if ui.button("Save robot file").clicked() {
+                if ui.button(tr(model, Key::SaveRobotDownload)).clicked() {
                     let text = robot_to_json(model.robot());
                     let name = robot_file_name(model.robot());
-                    model.set_message(match super::web::download(&name, &text) {
-                        Ok(()) => Message::info(format!("Saved the robot as a download ({name}).")),
-                        Err(e) => Message::error(format!("Could not save the robot file: {e}.")),
-                    });
+                    let message = match super::web::download(&name, &text) {
+                        Ok(()) => Message::info(trf(model, Key::SavedDownload, &[&name])),
+                        Err(e) => Message::error(trf(model, Key::DownloadFailed, &[&e])),
+                    };
+                    model.set_message(message);
                 }
-                if ui.button("Load robot file…").clicked() {
+                if ui.button(tr(model, Key::LoadRobotFile)).clicked() {
                     super::web::open_file_chooser();
                 }
             }
@@ -263,16 +308,16 @@ impl RobotPanel {
             {
                 use super::files::{FileDialog, Mode};
                 let here = || std::env::current_dir().unwrap_or_else(|_| ".".into());
-                if ui.button("Save robot file…").clicked() {
+                if ui.button(tr(model, Key::SaveRobotFile)).clicked() {
                     let name = robot_file_name(model.robot());
                     self.file_dialog = Some(FileDialog::new(Mode::Save, &name, here()));
                 }
-                if ui.button("Open robot file…").clicked() {
+                if ui.button(tr(model, Key::OpenRobotFile)).clicked() {
                     self.file_dialog = Some(FileDialog::new(Mode::Open, "", here()));
                 }
             }
         });
-        ui.label(egui::RichText::new("Or drop a robot file (.json) onto the window.").small());
+        ui.label(egui::RichText::new(tr(model, Key::DropHint)).small());
     }
 
     /// Robot files dropped on the window or picked in the browser's chooser.
@@ -282,9 +327,10 @@ impl RobotPanel {
             #[cfg(not(target_arch = "wasm32"))]
             match file.bytes() {
                 Ok(bytes) => self.load_robot_text(model, &String::from_utf8_lossy(&bytes)),
-                Err(e) => model.set_message(Message::error(format!(
-                    "Could not read the dropped file: {e}."
-                ))),
+                Err(e) => {
+                    let text = trf(model, Key::DroppedUnreadable, &[&e]);
+                    model.set_message(Message::error(text));
+                }
             }
             #[cfg(target_arch = "wasm32")]
             super::web::read_dropped_file(file);
@@ -303,27 +349,25 @@ impl RobotPanel {
             return;
         };
         let mut open = true;
-        let choice = dialog.show(ctx, &mut open);
+        let choice = dialog.show(ctx, model.settings().lang, &mut open);
         if !open {
             self.file_dialog = None;
         }
         match choice {
             Some(Choice::Open(path)) => match std::fs::read_to_string(&path) {
                 Ok(text) => self.load_robot_text(model, &text),
-                Err(e) => model.set_message(Message::error(format!(
-                    "Could not read {}: {e}.",
-                    path.display()
-                ))),
+                Err(e) => {
+                    let text = trf(model, Key::FileUnreadable, &[&path.display(), &e]);
+                    model.set_message(Message::error(text));
+                }
             },
             Some(Choice::Save(path)) => {
                 let text = robot_to_json(model.robot());
-                model.set_message(match std::fs::write(&path, text) {
-                    Ok(()) => Message::info(format!("Saved the robot as {}.", path.display())),
-                    Err(e) => Message::error(format!(
-                        "Could not save the robot file {}: {e}.",
-                        path.display()
-                    )),
-                });
+                let message = match std::fs::write(&path, text) {
+                    Ok(()) => Message::info(trf(model, Key::SavedAs, &[&path.display()])),
+                    Err(e) => Message::error(trf(model, Key::SaveFailed, &[&path.display(), &e])),
+                };
+                model.set_message(message);
             }
             None => {}
         }
@@ -334,10 +378,15 @@ impl Panel for RobotPanel {
     fn ui(&mut self, model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
         self.sync_editor(model);
         self.preset_chooser(model, ui);
-        if !model.robot().description.is_empty() {
-            ui.label(egui::RichText::new(&model.robot().description).small());
+        let description = match model.source() {
+            RobotSource::Preset(id) => preset_description(id).map(|key| tr(model, key)),
+            RobotSource::Custom => None,
         }
-        let header = egui::CollapsingHeader::new("DH table (editable)")
+        .unwrap_or(model.robot().description.as_str());
+        if !description.is_empty() {
+            ui.label(egui::RichText::new(description).small());
+        }
+        let header = egui::CollapsingHeader::new(tr(model, Key::DhTable))
             .id_salt("dh_editor")
             .default_open(false)
             .show(ui, |ui| dh_table(&mut self.editor, model, ui, points));
@@ -355,28 +404,23 @@ fn dh_table(
     points: &mut ScreenPoints,
 ) {
     let mut edited = editor.clone();
-    let mut changed = convention_row(&mut edited, model.robot().convention, ui);
+    let mut changed = convention_row(&mut edited, model, ui);
     let unit = model.robot().length_unit.symbol();
-    ui.label(
-        egui::RichText::new(format!(
-            "Lengths in {unit}; revolute limits in degrees, prismatic in {unit}."
-        ))
-        .small(),
-    );
+    ui.label(egui::RichText::new(trf(model, Key::LengthsIn, &[&unit])).small());
     let mut remove = None;
     egui::Grid::new("dh_grid")
         .striped(true)
         .spacing([4.0, 2.0])
         .show(ui, |ui| {
             ui.label("#");
-            ui.label("type");
+            ui.label(tr(model, Key::ColumnType));
             for c in COLUMNS {
                 ui.label(c);
             }
             ui.label("");
             ui.end_row();
             for (i, row) in edited.rows.iter_mut().enumerate() {
-                let row_edit = dh_row(ui, i, row, editor.error.as_ref(), points);
+                let row_edit = dh_row(ui, model, i, row, editor.error.as_ref(), points);
                 changed |= row_edit.changed;
                 if row_edit.remove {
                     remove = Some(i);
@@ -387,7 +431,7 @@ fn dh_table(
         edited.rows.remove(i);
         changed = true;
     }
-    if ui.button("+ Add joint").clicked() {
+    if ui.button(tr(model, Key::AddJoint)).clicked() {
         edited.rows.push(RowText {
             kind: JointKind::Revolute,
             cells: ["0", "0", "0", "0", "-180", "180"].map(String::from),
@@ -398,24 +442,29 @@ fn dh_table(
         apply_edit(editor, edited, model);
     }
     if editor.rows.is_empty() {
-        ui.colored_label(
-            style::ERROR,
-            "The robot has no joints: a chain needs at least one.",
-        );
+        ui.colored_label(style::ERROR, tr(model, Key::ErrEmptyChain));
     }
 }
 
 /// The convention's radio buttons; returns whether it changed.
-fn convention_row(editor: &mut DhEditor, robot_convention: Convention, ui: &mut egui::Ui) -> bool {
+fn convention_row(editor: &mut DhEditor, model: &Model, ui: &mut egui::Ui) -> bool {
     let mut changed = false;
     ui.horizontal_wrapped(|ui| {
-        ui.label("Convention:");
-        let mut conv = editor.convention.unwrap_or(robot_convention);
+        ui.label(tr(model, Key::Convention));
+        let mut conv = editor.convention.unwrap_or(model.robot().convention);
         changed |= ui
-            .radio_value(&mut conv, Convention::Standard, "standard (Spong)")
+            .radio_value(
+                &mut conv,
+                Convention::Standard,
+                tr(model, Key::ConventionStandard),
+            )
             .changed();
         changed |= ui
-            .radio_value(&mut conv, Convention::Modified, "modified (Craig)")
+            .radio_value(
+                &mut conv,
+                Convention::Modified,
+                tr(model, Key::ConventionModified),
+            )
             .changed();
         editor.convention = Some(conv);
     });
@@ -431,15 +480,16 @@ struct RowEdit {
 /// One joint's row: number, type, six cells, remove button, and its error beneath.
 fn dh_row(
     ui: &mut egui::Ui,
+    model: &Model,
     i: usize,
     row: &mut RowText,
-    error: Option<&(usize, usize, String)>,
+    error: Option<&CellError>,
     points: &mut ScreenPoints,
 ) -> RowEdit {
     let number = ui.label(format!("{}", i + 1));
-    let mut changed = kind_menu(ui, i, row, number.id);
+    let mut changed = kind_menu(ui, model, i, row, number.id);
     for (c, cell) in row.cells.iter_mut().enumerate() {
-        let bad = matches!(error, Some((r, col, _)) if *r == i && *col == c);
+        let bad = error.is_some_and(|e| e.row == i && e.column == c);
         // As wide as its value (the column scrolls; its width is bounded by the layout).
         let font = egui::TextStyle::Body.resolve(ui.style());
         let text_width = ui
@@ -463,22 +513,28 @@ fn dh_row(
     }
     let remove = ui
         .small_button("×")
-        .on_hover_text("Remove this joint")
+        .on_hover_text(tr(model, Key::RemoveJoint))
         .clicked();
     ui.end_row();
-    if let Some((r, _, message)) = error
-        && *r == i
+    if let Some(error) = error
+        && error.row == i
     {
         ui.label("");
         ui.label("");
-        ui.colored_label(style::ERROR, message);
+        ui.colored_label(style::ERROR, error.sentence(model.settings().lang));
         ui.end_row();
     }
     RowEdit { changed, remove }
 }
 
 /// The R/P menu of a row; a new type gets limits that make sense for it.
-fn kind_menu(ui: &mut egui::Ui, i: usize, row: &mut RowText, label: egui::Id) -> bool {
+fn kind_menu(
+    ui: &mut egui::Ui,
+    model: &Model,
+    i: usize,
+    row: &mut RowText,
+    label: egui::Id,
+) -> bool {
     let before = row.kind;
     egui::ComboBox::from_id_salt(("kind", i))
         .selected_text(if row.kind == JointKind::Revolute {
@@ -488,8 +544,12 @@ fn kind_menu(ui: &mut egui::Ui, i: usize, row: &mut RowText, label: egui::Id) ->
         })
         .width(36.0)
         .show_ui(ui, |ui| {
-            ui.selectable_value(&mut row.kind, JointKind::Revolute, "R  revolute");
-            ui.selectable_value(&mut row.kind, JointKind::Prismatic, "P  prismatic");
+            ui.selectable_value(&mut row.kind, JointKind::Revolute, tr(model, Key::Revolute));
+            ui.selectable_value(
+                &mut row.kind,
+                JointKind::Prismatic,
+                tr(model, Key::Prismatic),
+            );
         })
         .response
         .labelled_by(label);
@@ -523,7 +583,68 @@ fn apply_edit(editor: &mut DhEditor, mut edited: DhEditor, model: &mut Model) {
     }
 }
 
+/// The catalogue's description of a preset (its robot file holds the English one).
+fn preset_description(id: &str) -> Option<Key> {
+    Some(match id {
+        "ur10" => Key::DescUr10,
+        "ur10-standard" => Key::DescUr10Standard,
+        "metrover" => Key::DescMetrover,
+        "planar-2r" => Key::DescPlanar2r,
+        "rrr" => Key::DescRrr,
+        "puma560" => Key::DescPuma560,
+        "panda" => Key::DescPanda,
+        "stanford" => Key::DescStanford,
+        "scara" => Key::DescScara,
+        _ => return None,
+    })
+}
+
 /// The file name a robot is saved under: its name in lower case, spaces as dashes.
 pub fn robot_file_name(robot: &Robot) -> String {
     format!("{}.json", robot.name.to_lowercase().replace(' ', "-"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kinematics::preset_ids;
+
+    #[test]
+    fn every_preset_has_its_description_in_the_catalogue() {
+        for id in preset_ids() {
+            let robot = preset(id).expect("presets load");
+            let key = preset_description(id).expect("a description");
+            assert_eq!(crate::i18n::text(Lang::En, key), robot.description, "{id}");
+        }
+    }
+
+    #[test]
+    fn a_bad_cell_is_named_in_the_language_asked_for() {
+        let robot = preset("rrr").expect("a preset");
+        let mut editor = DhEditor::from_robot(&robot);
+        editor.rows[1].cells[2] = "12x".into();
+        let error = editor.to_robot(&robot).expect_err("not a number");
+        assert_eq!(
+            error.sentence(Lang::En),
+            "Joint 2, a: \"12x\" is not a number."
+        );
+        assert_eq!(error.sentence(Lang::Fi), "Nivel 2, a: \"12x\" ei ole luku.");
+        editor.rows[1].cells[2] = " ".into();
+        let error = editor.to_robot(&robot).expect_err("empty");
+        assert_eq!(error.sentence(Lang::En), "Joint 2, a: is empty.");
+        editor.rows[1].cells[2] = "1".into();
+        editor.rows[0].cells[4] = "90".into();
+        editor.rows[0].cells[5] = "-90".into();
+        let error = editor.to_robot(&robot).expect_err("reversed limits");
+        assert_eq!((error.row, error.column), (0, 4));
+        assert!(error.sentence(Lang::Fi).starts_with("Nivel 1: alaraja"));
+        // Limits that are not numbers at all are the core's sentence too, not a panic.
+        editor.rows[0].cells[4] = "NaN".into();
+        let error = editor.to_robot(&robot).expect_err("not finite");
+        assert_eq!((error.row, error.column), (0, 4));
+        assert_eq!(
+            error.sentence(Lang::En),
+            "In joint 1, the field \"min\" is not a finite number (NaN)."
+        );
+    }
 }

@@ -17,11 +17,12 @@
 //!   focus (robot units); without it the view frames the arm.
 
 use nalgebra::IsometryMatrix3;
-use thiserror::Error;
 
 use crate::kinematics::{
     IkMethod, Robot, RobotError, Task, ZyxEuler, preset, robot_from_json, robot_to_json,
 };
+
+use crate::i18n::{Key, Lang, fill, text};
 
 use super::format::number_list;
 use super::settings::{CameraPose, DisplayPatch};
@@ -30,23 +31,18 @@ use super::settings::{CameraPose, DisplayPatch};
 const LINK_DECIMALS: usize = 6;
 
 /// What is wrong with a link; each reads as the middle of the sentence "This link could
-/// not be opened (…)".
-#[derive(Debug, Clone, PartialEq, Error)]
+/// not be opened (…)". `Display` is English; the app shows [`LinkError::sentence`].
+#[derive(Debug, Clone, PartialEq)]
 pub enum LinkError {
     /// A `key=value` part without `=`.
-    #[error("the link part \"{0}\" has no '='")]
     NoEquals(String),
     /// A key the format does not have.
-    #[error("the link has an unknown part \"{0}\"")]
     UnknownPart(String),
     /// A broken `%XX` escape.
-    #[error("the link has a broken %-escape")]
     BrokenEscape,
     /// Escapes that do not decode to UTF-8 text.
-    #[error("the link's text is not valid UTF-8")]
     NotUtf8,
     /// A list item that is not a finite number.
-    #[error("the link's {field} has \"{text}\", which is not a number")]
     NotANumber {
         /// `q`, `target` or `camera`.
         field: &'static str,
@@ -54,38 +50,96 @@ pub enum LinkError {
         text: String,
     },
     /// A target that is not six numbers.
-    #[error("the link's target needs six numbers (x, y, z, α, β, γ)")]
     TargetLength,
     /// A task id that is not known.
-    #[error("the link's task \"{0}\" is not known")]
     UnknownTask(String),
     /// A display field whose value is not one of those allowed.
-    #[error("the link's {field} is \"{text}\"; it can be {allowed}")]
     BadValue {
         /// The field's key.
         field: String,
         /// The value as written.
         text: String,
-        /// The values it can have.
+        /// The values it can have, in English (as the display settings name them).
         allowed: &'static str,
     },
     /// A camera that is not six numbers with a positive distance.
-    #[error(
-        "the link's camera needs six numbers (yaw, pitch, distance, x, y, z), the distance above 0"
-    )]
     BadCamera,
     /// A method id that is not known.
-    #[error("the link's method \"{0}\" is not known")]
     UnknownMethod(String),
     /// `robot=` is missing.
-    #[error("the link names no robot (robot=...)")]
     NoRobot,
     /// `robot=custom` without its table.
-    #[error("the link says robot=custom but carries no dh= table")]
     CustomWithoutTable,
     /// The robot (a preset id, a table) or the joint vector is not valid.
-    #[error("{0}")]
-    Robot(#[from] RobotError),
+    Robot(RobotError),
+}
+
+impl LinkError {
+    /// The reason in `lang`, as the middle of [`Key::LinkNotOpened`].
+    pub fn sentence(&self, lang: Lang) -> String {
+        let plain = |key| text(lang, key).to_string();
+        match self {
+            LinkError::NoEquals(part) => fill(lang, Key::LinkNoEquals, &[part]),
+            LinkError::UnknownPart(part) => fill(lang, Key::LinkUnknownPart, &[part]),
+            LinkError::BrokenEscape => plain(Key::LinkBrokenEscape),
+            LinkError::NotUtf8 => plain(Key::LinkNotUtf8),
+            LinkError::NotANumber { field, text } => {
+                fill(lang, Key::LinkNotANumber, &[field, text])
+            }
+            LinkError::TargetLength => plain(Key::LinkTargetLength),
+            LinkError::UnknownTask(task) => fill(lang, Key::LinkUnknownTask, &[task]),
+            LinkError::BadValue {
+                field,
+                text,
+                allowed,
+            } => {
+                let allowed =
+                    allowed_values(allowed).map_or(*allowed, |key| crate::i18n::text(lang, key));
+                fill(lang, Key::LinkBadValue, &[field, text, &allowed])
+            }
+            LinkError::BadCamera => plain(Key::LinkBadCamera),
+            LinkError::UnknownMethod(method) => fill(lang, Key::LinkUnknownMethod, &[method]),
+            LinkError::NoRobot => plain(Key::LinkNoRobot),
+            LinkError::CustomWithoutTable => plain(Key::LinkCustomWithoutTable),
+            LinkError::Robot(e) => e.sentence(lang),
+        }
+    }
+}
+
+/// The catalogue's text of a display field's allowed values, which the display settings
+/// give in English (a test checks that every one they give is here).
+fn allowed_values(english: &str) -> Option<Key> {
+    [
+        Key::AllowedOnOff,
+        Key::AllowedDegRad,
+        Key::AllowedDecimals,
+        Key::AllowedLang,
+        Key::AllowedPanels,
+    ]
+    .into_iter()
+    .find(|key| text(Lang::En, *key) == english)
+}
+
+impl std::fmt::Display for LinkError {
+    /// The English reason.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.sentence(Lang::En))
+    }
+}
+
+impl std::error::Error for LinkError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            LinkError::Robot(e) => Some(e),
+            _ => None,
+        }
+    }
+}
+
+impl From<RobotError> for LinkError {
+    fn from(e: RobotError) -> Self {
+        LinkError::Robot(e)
+    }
 }
 
 /// Where the robot came from.
@@ -375,4 +429,46 @@ pub fn native_session_file() -> Option<std::path::PathBuf> {
         .or_else(|| env("APPDATA").map(std::path::PathBuf::from))
         .or_else(|| env("HOME").map(|home| std::path::PathBuf::from(home).join(".config")))?;
     Some(config.join("armlab").join("session"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_allowed_value_list_of_the_display_fields_is_in_the_catalogue() {
+        for key in [
+            "units", "frames", "present", "decimals", "lang", "panels", "ppanels",
+        ] {
+            let allowed = DisplayPatch::default()
+                .read(key, "bogus")
+                .expect_err("a bad value");
+            assert!(allowed_values(allowed).is_some(), "{key}: {allowed:?}");
+        }
+    }
+
+    #[test]
+    fn a_link_error_reads_in_english_and_in_finnish() {
+        let e = Session::from_hash("#robot=ur10&q=1,2,banana").expect_err("a bad link");
+        assert_eq!(
+            e.to_string(),
+            "the link's q has \"banana\", which is not a number"
+        );
+        assert_eq!(
+            e.sentence(Lang::Fi),
+            "linkin kentässä q on \"banana\", joka ei ole luku"
+        );
+        let e = Session::from_hash("#robot=ur10&units=grad").expect_err("a bad link");
+        assert_eq!(
+            e.to_string(),
+            "the link's units is \"grad\"; it can be deg or rad"
+        );
+        assert!(e.sentence(Lang::Fi).ends_with("deg tai rad"));
+        let e = Session::from_hash("#robot=ur10&q=1,2").expect_err("a bad link");
+        assert_eq!(
+            e.to_string(),
+            "The robot has 6 joints but 2 joint values were given."
+        );
+        assert!(e.sentence(Lang::Fi).starts_with("Robotilla on 6 niveltä"));
+    }
 }

@@ -19,11 +19,32 @@ pub fn text(lang: Lang, key: Key) -> &'static str {
 }
 
 /// The text of `key` in `lang` with its places `{0}`, `{1}`, … filled by `args` in order.
+///
+/// One pass over the text: a value that itself holds `{1}` (a typed cell, a name) is
+/// written as it is, never filled again. A place without a value stays as written.
 pub fn fill(lang: Lang, key: Key, args: &[&dyn std::fmt::Display]) -> String {
-    let mut out = text(lang, key).to_string();
-    for (i, arg) in args.iter().enumerate() {
-        out = out.replace(&format!("{{{i}}}"), &arg.to_string());
+    let text = text(lang, key);
+    let mut out = String::with_capacity(text.len() + 16 * args.len());
+    let mut rest = text;
+    while let Some(open) = rest.find('{') {
+        out.push_str(&rest[..open]);
+        let after = &rest[open + 1..];
+        let place = after
+            .split_once('}')
+            .and_then(|(n, tail)| Some((n.parse::<usize>().ok()?, tail)))
+            .and_then(|(n, tail)| Some((args.get(n)?, tail)));
+        match place {
+            Some((arg, tail)) => {
+                out.push_str(&arg.to_string());
+                rest = tail;
+            }
+            None => {
+                out.push('{');
+                rest = after;
+            }
+        }
     }
+    out.push_str(rest);
     out
 }
 
@@ -120,10 +141,52 @@ mod tests {
     }
 
     #[test]
+    fn every_text_has_its_glyphs_in_the_font() {
+        // The ranges of assets/fonts/README.md: a glyph outside them panics in the UI tests.
+        const RANGES: &[(u32, u32)] = &[
+            (0x20, 0x7E),
+            (0xA0, 0xFF),
+            (0x131, 0x131),
+            (0x152, 0x153),
+            (0x2C6, 0x2DC),
+            (0x300, 0x308),
+            (0x391, 0x3C9),
+            (0x1D40, 0x1D40),
+            (0x2010, 0x2027),
+            (0x2030, 0x203A),
+            (0x2070, 0x209C),
+            (0x2190, 0x21FF),
+            (0x2200, 0x22FF),
+            (0x2300, 0x231F),
+            (0x25A0, 0x25FF),
+            (0x2610, 0x2612),
+            (0x26A0, 0x26A0),
+            (0x2713, 0x2718),
+            (0x27E8, 0x27E9),
+        ];
+        for key in Key::ALL {
+            for lang in Lang::ALL {
+                for c in text(lang, *key).chars() {
+                    let known = RANGES
+                        .iter()
+                        .any(|(lo, hi)| (*lo..=*hi).contains(&(c as u32)));
+                    assert!(known, "{key:?} ({lang:?}) has {c:?} (U+{:04X})", c as u32);
+                }
+            }
+        }
+    }
+
+    #[test]
     fn fill_puts_values_in_their_places() {
         assert_eq!(places("a {1} b {0} {1}"), vec![0, 1]);
         let s = fill(Lang::En, Key::ReachedIn, &[&3, &"x"]);
         assert!(s.contains('3'), "{s}");
+        // A value holding a place is written as it is.
+        let s = fill(Lang::En, Key::JointHighlighted, &[&"{1}", &"x"]);
+        assert_eq!(s, "joint {1}: x — A_{1} and T_0{1} highlighted");
+        // Braces that are not places stay.
+        let s = fill(Lang::En, Key::ModifiedFormula, &[]);
+        assert!(s.contains("α_{i−1}"), "{s}");
     }
 
     #[test]

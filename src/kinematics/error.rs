@@ -1,7 +1,9 @@
 //! Typed errors of the core. Each message is a whole sentence a student can act on: it
-//! names the joint (counted from 1, as in the DH table) and the field.
+//! names the joint (counted from 1, as in the DH table) and the field. The sentences come
+//! from the catalogue ([`crate::i18n`]): [`RobotError::sentence`] in any language, and
+//! `Display` in English (the JSON API and the logs keep to English).
 
-use thiserror::Error;
+use crate::i18n::{Key, Lang, fill, text};
 
 /// Where in a robot description a value sits, for messages.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -16,14 +18,62 @@ pub enum Place {
     Tool,
 }
 
+impl Place {
+    /// The place in `lang`, as the sentences of [`RobotError`] use it: English "joint 2"
+    /// (after "In"), Finnish "Nivelessä 2" (the inflected place opens the sentence).
+    pub fn text(&self, lang: Lang) -> String {
+        match self {
+            Place::Robot => text(lang, Key::PlaceRobot).to_string(),
+            Place::Joint(n) => fill(lang, Key::PlaceJoint, &[n]),
+            Place::Base => text(lang, Key::PlaceBase).to_string(),
+            Place::Tool => text(lang, Key::PlaceTool).to_string(),
+        }
+    }
+}
+
 impl std::fmt::Display for Place {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Place::Robot => write!(f, "the robot"),
-            Place::Joint(n) => write!(f, "joint {n}"),
-            Place::Base => write!(f, "the base transform"),
-            Place::Tool => write!(f, "the tool transform"),
-        }
+        f.write_str(&self.text(Lang::En))
+    }
+}
+
+/// What a field of a robot file should hold, for [`RobotError::WrongType`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Expected {
+    /// A JSON object (a robot, a joint).
+    Object,
+    /// The list of joints.
+    JointList,
+    /// A transform object with `xyz` and `rpy_deg`.
+    Transform,
+    /// A string.
+    Text,
+    /// A number.
+    Number,
+    /// A list of three numbers.
+    Triple,
+}
+
+impl Expected {
+    /// What the field should hold, in words ("a number", "a list of 3 numbers").
+    pub fn text(self, lang: Lang) -> &'static str {
+        text(
+            lang,
+            match self {
+                Expected::Object => Key::ExpectedObject,
+                Expected::JointList => Key::ExpectedJointList,
+                Expected::Transform => Key::ExpectedTransform,
+                Expected::Text => Key::ExpectedText,
+                Expected::Number => Key::ExpectedNumber,
+                Expected::Triple => Key::ExpectedTriple,
+            },
+        )
+    }
+}
+
+impl std::fmt::Display for Expected {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.text(Lang::En))
     }
 }
 
@@ -200,10 +250,9 @@ impl DhColumn {
 }
 
 /// Everything that can be wrong with a robot description or with a request on it.
-#[derive(Debug, Clone, PartialEq, Error)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum RobotError {
     /// The text is not JSON at all.
-    #[error("The robot file is not valid JSON (line {line}, column {column}): {reason}.")]
     Syntax {
         /// 1-based line of the problem.
         line: usize,
@@ -213,7 +262,6 @@ pub enum RobotError {
         reason: String,
     },
     /// A required field is absent.
-    #[error("In {place}, the field \"{field}\" is missing.")]
     MissingField {
         /// Where.
         place: Place,
@@ -221,7 +269,6 @@ pub enum RobotError {
         field: Field,
     },
     /// A field that the format does not know (often a typo).
-    #[error("In {place}, the field \"{field}\" is not known; the known fields are: {known}.")]
     UnknownField {
         /// Where.
         place: Place,
@@ -231,22 +278,17 @@ pub enum RobotError {
         known: String,
     },
     /// A field holds the wrong kind of JSON value.
-    #[error("In {place}, the field \"{field}\" must be {expected}.")]
     WrongType {
         /// Where.
         place: Place,
         /// Which field.
         field: Field,
-        /// What it should be, in words ("a number", "a list of 3 numbers").
-        expected: String,
+        /// What it should be.
+        expected: Expected,
     },
     /// The DH convention is neither "standard" nor "modified".
-    #[error(
-        "The convention \"{0}\" is not known: use \"standard\" (Denavit–Hartenberg, Spong) or \"modified\" (Craig)."
-    )]
     UnknownConvention(String),
     /// The joint type is neither revolute nor prismatic.
-    #[error("Joint {joint} has the type \"{found}\": use \"revolute\" or \"prismatic\".")]
     UnknownJointType {
         /// 1-based joint number.
         joint: usize,
@@ -254,10 +296,8 @@ pub enum RobotError {
         found: String,
     },
     /// The length unit is not one the app knows.
-    #[error("The length unit \"{0}\" is not known: use \"mm\" or \"m\".")]
     UnknownLengthUnit(String),
     /// NaN or ±infinity.
-    #[error("In {place}, the field \"{field}\" is not a finite number ({value}).")]
     NotFinite {
         /// Where.
         place: Place,
@@ -267,10 +307,8 @@ pub enum RobotError {
         value: f64,
     },
     /// No joints at all.
-    #[error("The robot has no joints: a chain needs at least one.")]
     EmptyChain,
     /// More joints than the app handles.
-    #[error("The robot has {count} joints; ArmLab handles at most {max}.")]
     TooManyJoints {
         /// How many were given.
         count: usize,
@@ -278,7 +316,6 @@ pub enum RobotError {
         max: usize,
     },
     /// A length or angle whose size makes no physical sense.
-    #[error("In {place}, the field \"{field}\" is {value}, larger in size than the limit {limit}.")]
     TooLarge {
         /// Where.
         place: Place,
@@ -290,7 +327,6 @@ pub enum RobotError {
         limit: f64,
     },
     /// A drawn part's size below zero.
-    #[error("In {place}, the field \"{field}\" holds {value}: a size cannot be negative.")]
     NegativeSize {
         /// Where.
         place: Place,
@@ -300,7 +336,6 @@ pub enum RobotError {
         value: f64,
     },
     /// A joint's lower limit is above its upper limit.
-    #[error("Joint {joint}: the lower limit {min} is above the upper limit {max}.")]
     LimitsReversed {
         /// 1-based joint number.
         joint: usize,
@@ -310,18 +345,13 @@ pub enum RobotError {
         max: f64,
     },
     /// A prismatic joint needs a finite stroke.
-    #[error(
-        "Joint {joint} is prismatic and needs both limits (\"min\" and \"max\", in length units)."
-    )]
     PrismaticWithoutLimits {
         /// 1-based joint number.
         joint: usize,
     },
     /// No preset by that name.
-    #[error("There is no robot called \"{0}\"; the presets are: {1}.")]
     UnknownPreset(String, String),
     /// A joint vector of the wrong length.
-    #[error("The robot has {expected} joints but {found} joint values were given.")]
     WrongJointCount {
         /// The robot's joint count.
         expected: usize,
@@ -329,7 +359,6 @@ pub enum RobotError {
         found: usize,
     },
     /// A joint value that is NaN or infinite.
-    #[error("The value of joint {joint} is not a finite number ({value}).")]
     JointValueNotFinite {
         /// 1-based joint number.
         joint: usize,
@@ -339,6 +368,75 @@ pub enum RobotError {
 }
 
 impl RobotError {
+    /// The error as a sentence in `lang`.
+    pub fn sentence(&self, lang: Lang) -> String {
+        let at = |place: &Place| place.text(lang);
+        match self {
+            RobotError::Syntax {
+                line,
+                column,
+                reason,
+            } => fill(lang, Key::ErrSyntax, &[line, column, reason]),
+            RobotError::MissingField { place, field } => {
+                fill(lang, Key::ErrMissingField, &[&at(place), field])
+            }
+            RobotError::UnknownField {
+                place,
+                field,
+                known,
+            } => fill(lang, Key::ErrUnknownField, &[&at(place), field, known]),
+            RobotError::WrongType {
+                place,
+                field,
+                expected,
+            } => fill(
+                lang,
+                Key::ErrWrongType,
+                &[&at(place), field, &expected.text(lang)],
+            ),
+            RobotError::UnknownConvention(found) => fill(lang, Key::ErrUnknownConvention, &[found]),
+            RobotError::UnknownJointType { joint, found } => {
+                fill(lang, Key::ErrUnknownJointType, &[joint, found])
+            }
+            RobotError::UnknownLengthUnit(found) => fill(lang, Key::ErrUnknownLengthUnit, &[found]),
+            RobotError::NotFinite {
+                place,
+                field,
+                value,
+            } => fill(lang, Key::ErrNotFinite, &[&at(place), field, value]),
+            RobotError::EmptyChain => text(lang, Key::ErrEmptyChain).to_string(),
+            RobotError::TooManyJoints { count, max } => {
+                fill(lang, Key::ErrTooManyJoints, &[count, max])
+            }
+            RobotError::TooLarge {
+                place,
+                field,
+                value,
+                limit,
+            } => fill(lang, Key::ErrTooLarge, &[&at(place), field, value, limit]),
+            RobotError::NegativeSize {
+                place,
+                field,
+                value,
+            } => fill(lang, Key::ErrNegativeSize, &[&at(place), field, value]),
+            RobotError::LimitsReversed { joint, min, max } => {
+                fill(lang, Key::ErrLimitsReversed, &[joint, min, max])
+            }
+            RobotError::PrismaticWithoutLimits { joint } => {
+                fill(lang, Key::ErrPrismaticWithoutLimits, &[joint])
+            }
+            RobotError::UnknownPreset(name, presets) => {
+                fill(lang, Key::ErrUnknownPreset, &[name, presets])
+            }
+            RobotError::WrongJointCount { expected, found } => {
+                fill(lang, Key::ErrWrongJointCount, &[expected, found])
+            }
+            RobotError::JointValueNotFinite { joint, value } => {
+                fill(lang, Key::ErrJointValueNotFinite, &[joint, value])
+            }
+        }
+    }
+
     /// The DH table cell an error is about: (joint, 0-based; column), for the editor to
     /// place its sentence beside the cell without reading the text.
     pub fn dh_cell(&self) -> Option<(usize, DhColumn)> {
@@ -382,5 +480,90 @@ impl RobotError {
             column: err.column(),
             reason,
         }
+    }
+}
+
+impl std::fmt::Display for RobotError {
+    /// The English sentence.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.sentence(Lang::En))
+    }
+}
+
+impl std::error::Error for RobotError {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_english_sentences_read_as_before_the_catalogue() {
+        let cases = [
+            (
+                RobotError::MissingField {
+                    place: Place::Joint(2),
+                    field: Field::D,
+                },
+                "In joint 2, the field \"d\" is missing.",
+            ),
+            (
+                RobotError::WrongType {
+                    place: Place::Tool,
+                    field: Field::Xyz,
+                    expected: Expected::Triple,
+                },
+                "In the tool transform, the field \"xyz\" must be a list of 3 numbers.",
+            ),
+            (
+                RobotError::TooLarge {
+                    place: Place::Robot,
+                    field: Field::BaseSize,
+                    value: 2.5e9,
+                    limit: 1e9,
+                },
+                "In the robot, the field \"base_size\" is 2500000000, larger in size than the limit 1000000000.",
+            ),
+            (
+                RobotError::LimitsReversed {
+                    joint: 3,
+                    min: 10.0,
+                    max: -1.5,
+                },
+                "Joint 3: the lower limit 10 is above the upper limit -1.5.",
+            ),
+            (
+                RobotError::WrongJointCount {
+                    expected: 6,
+                    found: 2,
+                },
+                "The robot has 6 joints but 2 joint values were given.",
+            ),
+        ];
+        for (error, english) in cases {
+            assert_eq!(error.to_string(), english);
+            assert_eq!(error.sentence(Lang::En), english);
+        }
+    }
+
+    #[test]
+    fn a_finnish_sentence_opens_with_the_inflected_place() {
+        let e = RobotError::NotFinite {
+            place: Place::Joint(2),
+            field: Field::A,
+            value: f64::INFINITY,
+        };
+        assert_eq!(
+            e.sentence(Lang::Fi),
+            "Nivelessä 2 kenttä \"a\" ei ole äärellinen luku (inf)."
+        );
+        let e = RobotError::WrongType {
+            place: Place::Base,
+            field: Field::Xyz,
+            expected: Expected::Number,
+        };
+        assert_eq!(
+            e.sentence(Lang::Fi),
+            "Kannan muunnoksessa kentän \"xyz\" on oltava luku."
+        );
     }
 }

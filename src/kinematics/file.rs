@@ -16,7 +16,7 @@
 
 use serde_json::{Map, Value, json};
 
-use super::error::{Field, Place, RobotError};
+use super::error::{Expected, Field, Place, RobotError};
 use super::orientation::ZyxEuler;
 use super::robot::{
     Convention, DhRow, Joint, JointKind, JointLimits, LengthUnit, MAX_JOINTS, PartSizes, Robot,
@@ -62,7 +62,7 @@ pub fn robot_from_json(text: &str) -> Result<Robot, RobotError> {
 
 /// Reads a robot from an already parsed JSON value (used by the JS API and URLs).
 pub fn robot_from_value(value: &Value) -> Result<Robot, RobotError> {
-    let obj = object(value, &Place::Robot, Field::Robot, "a JSON object { ... }")?;
+    let obj = object(value, &Place::Robot, Field::Robot, Expected::Object)?;
     check_fields(obj, &Place::Robot, ROBOT_FIELDS)?;
     let place = Place::Robot;
     let name = string(obj, &place, Field::Name)?.ok_or_else(|| missing(&place, Field::Name))?;
@@ -83,11 +83,7 @@ pub fn robot_from_value(value: &Value) -> Result<Robot, RobotError> {
         None => return Err(missing(&place, Field::Joints)),
         Some(Value::Array(list)) => list,
         Some(_) => {
-            return Err(wrong(
-                &place,
-                Field::Joints,
-                "a list of joints [ {...}, ... ]",
-            ));
+            return Err(wrong(&place, Field::Joints, Expected::JointList));
         }
     };
     if list.is_empty() {
@@ -125,7 +121,7 @@ pub fn robot_from_value(value: &Value) -> Result<Robot, RobotError> {
 
 fn joint_from_value(n: usize, value: &Value) -> Result<Joint, RobotError> {
     let place = Place::Joint(n);
-    let obj = object(value, &place, Field::Joint, "a JSON object { ... }")?;
+    let obj = object(value, &place, Field::Joint, Expected::Object)?;
     check_fields(obj, &place, JOINT_FIELDS)?;
     let kind = match string(obj, &place, Field::Type)?.as_deref() {
         Some("revolute") => JointKind::Revolute,
@@ -212,12 +208,7 @@ fn transform_from_value(
     let Some(value) = value else {
         return Ok(nalgebra::IsometryMatrix3::identity());
     };
-    let obj = object(
-        value,
-        &place,
-        Field::Transform,
-        "an object { \"xyz\": [..], \"rpy_deg\": [..] }",
-    )?;
+    let obj = object(value, &place, Field::Transform, Expected::Transform)?;
     check_fields(obj, &place, TRANSFORM_FIELDS)?;
     let xyz = triple(obj, &place, Field::Xyz)?.unwrap_or([0.0; 3]);
     let rpy = triple(obj, &place, Field::RpyDeg)?.unwrap_or([0.0; 3]);
@@ -323,11 +314,11 @@ fn missing(place: &Place, field: Field) -> RobotError {
     }
 }
 
-fn wrong(place: &Place, field: Field, expected: &str) -> RobotError {
+fn wrong(place: &Place, field: Field, expected: Expected) -> RobotError {
     RobotError::WrongType {
         place: place.clone(),
         field,
-        expected: expected.to_string(),
+        expected,
     }
 }
 
@@ -335,7 +326,7 @@ fn object<'a>(
     value: &'a Value,
     place: &Place,
     field: Field,
-    expected: &str,
+    expected: Expected,
 ) -> Result<&'a Map<String, Value>, RobotError> {
     value
         .as_object()
@@ -361,7 +352,7 @@ fn string(
     match obj.get(field.name()) {
         None | Some(Value::Null) => Ok(None),
         Some(Value::String(s)) => Ok(Some(s.clone())),
-        Some(_) => Err(wrong(place, field, "a text in quotes")),
+        Some(_) => Err(wrong(place, field, Expected::Text)),
     }
 }
 
@@ -381,7 +372,7 @@ fn number(
             }),
         },
         // JSON has no NaN; a string "NaN" or null is a type error, named as such.
-        Some(_) => Err(wrong(place, field, "a number")),
+        Some(_) => Err(wrong(place, field, Expected::Number)),
     }
 }
 
@@ -393,7 +384,7 @@ fn triple(
     let Some(value) = obj.get(field.name()) else {
         return Ok(None);
     };
-    let expected = "a list of 3 numbers";
+    let expected = Expected::Triple;
     let list = value
         .as_array()
         .ok_or_else(|| wrong(place, field, expected))?;

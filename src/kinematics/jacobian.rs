@@ -75,14 +75,20 @@ impl Task {
         Task::ALL.into_iter().find(|t| t.id() == id)
     }
 
-    /// The name people read in the app's menu.
+    /// The name people read in the app's menu, in English.
     pub fn label(self) -> &'static str {
+        crate::i18n::text(crate::i18n::Lang::En, self.label_key())
+    }
+
+    /// The catalogue key of the menu's name.
+    pub fn label_key(self) -> crate::i18n::Key {
+        use crate::i18n::Key;
         match self {
-            Task::Position => "Position only (3 rows)",
-            Task::PositionAndAxis(ToolAxis::X) => "Position + tool x axis (5D)",
-            Task::PositionAndAxis(ToolAxis::Y) => "Position + tool y axis (5D)",
-            Task::PositionAndAxis(ToolAxis::Z) => "Position + tool z axis (5D)",
-            Task::FullPose => "Full pose (6 rows)",
+            Task::Position => Key::TaskPosition,
+            Task::PositionAndAxis(ToolAxis::X) => Key::TaskAxisX,
+            Task::PositionAndAxis(ToolAxis::Y) => Key::TaskAxisY,
+            Task::PositionAndAxis(ToolAxis::Z) => Key::TaskAxisZ,
+            Task::FullPose => Key::TaskFullPose,
         }
     }
 

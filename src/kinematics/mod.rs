@@ -15,15 +15,15 @@ pub mod presets;
 pub mod rng;
 pub mod robot;
 
-pub use error::{DhColumn, Field, Place, RobotError};
+pub use error::{DhColumn, Expected, Field, Place, RobotError};
 pub use file::{robot_from_json, robot_from_value, robot_to_json};
 pub use fk::{
     ForwardKinematics, link_transform, modified_dh_transform, standard_dh_transform, tool_pose,
 };
 pub use ik::{
-    ClosedFormFamily, ClosedFormSet, ClosedFormSolution, DEFAULT_MAX_JOINT_CHANGE, IkError,
-    IkMethod, IkResult, IkSettings, IkSolver, IkStep, JacobianSource, Reach, closed_form_family,
-    closed_form_solutions, drag_step, solve,
+    BadTarget, ClosedFormFamily, ClosedFormSet, ClosedFormSolution, DEFAULT_MAX_JOINT_CHANGE,
+    IkError, IkMethod, IkResult, IkSettings, IkSolver, IkStep, JacobianSource, Reach,
+    closed_form_family, closed_form_solutions, drag_step, solve,
 };
 pub use jacobian::{
     JACOBIAN_AGREEMENT, JacobianAnalysis, JacobianMeasures, NUMERIC_EPSILON, SINGULARITY_THRESHOLD,

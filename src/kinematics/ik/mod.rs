@@ -23,12 +23,12 @@ mod closed_form;
 mod numeric;
 
 use nalgebra::{IsometryMatrix3, Matrix3, Vector3};
-use thiserror::Error;
 
 use super::error::RobotError;
 use super::fk::tool_pose;
 use super::jacobian::Task;
 use super::robot::{JointKind, Robot};
+use crate::i18n::{Key, Lang, fill, text};
 
 pub use closed_form::{
     ClosedFormFamily, ClosedFormSet, ClosedFormSolution, closed_form_family, closed_form_solutions,
@@ -102,13 +102,18 @@ impl IkMethod {
         }
     }
 
-    /// The name people read in the app's menu.
+    /// The name people read in the app's menu, in English.
     pub fn label(self) -> &'static str {
+        text(Lang::En, self.label_key())
+    }
+
+    /// The catalogue key of the menu's name.
+    pub fn label_key(self) -> Key {
         match self {
-            IkMethod::DampedLeastSquares => "Damped least squares",
-            IkMethod::PseudoInverse => "Pseudo-inverse (Newton)",
-            IkMethod::JacobianTranspose { .. } => "Jacobian transpose (gradient)",
-            IkMethod::ClosedForm => "Closed form",
+            IkMethod::DampedLeastSquares => Key::MethodDls,
+            IkMethod::PseudoInverse => Key::MethodPinv,
+            IkMethod::JacobianTranspose { .. } => Key::MethodTranspose,
+            IkMethod::ClosedForm => Key::MethodClosedForm,
         }
     }
 
@@ -213,17 +218,16 @@ impl IkSettings {
             ("orientation_tolerance", self.orientation_tolerance),
         ] {
             if !positive(value) {
-                return Err(IkError::Settings(format!(
-                    "{name} must be a positive number, not {value}"
-                )));
+                return Err(IkError::Settings { name, value });
             }
         }
         if let Some(limit) = self.max_joint_change
             && !positive(limit)
         {
-            return Err(IkError::Settings(format!(
-                "max_joint_change must be a positive number, not {limit}"
-            )));
+            return Err(IkError::Settings {
+                name: "max_joint_change",
+                value: limit,
+            });
         }
         Ok(())
     }
@@ -286,23 +290,75 @@ pub struct IkResult {
     pub trace: Vec<IkStep>,
 }
 
-/// What can be wrong with an IK request.
-#[derive(Debug, Clone, PartialEq, Error)]
+/// What can be wrong with an IK request. `Display` is the English sentence; the app shows
+/// [`IkError::sentence`] in its language.
+#[derive(Debug, Clone, PartialEq)]
 pub enum IkError {
     /// The seed does not fit the robot.
-    #[error(transparent)]
-    Robot(#[from] RobotError),
+    Robot(RobotError),
     /// The target pose holds NaN or infinity, or its rotation is not a rotation.
-    #[error("The target pose is not a valid pose: {0}.")]
-    Target(String),
-    /// A setting is out of range.
-    #[error("The IK settings are not valid: {0}.")]
-    Settings(String),
+    Target(BadTarget),
+    /// A setting is out of range: it must be a positive number.
+    Settings {
+        /// The setting's name (`position_tolerance`, …).
+        name: &'static str,
+        /// Its value.
+        value: f64,
+    },
     /// The closed form was asked for an arm that has none here.
-    #[error(
-        "\"{0}\" has no closed-form IK in ArmLab (only the planar 2R, the RRR arm and the UR family do): use a numeric method."
-    )]
     NoClosedForm(String),
+}
+
+/// What is wrong with a target pose.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BadTarget {
+    /// A value is NaN or infinite.
+    NotFinite,
+    /// The 3×3 part is not orthonormal with determinant +1.
+    NotRotation,
+}
+
+impl IkError {
+    /// The error as a sentence in `lang`.
+    pub fn sentence(&self, lang: Lang) -> String {
+        match self {
+            IkError::Robot(e) => e.sentence(lang),
+            IkError::Target(why) => {
+                let why = text(
+                    lang,
+                    match why {
+                        BadTarget::NotFinite => Key::TargetNotFinite,
+                        BadTarget::NotRotation => Key::TargetNotRotation,
+                    },
+                );
+                fill(lang, Key::IkBadTarget, &[&why])
+            }
+            IkError::Settings { name, value } => fill(lang, Key::IkBadSettings, &[name, value]),
+            IkError::NoClosedForm(robot) => fill(lang, Key::IkNoClosedForm, &[robot]),
+        }
+    }
+}
+
+impl std::fmt::Display for IkError {
+    /// The English sentence.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.sentence(Lang::En))
+    }
+}
+
+impl std::error::Error for IkError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            IkError::Robot(e) => Some(e),
+            _ => None,
+        }
+    }
+}
+
+impl From<RobotError> for IkError {
+    fn from(e: RobotError) -> Self {
+        IkError::Robot(e)
+    }
 }
 
 /// Position and task orientation error of `q` against `target` (robot units, radians).
@@ -343,15 +399,11 @@ fn check_target(target: &IsometryMatrix3<f64>) -> Result<(), IkError> {
     let t = target.translation.vector;
     let r = target.rotation.matrix();
     if !t.iter().chain(r.iter()).all(|v| v.is_finite()) {
-        return Err(IkError::Target(
-            "it holds a value that is not finite".into(),
-        ));
+        return Err(IkError::Target(BadTarget::NotFinite));
     }
     let err = (r.transpose() * r - Matrix3::identity()).abs().max();
     if err > 1e-6 || r.determinant() < 0.0 {
-        return Err(IkError::Target(
-            "its 3×3 part is not a rotation (orthonormal, determinant +1)".into(),
-        ));
+        return Err(IkError::Target(BadTarget::NotRotation));
     }
     Ok(())
 }
