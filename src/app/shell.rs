@@ -59,10 +59,15 @@ impl SidePanels {
                 Side::Left => "armlab_left",
                 Side::Right => "armlab_right",
             };
-            // A column remembers the width it was dragged to, per zoom: a width kept from
-            // another zoom (presentation mode, or the first frame before the page measured
-            // its canvas) would not fit this one.
-            let salt = (id, (ui.ctx().zoom_factor() * 100.0).round() as i32);
+            // A column remembers the width it was dragged to, per zoom and screen width (to
+            // 50 points): a width kept from another zoom or screen (presentation mode, a
+            // resized window, the page's first frame before its canvas had its size) would
+            // not fit this one.
+            let salt = (
+                id,
+                (ui.ctx().zoom_factor() * 100.0).round() as i32,
+                (plan.width / 50.0).round() as i32,
+            );
             let panel = match column.side {
                 Side::Left => egui::Panel::left(salt),
                 Side::Right => egui::Panel::right(salt),
