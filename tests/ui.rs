@@ -552,6 +552,13 @@ fn on_a_touch_screen_every_control_is_at_least_40_points_tall() {
         let rect = h.get_by_label(label).rect();
         assert!(rect.height() >= 40.0, "{label} is {} tall", rect.height());
     }
-    let slider = h.get_all_by_role(Role::Slider).next().expect("a joint slider");
-    assert!(slider.rect().height() >= 40.0, "a slider is {} tall", slider.rect().height());
+    let slider = h
+        .get_all_by_role(Role::Slider)
+        .next()
+        .expect("a joint slider");
+    assert!(
+        slider.rect().height() >= 40.0,
+        "a slider is {} tall",
+        slider.rect().height()
+    );
 }
