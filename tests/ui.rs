@@ -17,14 +17,10 @@ use armlab::kinematics::ik::Reach;
 
 const SIZE: [f32; 2] = [1400.0, 860.0];
 
+mod app_harness;
+
 fn harness(hash: &str) -> Harness<'static, ArmLabApp> {
-    let hash = hash.to_string();
-    let mut h = Harness::builder()
-        .with_size(SIZE)
-        .wgpu()
-        .build_eframe(move |cc| ArmLabApp::new(cc, &hash));
-    h.run_steps(3);
-    h
+    app_harness::open_app(hash, SIZE)
 }
 
 fn tool_x(h: &Harness<'_, ArmLabApp>) -> f64 {
@@ -440,13 +436,10 @@ fn a_link_naming_only_the_robot_opens_its_default_task() {
     );
 }
 
+/// The app at a screen size, one frame more settled (the columns take their widths).
 fn harness_at(hash: &str, size: [f32; 2]) -> Harness<'static, ArmLabApp> {
-    let hash = hash.to_string();
-    let mut h = Harness::builder()
-        .with_size(size)
-        .wgpu()
-        .build_eframe(move |cc| ArmLabApp::new(cc, &hash));
-    h.run_steps(4);
+    let mut h = app_harness::open_app(hash, size);
+    h.run_steps(1);
     h
 }
 

@@ -15,14 +15,10 @@ use armlab::kinematics::ik::Reach;
 
 const SIZE: [f32; 2] = [1400.0, 860.0];
 
+mod app_harness;
+
 fn harness(hash: &str) -> Harness<'static, ArmLabApp> {
-    let hash = hash.to_string();
-    let mut h = Harness::builder()
-        .with_size(SIZE)
-        .wgpu()
-        .build_eframe(move |cc| ArmLabApp::new(cc, &hash));
-    h.run_steps(3);
-    h
+    app_harness::open_app(hash, SIZE)
 }
 
 /// Every text the accessibility tree holds: each node's label and value.

@@ -88,7 +88,7 @@ if [ "$native" -eq 0 ] || [ "$native" != "$wasm" ]; then
 fi
 add core-native; add core-doc; add core-wasm
 
-run ui cargo test --lib --test ui
+run ui cargo test --lib --test ui --test ui_finnish
 add ui
 
 say "the JS API in Node"

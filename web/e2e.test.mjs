@@ -347,19 +347,24 @@ test('a joint slider moved with the mouse changes that joint and T_0n', async ()
   await ctx.close();
 });
 
-test('a bad DH cell typed with the keyboard shows a message and the robot stays', async () => {
-  const { page, ctx } = await open('#robot=rrr');
-  const before = await state(page);
+/** Opens the DH table, clicks a cell, selects its text and types over it. */
+async function typeIntoDhCell(page, cellName, text) {
   const header = await point(page, 'dh-header');
   await page.mouse.click(header.x, header.y);
   await settle(page);
-  const cell = await point(page, 'dh-2-3');
+  const cell = await point(page, cellName);
   await page.mouse.click(cell.x, cell.y);
   await settle(page);
   await page.keyboard.press('Control+A');
+  await page.keyboard.type(text);
+  await settle(page, 4);
+}
+
+test('a bad DH cell typed with the keyboard shows a message and the robot stays', async () => {
+  const { page, ctx } = await open('#robot=rrr');
+  const before = await state(page);
   // Every keystroke applies live, so type something that is wrong from its first letter.
-  await page.keyboard.type('abc');
-  await settle(page);
+  await typeIntoDhCell(page, 'dh-2-3', 'abc');
   const s = await state(page);
   assert.equal(s.editor_error, 'Joint 2, a: "abc" is not a number.');
   assert.deepEqual(s.q, before.q);
@@ -514,15 +519,7 @@ test('typing 1e999 into a DH cell at 1024×768 leaves the 3D view its share', as
   const screen = SCREENS[0];
   const { page, ctx } = await openAt(screen, '#robot=rrr');
   const before = await page.evaluate(() => window.armlab.viewRect());
-  const header = await point(page, 'dh-header');
-  await page.mouse.click(header.x, header.y);
-  await settle(page);
-  const cell = await point(page, 'dh-1-2');
-  await page.mouse.click(cell.x, cell.y);
-  await settle(page);
-  await page.keyboard.press('Control+A');
-  await page.keyboard.type('1e999');
-  await settle(page, 4);
+  await typeIntoDhCell(page, 'dh-1-2', '1e999');
   const after = await page.evaluate(() => window.armlab.viewRect());
   assert.ok(Math.abs(after.width - before.width) <= 1, `the view stays ${before.width} px wide (now ${after.width})`);
   // The cell says what is wrong, and the keys typed into it did not act as shortcuts.

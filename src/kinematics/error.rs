@@ -493,8 +493,15 @@ impl std::fmt::Display for RobotError {
 impl std::error::Error for RobotError {}
 
 #[cfg(test)]
+// On wasm the tests are wasm_bindgen_tests (run in Node like the other core tests).
+#[cfg_attr(
+    target_arch = "wasm32",
+    allow(clippy::unwrap_used, clippy::expect_used)
+)]
 mod tests {
     use super::*;
+    #[cfg(target_arch = "wasm32")]
+    use wasm_bindgen_test::wasm_bindgen_test as test;
 
     #[test]
     fn the_english_sentences_read_as_before_the_catalogue() {
