@@ -77,10 +77,12 @@ impl SidePanels {
                 .size_range(column.min_width.min(max)..=max)
                 .resizable(true)
                 .show(ui, |ui| {
+                    let width = ui.available_width();
                     egui::ScrollArea::both()
                         .id_salt(id)
                         .auto_shrink([false, false])
                         .show(ui, |ui| {
+                            wrap_at(ui, width);
                             for (i, kind) in column.open.iter().enumerate() {
                                 if i > 0 {
                                     ui.separator();
@@ -136,12 +138,22 @@ impl SidePanels {
                 if section_header(kind, model, ui) {
                     *sheet = None;
                 }
+                let width = ui.available_width();
                 egui::ScrollArea::both()
                     .id_salt("armlab_sheet_scroll")
                     .auto_shrink([false, false])
-                    .show(ui, |ui| self.ui(kind, model, ui, points));
+                    .show(ui, |ui| {
+                        wrap_at(ui, width);
+                        self.ui(kind, model, ui, points);
+                    });
             });
     }
+}
+
+/// Inside a scroll area that scrolls sideways, text would never wrap: it wraps at the
+/// column's width instead, and only what cannot wrap (a matrix, the DH table) scrolls.
+fn wrap_at(ui: &mut egui::Ui, width: f32) {
+    ui.set_max_width((width - ui.spacing().scroll.bar_width).max(120.0));
 }
 
 /// A panel's title.
