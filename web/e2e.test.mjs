@@ -415,8 +415,9 @@ const SCREENS = [
   { name: 'tablet-820x1180', width: 820, height: 1180, touch: true },
   { name: 'phone-390x844', width: 390, height: 844, touch: true, dpr: 2 },
 ];
-// The target sits 300 mm in front of the tool, so the tool point is not under the ball.
-const LAYOUT_HASH = '#robot=ur10&q=0,-1.0472,-1.5708,-2.0944,1.5708,0&target=985.77,-163.9,465.19,1.5708,0,0&task=full';
+// The UR10 at its home pose, the target 450 mm above the tool (so the tool point is
+// not under the ball).
+const LAYOUT_HASH = '#robot=ur10&q=0,1.0472,-1.5708,2.0944,1.5708,0&target=685.77,-163.9,915.19,1.5708,0,0&task=position';
 
 async function openAt(screen, hash, extra = {}) {
   const context = await browser.newContext({
