@@ -237,6 +237,17 @@ test('a browser without WebAssembly SIMD gets a sentence, not an endless loading
   await ctx.close();
 });
 
+test('the first load (every file of the page, gzip -9) stays within 1.8 MB', () => {
+  let total = 0;
+  for (const f of fs.readdirSync(dist)) {
+    const bytes = zlib.gzipSync(fs.readFileSync(path.join(dist, f)), { level: 9 }).length;
+    measurements[`gzip_${f.replace(/-[0-9a-f]{16}/, '')}`] = bytes;
+    total += bytes;
+  }
+  measurements.first_load_gzip_bytes = total;
+  assert.ok(total <= 1_800_000, `the page's files are ${total} bytes gzip -9 (budget 1,800,000)`);
+});
+
 test('a link opens exactly its robot, pose and target', async () => {
   const hash = '#robot=puma560&q=0.1,0.2,-0.3,0.4,0.5,-0.6&target=0.5,-0.1,0.6,0.2,0.1,0.3&task=position&method=pinv';
   const { page, ctx } = await open(hash);
