@@ -75,7 +75,7 @@ fn task_menu(model: &mut Model, ui: &mut egui::Ui) {
     let mut task = model.task();
     egui::ComboBox::from_id_salt("ik_task")
         .selected_text(tr(model, task.label_key()))
-        .width(ui.available_width().clamp(120.0, 200.0))
+        .width((ui.available_width() - 8.0).clamp(100.0, 200.0))
         .show_ui(ui, |ui| {
             for t in Task::ALL {
                 ui.selectable_value(&mut task, t, tr(model, t.label_key()));
@@ -92,7 +92,7 @@ fn method_menu(model: &mut Model, ui: &mut egui::Ui) {
     let mut method = model.method();
     egui::ComboBox::from_id_salt("ik_method")
         .selected_text(tr(model, method.label_key()))
-        .width(ui.available_width().clamp(120.0, 200.0))
+        .width((ui.available_width() - 8.0).clamp(100.0, 200.0))
         .show_ui(ui, |ui| {
             for m in IkMethod::ALL {
                 let enabled = m != IkMethod::ClosedForm || has_closed_form;

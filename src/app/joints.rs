@@ -47,7 +47,7 @@ impl Panel for JointsPanel {
         let mut changed = false;
         self.sliders.clear();
         // The slider fills the column: the label and the value box beside it stay.
-        let rail = (ui.available_width() - 130.0).clamp(80.0, 320.0);
+        let rail = (ui.available_width() - 110.0).clamp(60.0, 320.0);
         ui.spacing_mut().slider_width = rail;
         egui::Grid::new("joint_sliders")
             .num_columns(2)

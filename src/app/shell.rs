@@ -77,12 +77,11 @@ impl SidePanels {
                 .size_range(column.min_width.min(max)..=max)
                 .resizable(true)
                 .show(ui, |ui| {
-                    let width = ui.available_width();
+                    let width = visible_width(ui);
                     egui::ScrollArea::both()
                         .id_salt(id)
                         .auto_shrink([false, false])
                         .show(ui, |ui| {
-                            wrap_at(ui, width);
                             for (i, kind) in column.open.iter().enumerate() {
                                 if i > 0 {
                                     ui.separator();
@@ -92,7 +91,10 @@ impl SidePanels {
                                     settings.set_panel_open(*kind, false);
                                     model.set_settings(settings);
                                 }
-                                self.ui(*kind, model, ui, points);
+                                ui.scope(|ui| {
+                                    wrap_at(ui, width);
+                                    self.ui(*kind, model, ui, points);
+                                });
                             }
                         });
                 });
@@ -138,7 +140,7 @@ impl SidePanels {
                 if section_header(kind, model, ui) {
                     *sheet = None;
                 }
-                let width = ui.available_width();
+                let width = visible_width(ui);
                 egui::ScrollArea::both()
                     .id_salt("armlab_sheet_scroll")
                     .auto_shrink([false, false])
@@ -150,8 +152,19 @@ impl SidePanels {
     }
 }
 
+/// The width a panel's content can be seen in: its room, but no wider than its clip
+/// rectangle (egui keeps a panel's content as wide as it once grew and clips it to the
+/// panel's maximum, so the room alone can be wider than what shows).
+fn visible_width(ui: &egui::Ui) -> f32 {
+    let margin = ui.max_rect().left() - ui.clip_rect().left();
+    ui.available_width()
+        .min(ui.clip_rect().right() - ui.cursor().left() - margin.max(0.0))
+}
+
 /// Inside a scroll area that scrolls sideways, text would never wrap: it wraps at the
 /// column's width instead, and only what cannot wrap (a matrix, the DH table) scrolls.
+/// Each panel gets its own scope, since egui widens a layout to fit anything wider: one
+/// panel's matrix must not widen the next panel's text.
 fn wrap_at(ui: &mut egui::Ui, width: f32) {
     ui.set_max_width((width - ui.spacing().scroll.bar_width).max(120.0));
 }
