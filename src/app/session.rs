@@ -59,8 +59,8 @@ pub enum LinkError {
         field: String,
         /// The value as written.
         text: String,
-        /// The values it can have, in English (as the display settings name them).
-        allowed: &'static str,
+        /// The catalogue's text of the values it can have.
+        allowed: Key,
     },
     /// A camera that is not six numbers with a positive distance.
     BadCamera,
@@ -92,11 +92,11 @@ impl LinkError {
                 field,
                 text,
                 allowed,
-            } => {
-                let allowed =
-                    allowed_values(allowed).map_or(*allowed, |key| crate::i18n::text(lang, key));
-                fill(lang, Key::LinkBadValue, &[field, text, &allowed])
-            }
+            } => fill(
+                lang,
+                Key::LinkBadValue,
+                &[field, text, &crate::i18n::text(lang, *allowed)],
+            ),
             LinkError::BadCamera => plain(Key::LinkBadCamera),
             LinkError::UnknownMethod(method) => fill(lang, Key::LinkUnknownMethod, &[method]),
             LinkError::NoRobot => plain(Key::LinkNoRobot),
@@ -104,20 +104,6 @@ impl LinkError {
             LinkError::Robot(e) => e.sentence(lang),
         }
     }
-}
-
-/// The catalogue's text of a display field's allowed values, which the display settings
-/// give in English (a test checks that every one they give is here).
-fn allowed_values(english: &str) -> Option<Key> {
-    [
-        Key::AllowedOnOff,
-        Key::AllowedDegRad,
-        Key::AllowedDecimals,
-        Key::AllowedLang,
-        Key::AllowedPanels,
-    ]
-    .into_iter()
-    .find(|key| text(Lang::En, *key) == english)
 }
 
 impl std::fmt::Display for LinkError {
@@ -443,7 +429,7 @@ mod tests {
             let allowed = DisplayPatch::default()
                 .read(key, "bogus")
                 .expect_err("a bad value");
-            assert!(allowed_values(allowed).is_some(), "{key}: {allowed:?}");
+            assert!(!text(Lang::En, allowed).is_empty(), "{key}: {allowed:?}");
         }
     }
 

@@ -2,7 +2,7 @@
 //! panels are open, and the camera. A link carries all of them (`Display`), so a
 //! lecturer's link opens the same view on every screen.
 
-use crate::i18n::Lang;
+use crate::i18n::{Key, Lang};
 
 /// A panel the user can open and close.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -241,20 +241,20 @@ impl DisplayPatch {
     }
 
     /// Reads one `key=value` part if it is a display field: `Ok(true)` when read,
-    /// `Ok(false)` when the key is not a display field, and the allowed values when the
-    /// value is not one of them.
-    pub fn read(&mut self, key: &str, value: &str) -> Result<bool, &'static str> {
+    /// `Ok(false)` when the key is not a display field, and the catalogue's text of the
+    /// allowed values when the value is not one of them.
+    pub fn read(&mut self, key: &str, value: &str) -> Result<bool, Key> {
         let switch = |v: &str| match v {
             "on" | "1" | "true" => Ok(true),
             "off" | "0" | "false" => Ok(false),
-            _ => Err("on or off"),
+            _ => Err(Key::AllowedOnOff),
         };
         match key {
             "units" => {
                 self.degrees = Some(match value {
                     "deg" => true,
                     "rad" => false,
-                    _ => return Err("deg or rad"),
+                    _ => return Err(Key::AllowedDegRad),
                 });
             }
             "frames" => self.show_frames = Some(switch(value)?),
@@ -265,13 +265,12 @@ impl DisplayPatch {
                         .parse()
                         .ok()
                         .filter(|d| *d <= MAX_DECIMALS)
-                        .ok_or("a whole number from 0 to 8")?,
+                        .ok_or(Key::AllowedDecimals)?,
                 );
             }
-            "lang" => self.lang = Some(Lang::from_id(value).ok_or("en or fi")?),
+            "lang" => self.lang = Some(Lang::from_id(value).ok_or(Key::AllowedLang)?),
             "panels" | "ppanels" => {
-                let set = PanelSet::from_link(value)
-                    .map_err(|_| "joints, ik, matrices, robot (joined by commas) or none")?;
+                let set = PanelSet::from_link(value).map_err(|_| Key::AllowedPanels)?;
                 if key == "panels" {
                     self.panels = Some(set);
                 } else {
@@ -347,11 +346,8 @@ mod tests {
         let mut back = Settings::default();
         read.apply(&mut back);
         assert_eq!(back, settings);
-        assert_eq!(read.read("units", "grad"), Err("deg or rad"));
-        assert_eq!(
-            read.read("decimals", "9"),
-            Err("a whole number from 0 to 8")
-        );
+        assert_eq!(read.read("units", "grad"), Err(Key::AllowedDegRad));
+        assert_eq!(read.read("decimals", "9"), Err(Key::AllowedDecimals));
         assert_eq!(read.read("q", "1"), Ok(false));
     }
 
