@@ -381,7 +381,7 @@ impl ArmLabApp {
 /// The window's width in CSS pixels.
 fn screen(ctx: &egui::Context) -> style::Screen {
     #[cfg(target_arch = "wasm32")]
-    if let Some(css_width) = web::canvas_css_width() {
+    if let Some(css_width) = web::measure_canvas(ctx) {
         return style::Screen { css_width };
     }
     style::Screen::of(ctx)

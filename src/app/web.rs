@@ -32,6 +32,8 @@ thread_local! {
     static UPLOAD: RefCell<Option<String>> = const { RefCell::new(None) };
     /// A hash the page asked the app to open (back/forward, `window.armlab.open`).
     static PENDING_HASH: RefCell<Option<String>> = const { RefCell::new(None) };
+    /// The page's canvas, looked up once.
+    static CANVAS: RefCell<Option<Option<web_sys::HtmlCanvasElement>>> = const { RefCell::new(None) };
     /// The egui context, to wake the app when something arrives from the page.
     static CTX: RefCell<Option<egui::Context>> = const { RefCell::new(None) };
     /// The hash last written to the address bar and localStorage, and when.
@@ -141,43 +143,38 @@ pub fn start() {
     });
 }
 
-/// The canvas's width in CSS pixels.
-pub fn canvas_css_width() -> Option<f32> {
-    let width = canvas()?.client_width() as f32;
-    (width > 0.0).then_some(width)
-}
-
-fn canvas() -> Option<web_sys::HtmlCanvasElement> {
-    web_sys::window()?
-        .document()?
-        .get_element_by_id("armlab_canvas")?
-        .dyn_into::<web_sys::HtmlCanvasElement>()
-        .ok()
-}
-
-/// Keeps the canvas's backing store at its CSS size times the device pixel ratio.
-///
-/// eframe sizes it from the ResizeObserver's `devicePixelContentBoxSize`; where a browser
-/// reports that size in CSS pixels (Chromium's device emulation does), the canvas gets a
-/// ratio's worth too few pixels, and since eframe maps the pointer from CSS pixels but
-/// the screen from canvas pixels, the pointer and the picture disagree (at ratio 2 the UI
-/// is drawn twice too large and a tap lands at half its place). A real device reports
-/// device pixels, within a pixel of the product, and is left alone. Returns whether it
+/// Measures the canvas once per frame: keeps its backing store at its CSS size times the
+/// device pixel ratio and returns its width in CSS pixels. Asks for another frame when it
 /// resized the canvas (the next frame draws at the new size).
-fn keep_canvas_resolution() -> bool {
-    let (Some(window), Some(canvas)) = (web_sys::window(), canvas()) else {
-        return false;
-    };
-    let dpr = window.device_pixel_ratio();
+///
+/// eframe sizes the backing store from the ResizeObserver's `devicePixelContentBoxSize`;
+/// where a browser reports that size in CSS pixels (Chromium's device emulation does), the
+/// canvas gets a ratio's worth too few pixels, and since eframe maps the pointer from CSS
+/// pixels but the screen from canvas pixels, the pointer and the picture disagree (at
+/// ratio 2 the UI is drawn twice too large and a tap lands at half its place). A real
+/// device reports device pixels, within a pixel of the product, and is left alone.
+pub fn measure_canvas(ctx: &egui::Context) -> Option<f32> {
+    let canvas = CANVAS.with(|c| {
+        c.borrow_mut()
+            .get_or_insert_with(|| {
+                web_sys::window()
+                    .and_then(|w| w.document())
+                    .and_then(|d| d.get_element_by_id("armlab_canvas"))
+                    .and_then(|e| e.dyn_into::<web_sys::HtmlCanvasElement>().ok())
+            })
+            .clone()
+    })?;
+    let (css_w, css_h) = (canvas.client_width(), canvas.client_height());
+    let dpr = ctx.native_pixels_per_point().unwrap_or(1.0) as f64;
     let want = |css: i32| (f64::from(css) * dpr).round() as u32;
-    let (w, h) = (want(canvas.client_width()), want(canvas.client_height()));
+    let (w, h) = (want(css_w), want(css_h));
     let off = |have: u32, want: u32| have.abs_diff(want) > 2;
-    if w == 0 || h == 0 || !(off(canvas.width(), w) || off(canvas.height(), h)) {
-        return false;
+    if w > 0 && h > 0 && (off(canvas.width(), w) || off(canvas.height(), h)) {
+        canvas.set_width(w);
+        canvas.set_height(h);
+        ctx.request_repaint();
     }
-    canvas.set_width(w);
-    canvas.set_height(h);
-    true
+    (css_w > 0).then_some(css_w as f32)
 }
 
 /// The browser's languages (`navigator.languages`) and whether its main pointer is a
@@ -277,9 +274,6 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
         app.open_hash(&hash);
     }
     // egui points to CSS pixels: the canvas fills the page from (0, 0).
-    if keep_canvas_resolution() {
-        ctx.request_repaint();
-    }
     let css_per_point = ctx.pixels_per_point() / ctx.native_pixels_per_point().unwrap_or(1.0);
     let state = app.state_json();
     HOOK.with(|h| {
