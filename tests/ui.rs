@@ -555,3 +555,73 @@ fn on_a_touch_screen_every_control_is_at_least_40_points_tall() {
         slider.rect().height()
     );
 }
+
+/// A finger's events as the browser delivers them (eframe's touch handlers): the press or
+/// move of the primary pointer, then the touch itself.
+fn finger(phase: egui::TouchPhase, pos: egui::Pos2) -> Vec<egui::Event> {
+    let pointer = match phase {
+        egui::TouchPhase::Start => egui::Event::PointerButton {
+            pos,
+            button: egui::PointerButton::Primary,
+            pressed: true,
+            modifiers: egui::Modifiers::NONE,
+        },
+        egui::TouchPhase::Move => egui::Event::PointerMoved(pos),
+        egui::TouchPhase::End | egui::TouchPhase::Cancel => egui::Event::PointerButton {
+            pos,
+            button: egui::PointerButton::Primary,
+            pressed: false,
+            modifiers: egui::Modifiers::NONE,
+        },
+    };
+    let touch = egui::Event::Touch {
+        device_id: egui::TouchDeviceId(1),
+        id: egui::TouchId(1),
+        phase,
+        pos,
+        force: None,
+    };
+    vec![pointer, touch]
+}
+
+#[test]
+fn a_finger_held_on_the_target_before_moving_still_drags_it() {
+    // egui turns a touch held still for longer than a click (0.8 s) into a long press and
+    // drops the drag it was waiting for; students rest a finger on the ball before moving.
+    let mut h = harness_at(
+        "#robot=ur10&q=0,-1,1.2,-1.5,-1.2,0.3&task=position",
+        [390.0, 844.0],
+    );
+    h.state_mut().set_touch(true);
+    h.run_steps(3);
+    let start = h.state().points().get("target").expect("target on screen");
+    let before = h.state().model().target().translation.vector;
+    let from = egui::pos2(start[0], start[1]);
+    for e in finger(egui::TouchPhase::Start, from) {
+        h.event(e);
+    }
+    // The harness's clock advances a quarter second a frame: the finger rests 1.5 s.
+    h.run_steps(6);
+    let mut pos = from;
+    for _ in 0..12 {
+        pos += egui::vec2(-4.0, 3.0);
+        for e in finger(egui::TouchPhase::Move, pos) {
+            h.event(e);
+        }
+        h.run_steps(1);
+    }
+    assert!(
+        h.state().viewport().dragging(),
+        "the ball is held by the finger"
+    );
+    for e in finger(egui::TouchPhase::End, pos) {
+        h.event(e);
+    }
+    h.run_steps(2);
+    let moved = (h.state().model().target().translation.vector - before).norm();
+    assert!(
+        moved > 20.0,
+        "the target moved {moved:.1} mm under the finger"
+    );
+    assert!(!h.state().viewport().dragging());
+}

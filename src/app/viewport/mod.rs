@@ -127,7 +127,11 @@ impl Viewport {
         if self.framed_at != Some((model.reframes(), rect.size())) {
             self.fit(model, rect.size());
         }
-        let response = ui.allocate_rect(rect, Sense::click_and_drag());
+        // Drags only: a widget that also senses clicks waits to see whether a press is a
+        // click, and on a touch screen egui turns a finger held still past the click time
+        // (0.8 s) into a long press and drops that drag, so a student who rests a finger on
+        // the target before moving it would move nothing. The view has no click action.
+        let response = ui.allocate_rect(rect, Sense::drag());
         self.rect = Some(rect);
         let axes = marker_axes(model);
         self.handle_input(model, ui, &response, &axes);
