@@ -586,6 +586,40 @@ test('a touch drag of the target, after the finger rests on it, moves the arm, w
   await ctx.close();
 });
 
+test('a crash shows a sentence and Reload, and the reload restores the robot changed just before', async () => {
+  const { page, ctx, errors } = await open('#robot=ur10');
+  const view = await page.evaluate(() => window.armlab.viewRect());
+  // A finger or mouse held on the view (an orbit): the address bar is not written while a
+  // pointer is held, so only localStorage can carry the change across the crash.
+  await page.mouse.move(view.x + view.width / 2, view.y + view.height / 2);
+  await page.mouse.down();
+  await page.evaluate(() => window.armlab.open('#robot=scara&q=0.3,-0.6,0.1,0.2'));
+  const start = (await state(page)).frame;
+  for (let i = 0; i < 400 && (await state(page)).frame < start + 3; i++) {
+    await page.mouse.move(view.x + view.width / 2 + (i % 2), view.y + view.height / 2);
+    await page.waitForTimeout(20);
+  }
+  assert.match((await state(page)).robot, /SCARA/);
+  const saved = await page.evaluate(() => ({ stored: localStorage.getItem('armlab.session'), hash: location.hash }));
+  assert.match(saved.stored, /robot=scara/, 'the robot change is in localStorage at once, during a drag');
+  assert.doesNotMatch(saved.hash, /scara/, 'the address bar still shows the UR10 (it is written on release)');
+  await page.evaluate(() => window.armlab.panicForTest());
+  await page.mouse.move(view.x + 10, view.y + 10);
+  await page.waitForSelector('#armlab_reload', { timeout: 20000 });
+  const sentence = await page.textContent('#armlab_message');
+  assert.match(sentence, /ArmLab stopped after an error in its own code \(a panic asked for by window\.armlab\.panicForTest\(\)\)/);
+  assert.match(sentence, /saved in this browser/);
+  assert.ok(errors.some((e) => /panicForTest/.test(e)), 'the panic is logged to the console');
+  await page.screenshot({ path: path.join(shots, 'crash-1400x860.png') });
+  await page.mouse.up();
+  await Promise.all([page.waitForNavigation(), page.click('#armlab_reload')]);
+  await ready(page);
+  const s = await state(page);
+  assert.match(s.robot, /SCARA/, 'the reload restored the robot changed just before the crash');
+  assert.deepEqual(s.q.map((v) => +v.toFixed(6)), [0.3, -0.6, 0.1, 0.2]);
+  await ctx.close();
+});
+
 test('with the browser language fi the page opens in Finnish; a link and the switch choose too', async () => {
   const { page, ctx } = await openAt({ width: 1280, height: 720 }, '#robot=ur10', { locale: 'fi-FI' });
   assert.equal((await state(page)).lang, 'fi');

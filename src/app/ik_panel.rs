@@ -44,7 +44,7 @@ impl IkPanel {
 }
 
 impl Panel for IkPanel {
-    fn ui(&mut self, model: &mut Model, ui: &mut egui::Ui, _points: &mut ScreenPoints) {
+    fn ui(&mut self, model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
         egui::Grid::new("ik_controls")
             .num_columns(2)
             .show(ui, |ui| {
@@ -57,11 +57,11 @@ impl Panel for IkPanel {
             if ui.button(tr(model, Key::SnapTarget)).clicked() {
                 model.snap_target();
             }
-            if ui
+            let solve = ui
                 .button(tr(model, Key::Solve))
-                .on_hover_text(tr(model, Key::SolveHint))
-                .clicked()
-            {
+                .on_hover_text(tr(model, Key::SolveHint));
+            points.insert("ik-solve", solve.rect.center());
+            if solve.clicked() {
                 self.solve(model);
             }
         });

@@ -112,8 +112,11 @@ pub struct Model {
     ik: IkStatus,
     solver: IkSolver,
     hover: Option<(usize, HoverSource)>,
+    hovered_column: Option<(usize, HoverSource)>,
+    joint_speeds: Vec<f64>,
     message: Option<Message>,
     loads: u64,
+    robot_changes: u64,
     reframes: u64,
     camera: Option<CameraPose>,
     camera_loads: u64,
@@ -135,8 +138,11 @@ impl Model {
             ik: IkStatus::default(),
             solver: IkSolver::new(),
             hover: None,
+            hovered_column: None,
+            joint_speeds: Vec::new(),
             message: None,
             loads: 0,
+            robot_changes: 0,
             reframes: 0,
             camera: None,
             camera_loads: 0,
@@ -207,6 +213,19 @@ impl Model {
         self.hover.map(|(_, source)| source)
     }
 
+    /// The joint speeds q̇ (rad/s or length units/s), one per joint.
+    pub fn joint_speeds(&self) -> Vec<f64> {
+        (0..self.robot.dof())
+            .map(|i| self.joint_speeds.get(i).copied().unwrap_or(0.0))
+            .collect()
+    }
+
+    /// The Jacobian column (0-based) under the pointer, in the matrices panel's legend or
+    /// as an arrow in the 3D view: both highlight it.
+    pub fn hovered_column(&self) -> Option<usize> {
+        self.hovered_column.map(|(c, _)| c)
+    }
+
     /// The message in the top bar, if any.
     pub fn message(&self) -> Option<&Message> {
         self.message.as_ref()
@@ -216,6 +235,12 @@ impl Model {
     /// editor takes the new table when it changes.
     pub fn robot_loads(&self) -> u64 {
         self.loads
+    }
+
+    /// Counts every change of the robot: loads and DH-table edits. The page keeps the
+    /// session in localStorage at once when this changes.
+    pub fn robot_changes(&self) -> u64 {
+        self.robot_changes
     }
 
     /// Counts the times the view should frame the arm anew: every load, and edits that
@@ -262,6 +287,32 @@ impl Model {
 
     // --- Writing -------------------------------------------------------------------------
 
+    /// Sets the joint speeds q̇ of the velocity-kinematics rows (one per joint; missing
+    /// ones are 0, non-finite ones 0).
+    pub fn set_joint_speeds(&mut self, speeds: &[f64]) {
+        self.joint_speeds = (0..self.robot.dof())
+            .map(|i| {
+                speeds
+                    .get(i)
+                    .copied()
+                    .filter(|v| v.is_finite())
+                    .unwrap_or(0.0)
+            })
+            .collect();
+    }
+
+    /// Notes the Jacobian column under the pointer in `source`; `None` clears only a
+    /// column that `source` set.
+    pub fn set_hovered_column(&mut self, column: Option<usize>, source: HoverSource) {
+        match column.filter(|c| *c < self.robot.dof()) {
+            Some(c) => self.hovered_column = Some((c, source)),
+            None if self.hovered_column.is_some_and(|(_, s)| s == source) => {
+                self.hovered_column = None;
+            }
+            None => {}
+        }
+    }
+
     /// Replaces the whole session (a link, a stored session): robot, q, target, task and
     /// method; the target sits at the tool when the session names none.
     pub fn open(&mut self, session: Session) {
@@ -278,6 +329,7 @@ impl Model {
         self.method = session.method;
         self.keep_method_available();
         self.loads += 1;
+        self.robot_changes += 1;
         self.reframes += 1;
         self.hover = None;
         self.recompute_kinematics();
@@ -297,6 +349,7 @@ impl Model {
         self.source = source;
         self.keep_method_available();
         self.loads += 1;
+        self.robot_changes += 1;
         self.reframes += 1;
         self.hover = None;
         self.recompute_kinematics();
@@ -319,6 +372,7 @@ impl Model {
         self.robot = robot;
         self.source = source;
         self.q = q;
+        self.robot_changes += 1;
         self.keep_method_available();
         if self.hovered_link().is_some_and(|l| l > self.robot.dof()) {
             self.hover = None;

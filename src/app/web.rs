@@ -1,7 +1,7 @@
 //! The browser side: starting eframe on the canvas, the loading and error messages, the
 //! URL hash and localStorage, downloads and uploads, and the `window.armlab` test hook.
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
@@ -40,6 +40,14 @@ thread_local! {
     static STORED: RefCell<(String, f64)> = const { RefCell::new((String::new(), f64::NEG_INFINITY)) };
     /// A changed hash waiting for its turn to be written.
     static PENDING_STORE: RefCell<Option<String>> = const { RefCell::new(None) };
+    /// The hash last written to localStorage, and when.
+    static SAVED: RefCell<(String, f64)> = const { RefCell::new((String::new(), f64::NEG_INFINITY)) };
+    /// The model's robot-change count at the last frame.
+    static ROBOT_CHANGES: Cell<u64> = const { Cell::new(0) };
+    /// The interface language at the last frame, for the crash sentence.
+    static LANG: Cell<crate::i18n::Lang> = const { Cell::new(crate::i18n::Lang::En) };
+    /// Set by `window.armlab.panicForTest()`: the next frame panics.
+    static PANIC_REQUESTED: Cell<bool> = const { Cell::new(false) };
     /// `performance.now()` at the first drawn frame.
     static FIRST_FRAME: RefCell<Option<f64>> = const { RefCell::new(None) };
 }
@@ -74,6 +82,61 @@ fn set_message(text: &str, error: bool) {
             );
         }
     }
+}
+
+/// Shows a sentence and a Reload button over the frozen app when the app panics.
+///
+/// The page's wasm is built with `panic = "abort"`: after the panic hook the module traps
+/// and eframe stops drawing, so the hook is the last moment code of ours runs. It chains
+/// eframe's hook (which logs the panic), then writes the message with plain DOM calls.
+/// The session is already in localStorage (written after every robot change and during
+/// drags), and the button puts it back into the address bar before reloading: the address
+/// bar may be up to a quarter second behind.
+fn install_crash_screen() {
+    let previous = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        previous(info);
+        let lang = LANG.with(Cell::get);
+        let what: String = info
+            .payload()
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| info.payload().downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "panic".to_string());
+        let what = match what.char_indices().nth(80) {
+            Some((cut, _)) => format!("{}…", &what[..cut]),
+            None => what,
+        };
+        show_crash(
+            &crate::i18n::fill(lang, crate::i18n::Key::CrashSentence, &[&what]),
+            crate::i18n::text(lang, crate::i18n::Key::CrashReload),
+        );
+    }));
+}
+
+/// The crash sentence and its Reload button in the page's message box.
+fn show_crash(sentence: &str, reload: &str) {
+    let Some(doc) = web_sys::window().and_then(|w| w.document()) else {
+        return;
+    };
+    let Some(el) = doc.get_element_by_id("armlab_message") else {
+        return;
+    };
+    set_message(sentence, true);
+    el.set_class_name("error crash");
+    let Ok(button) = doc.create_element("button") else {
+        return;
+    };
+    button.set_id("armlab_reload");
+    button.set_text_content(Some(reload));
+    let restore = js_sys::Function::new_no_args(&format!(
+        "var s = null; try {{ s = localStorage.getItem('{STORAGE_KEY}'); }} catch (e) {{}} \
+         if (s) history.replaceState(null, '', '#' + s); location.reload();"
+    ));
+    if let Some(button) = button.dyn_ref::<web_sys::HtmlElement>() {
+        button.set_onclick(Some(&restore));
+    }
+    warn_on_failure(el.append_child(&button), "showing the Reload button");
 }
 
 /// Starts the app on `#armlab_canvas`; replaces the loading text by the app, or by a
@@ -114,7 +177,9 @@ pub fn start() {
             ..eframe::WebOptions::default()
         };
         let preferences = browser_preferences(&window);
+        // WebRunner::new installs eframe's panic hook; ours runs after it.
         let runner = eframe::WebRunner::new();
+        install_crash_screen();
         let result = runner
             .start(
                 canvas,
@@ -200,6 +265,8 @@ fn browser_preferences(window: &web_sys::Window) -> super::Preferences {
 
 /// Writes the link hash into the address bar (without a history entry) and localStorage
 /// when it has changed: not while a pointer is held, and at most four times a second.
+/// localStorage alone (what a reload after a crash restores) is written at once after
+/// every robot or DH-table change, and at most once a second during a drag.
 ///
 /// A drag changes the hash every frame, and `history.replaceState` and localStorage are
 /// synchronous calls that took 5–20 ms each in Chromium here; writing every frame of a
@@ -208,11 +275,25 @@ fn browser_preferences(window: &web_sys::Window) -> super::Preferences {
 /// (`pagehide`) writes whatever is still waiting.
 pub fn store_hash(app: &ArmLabApp, ctx: &egui::Context) {
     const INTERVAL_MS: f64 = 250.0;
-    if ctx.input(|i| i.pointer.any_down()) {
+    const HELD_INTERVAL_MS: f64 = 1000.0;
+    let now = super::hook::now_ms();
+    let held = ctx.input(|i| i.pointer.any_down());
+    let changes = app.model().robot_changes();
+    let robot_changed = ROBOT_CHANGES.with(|c| c.replace(changes) != changes);
+    if held {
+        let saved_at = SAVED.with(|s| s.borrow().1);
+        if robot_changed || now - saved_at >= HELD_INTERVAL_MS {
+            let hash = app.hash();
+            if SAVED.with(|s| s.borrow().0 != hash) {
+                write_storage(&hash, now);
+            }
+        }
         return;
     }
     let hash = app.hash();
-    let now = super::hook::now_ms();
+    if robot_changed && SAVED.with(|s| s.borrow().0 != hash) {
+        write_storage(&hash, now);
+    }
     let wait = STORED.with(|s| {
         let s = s.borrow();
         (s.0 != hash).then_some(INTERVAL_MS - (now - s.1))
@@ -252,6 +333,17 @@ fn write_hash(hash: &str) {
         ),
         Err(e) => warn_on_failure::<()>(Err(e), "reaching the browser history"),
     }
+    if SAVED.with(|s| s.borrow().0 != hash) {
+        write_storage(hash, super::hook::now_ms());
+    }
+}
+
+/// Keeps the session in localStorage (what the page opens without a link).
+fn write_storage(hash: &str, now: f64) {
+    let Some(window) = web_sys::window() else {
+        return;
+    };
+    SAVED.with(|s| *s.borrow_mut() = (hash.to_string(), now));
     match window.local_storage() {
         Ok(Some(storage)) => warn_on_failure(
             storage.set_item(STORAGE_KEY, hash),
@@ -270,6 +362,10 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
             *c.borrow_mut() = Some(ctx.clone());
         }
     });
+    LANG.with(|l| l.set(app.model().settings().lang));
+    if PANIC_REQUESTED.with(Cell::take) {
+        panic!("a panic asked for by window.armlab.panicForTest()");
+    }
     if let Some(hash) = PENDING_HASH.with(|p| p.borrow_mut().take()) {
         app.open_hash(&hash);
     }
@@ -365,6 +461,19 @@ fn install_hook(window: &web_sys::Window) {
         FIRST_FRAME.with(|f| f.borrow().map_or(JsValue::NULL, JsValue::from))
     });
     set_field(&obj, "firstFrameAt", &first.into_js_value());
+    // The wasm memory's size in bytes (for the soak test: it only grows, in steps).
+    let memory = Closure::<dyn Fn() -> JsValue>::new(|| {
+        js_sys::Reflect::get(&wasm_bindgen::memory(), &"buffer".into())
+            .and_then(|buffer| js_sys::Reflect::get(&buffer, &"byteLength".into()))
+            .unwrap_or(JsValue::NULL)
+    });
+    set_field(&obj, "memoryBytes", &memory.into_js_value());
+    // For the browser test of the crash screen: the next frame panics.
+    let panic = Closure::<dyn Fn()>::new(|| {
+        PANIC_REQUESTED.with(|p| p.set(true));
+        wake();
+    });
+    set_field(&obj, "panicForTest", &panic.into_js_value());
     set_field(window, "armlab", &obj);
 }
 
