@@ -154,7 +154,9 @@ fn task_of(value: &Value) -> Result<Task, ApiError> {
 /// Response: `geometric` and `numerical` (6×n rows; linear rows first), `task_rows`
 /// (the unscaled task Jacobian) and the scaled measures: `singular_values`,
 /// `manipulability`, `determinant` (null unless square), `condition_number` (null when
-/// exactly singular), `near_singular`, `length_scale`.
+/// exactly singular), `near_singular`, `length_scale`; and `displayed`: the
+/// manipulability, determinant and condition number of the unscaled task rows, in the
+/// robot's units.
 pub fn jacobian(request: &str) -> Result<String, ApiError> {
     let req = parse_request(request)?;
     let task = task_of(&req.value)?;
@@ -173,6 +175,11 @@ pub fn jacobian(request: &str) -> Result<String, ApiError> {
         "condition_number": m.condition_number,
         "near_singular": m.near_singular,
         "length_scale": m.length_scale,
+        "displayed": {
+            "manipulability": m.displayed.manipulability,
+            "determinant": m.displayed.determinant,
+            "condition_number": m.displayed.condition_number,
+        },
     })
     .to_string())
 }

@@ -80,6 +80,54 @@ fn standard_and_modified_ur10_have_the_same_jacobian() {
 }
 
 #[test]
+fn equivalent_tables_give_the_same_unit_free_measures_and_the_displayed_det_is_det_j() {
+    // Issue 12: the UR10 and its standard-DH twin showed det −0.08615 and −0.06629 for the
+    // same arm, the length scale coming from how each table pairs a and d in its rows.
+    let a = preset("ur10").unwrap();
+    let b = preset("ur10-standard").unwrap();
+    assert_eq!(a.length_scale(), b.length_scale());
+    assert!(
+        (a.length_scale() - 1684.3).abs() < 1e-9,
+        "{}",
+        a.length_scale()
+    );
+    let mut rng = common::rng(12);
+    for _ in 0..200 {
+        let q = rng.joint_vector(&a);
+        let (fa, fb) = (
+            ForwardKinematics::new(&a, &q).unwrap(),
+            ForwardKinematics::new(&b, &q).unwrap(),
+        );
+        let ja = geometric_jacobian(&fa);
+        let ma = jacobian_measures(&ja, Task::FullPose, fa.tool_rotation(), a.length_scale());
+        let mb = jacobian_measures(
+            &geometric_jacobian(&fb),
+            Task::FullPose,
+            fb.tool_rotation(),
+            b.length_scale(),
+        );
+        let (da, db) = (ma.determinant.unwrap(), mb.determinant.unwrap());
+        assert!((da - db).abs() < 1e-12 * da.abs().max(1.0), "{da} vs {db}");
+        assert!((ma.manipulability - mb.manipulability).abs() < 1e-12);
+        // The displayed measures are those of the matrix on screen: det of the 6×6 J in mm,
+        // and the unit-free det is it divided by L³ (three linear rows, one length each).
+        let shown = ja.clone().remove_fixed_columns::<0>(0);
+        let det = nalgebra::DMatrix::from_fn(6, 6, |r, c| shown[(r, c)]).determinant();
+        let raw = ma.displayed.determinant.unwrap();
+        assert!(
+            (raw - det).abs() <= 1e-9 * det.abs().max(1.0),
+            "{raw} vs {det}"
+        );
+        let l3 = a.length_scale().powi(3);
+        assert!(
+            (raw / l3 - da).abs() <= 1e-9 * da.abs().max(1e-12),
+            "{raw} / L³ vs {da}"
+        );
+        assert!((ma.displayed.manipulability - raw.abs()).abs() <= 1e-6 * raw.abs().max(1.0));
+    }
+}
+
+#[test]
 fn planar_2r_jacobian_matches_textbook_and_is_singular_when_stretched() {
     let robot = preset("planar-2r").unwrap();
     let (t1, t2) = (0.4_f64, 1.1_f64);

@@ -625,3 +625,58 @@ fn a_finger_held_on_the_target_before_moving_still_drags_it() {
     );
     assert!(!h.state().viewport().dragging());
 }
+
+#[test]
+fn the_panda_self_motion_slider_swings_the_elbow_and_keeps_the_hand() {
+    let mut h = harness("#robot=panda&q=0.4,-0.3,-0.5,-1.9,0.3,1.9,-0.2&task=full");
+    let before = h.state().model().fk().base_from_tool;
+    let q0 = h.state().model().q().to_vec();
+    h.get_by_role_and_label(Role::Slider, "Self-motion").focus();
+    h.run_steps(1);
+    // Each arrow key moves the slider by 0.05 rad. (The slider loses the keyboard after a
+    // change that moves the arm, so it is focused again before each key, as a click would.)
+    for _ in 0..6 {
+        h.get_by_role_and_label(Role::Slider, "Self-motion").focus();
+        h.run_steps(1);
+        h.key_press(egui::Key::ArrowRight);
+        h.run_steps(1);
+    }
+    let model = h.state().model();
+    let moved: f64 = model
+        .q()
+        .iter()
+        .zip(&q0)
+        .map(|(a, b)| (a - b).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    assert!(
+        (0.25..=0.3 + 1e-9).contains(&moved),
+        "the joints moved {moved} rad along the self-motion"
+    );
+    let after = model.fk().base_from_tool;
+    let dp = (after.translation.vector - before.translation.vector).norm();
+    let dr = (after.rotation.inverse() * before.rotation).angle();
+    assert!(dp < 1e-6 && dr < 1e-6, "the hand moved {dp} m and {dr} rad");
+    assert!(
+        h.query_by_label_contains("The tool stayed within")
+            .is_some()
+    );
+}
+
+#[test]
+fn the_jacobian_columns_and_the_velocity_ellipsoid_are_drawn_at_the_tool() {
+    let mut h = harness("#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2&show=jcols,vel&panels=matrices");
+    h.run_steps(2);
+    assert!(
+        h.query_by_label_contains("J columns:").is_some(),
+        "the legend is shown"
+    );
+    assert!(
+        h.state()
+            .model()
+            .settings()
+            .overlays
+            .contains(armlab::app::settings::Overlay::VelocityEllipsoid)
+    );
+    h.snapshot("jacobian_columns_ellipsoid");
+}

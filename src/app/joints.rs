@@ -1,18 +1,35 @@
 //! The joint panel: a slider and a number field per joint within its limits, degrees or
 //! radians, prismatic joints in length units; zero and home.
 
-use crate::kinematics::{Joint, JointKind};
+use crate::kinematics::redundancy::{SelfMotionError, self_motion};
+use crate::kinematics::{Joint, JointKind, tool_velocity};
 
+use super::format::number;
 use super::hook::ScreenPoints;
+use super::matrices::overlay_checkbox;
 use super::model::Model;
-use super::{Panel, tr};
+use super::settings::Overlay;
+use super::{Panel, tr, trf};
 use crate::i18n::Key;
 
-/// The joint sliders. Every value is the model's q; the panel keeps only its sliders'
-/// ids, so a shortcut can focus one.
+/// The joint sliders, the self-motion slider of a redundant arm and the joint-speed rows.
+/// Every joint value is the model's q; the panel keeps its sliders' ids (so a shortcut
+/// can focus one), where the self-motion slider started, and whether q̇ plays.
 #[derive(Debug, Clone, Default)]
 pub struct JointsPanel {
     sliders: Vec<egui::Id>,
+    self_motion: Option<SelfMotionSlider>,
+    playing: bool,
+}
+
+/// The self-motion slider's state: the pose it started from (s = 0), its value, the q it
+/// last set (another change of q starts it anew) and what the last sweep reported.
+#[derive(Debug, Clone)]
+struct SelfMotionSlider {
+    anchor: Vec<f64>,
+    s: f64,
+    set_q: Vec<f64>,
+    note: Option<String>,
 }
 
 impl JointsPanel {
@@ -77,6 +94,191 @@ impl Panel for JointsPanel {
             });
         if changed {
             model.set_q_exact(q);
+        }
+        self.self_motion_ui(model, ui);
+        self.speeds_ui(model, ui);
+    }
+}
+
+impl JointsPanel {
+    /// The self-motion slider, for an arm with exactly one joint more than task rows.
+    fn self_motion_ui(&mut self, model: &mut Model, ui: &mut egui::Ui) {
+        if model.robot().dof() != model.task().rows() + 1 {
+            self.self_motion = None;
+            return;
+        }
+        let q = model.q().to_vec();
+        let state = match self.self_motion.take() {
+            Some(state) if state.set_q == q => state,
+            _ => SelfMotionSlider {
+                anchor: q.clone(),
+                s: 0.0,
+                set_q: q,
+                note: None,
+            },
+        };
+        let mut state = state;
+        ui.separator();
+        let mut s = state.s;
+        let response = ui
+            .horizontal(|ui| {
+                let label = ui
+                    .label(tr(model, Key::SelfMotion))
+                    .on_hover_text(tr(model, Key::SelfMotionHint));
+                ui.add(
+                    egui::Slider::new(&mut s, -3.0..=3.0)
+                        .suffix(" rad")
+                        .fixed_decimals(2),
+                )
+                .labelled_by(label.id)
+            })
+            .inner;
+        if response.changed() {
+            let unit = model.robot().length_unit.symbol();
+            match self_motion(model.robot(), &state.anchor, model.task(), s) {
+                Ok(m) => {
+                    let mut note = trf(
+                        model,
+                        Key::SelfMotionDrift,
+                        &[
+                            &number(m.max_position_error, 1),
+                            &unit,
+                            &number(m.max_orientation_error, 1),
+                        ],
+                    );
+                    if let Some(j) = m.stopped_by {
+                        note =
+                            format!("{} {note}", trf(model, Key::SelfMotionStopped, &[&(j + 1)]));
+                    }
+                    state.s = m.travelled;
+                    model.set_q_exact(m.q);
+                    state.set_q = model.q().to_vec();
+                    state.note = Some(note);
+                }
+                Err(SelfMotionError::Singular) => {
+                    state.note = Some(tr(model, Key::SelfMotionSingular).to_string());
+                }
+                Err(SelfMotionError::Robot(e)) => {
+                    state.note = Some(e.sentence(model.settings().lang))
+                }
+                Err(e) => state.note = Some(e.to_string()),
+            }
+        }
+        if let Some(note) = &state.note {
+            ui.label(egui::RichText::new(note).small());
+        }
+        overlay_checkbox(
+            model,
+            ui,
+            Overlay::NullSpace,
+            Key::DrawNullSpace,
+            Key::SelfMotionHint,
+        );
+        self.self_motion = Some(state);
+    }
+
+    /// Velocity kinematics: a q̇ slider per joint, v and ω at the tool, play.
+    fn speeds_ui(&mut self, model: &mut Model, ui: &mut egui::Ui) {
+        let header = egui::CollapsingHeader::new(tr(model, Key::JointSpeeds))
+            .id_salt("joint_speeds")
+            .default_open(false)
+            .show(ui, |ui| {
+                ui.label(egui::RichText::new(tr(model, Key::JointSpeedsHint)).small());
+                let mut speeds = model.joint_speeds();
+                let reach = model.robot().reach();
+                let mut changed = false;
+                egui::Grid::new("joint_speed_rows")
+                    .num_columns(2)
+                    .show(ui, |ui| {
+                        for (i, joint) in model.robot().joints.iter().enumerate() {
+                            let (range, unit) = match joint.kind {
+                                JointKind::Revolute => (1.0, "rad/s".to_string()),
+                                JointKind::Prismatic => (
+                                    0.25 * reach,
+                                    format!("{}/s", model.robot().length_unit.symbol()),
+                                ),
+                            };
+                            ui.label(format!("q̇{}", i + 1));
+                            changed |= ui
+                                .add(
+                                    egui::Slider::new(&mut speeds[i], -range..=range)
+                                        .suffix(format!(" {unit}")),
+                                )
+                                .changed();
+                            ui.end_row();
+                        }
+                    });
+                if changed {
+                    model.set_joint_speeds(&speeds);
+                }
+                let twist = tool_velocity(model.jacobian(), &speeds);
+                let v = format!(
+                    "{}, {}, {}",
+                    number(twist[0], 2),
+                    number(twist[1], 2),
+                    number(twist[2], 2)
+                );
+                let w = format!(
+                    "{}, {}, {}",
+                    number(twist[3], 3),
+                    number(twist[4], 3),
+                    number(twist[5], 3)
+                );
+                let unit = model.robot().length_unit.symbol();
+                ui.monospace(trf(model, Key::ToolTwist, &[&v, &unit, &w]));
+                ui.horizontal_wrapped(|ui| {
+                    let label = if self.playing { Key::Pause } else { Key::Play };
+                    if ui
+                        .button(tr(model, label))
+                        .on_hover_text(tr(model, Key::PlayHint))
+                        .clicked()
+                    {
+                        self.playing = !self.playing;
+                    }
+                    if ui.button(tr(model, Key::Stop)).clicked() {
+                        model.set_joint_speeds(&[]);
+                        self.playing = false;
+                    }
+                    overlay_checkbox(
+                        model,
+                        ui,
+                        Overlay::Twist,
+                        Key::DrawTwist,
+                        Key::JointSpeedsHint,
+                    );
+                });
+            });
+        if header.body_returned.is_none() {
+            self.playing = false;
+        }
+        if self.playing {
+            self.play_step(model, ui.ctx());
+        }
+    }
+
+    /// Moves q by q̇·dt for this frame; stops (and says which joint) at a limit.
+    fn play_step(&mut self, model: &mut Model, ctx: &egui::Context) {
+        let dt = f64::from(ctx.input(|i| i.stable_dt)).min(0.1);
+        let speeds = model.joint_speeds();
+        let mut q = model.q().to_vec();
+        let mut stopped = None;
+        for (i, joint) in model.robot().joints.iter().enumerate() {
+            let next = q[i] + speeds[i] * dt;
+            if !joint.limits.contains(next, 0.0) {
+                stopped = Some(i);
+            }
+            q[i] = next.clamp(joint.limits.min, joint.limits.max);
+        }
+        model.set_q_exact(q);
+        if let Some(j) = stopped {
+            self.playing = false;
+            model.set_message(super::model::Message::info(trf(
+                model,
+                Key::SelfMotionStopped,
+                &[&(j + 1)],
+            )));
+        } else {
+            ctx.request_repaint();
         }
     }
 }

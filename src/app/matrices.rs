@@ -12,7 +12,9 @@ use crate::i18n::{Key, Lang, text};
 
 use super::format::number;
 use super::hook::ScreenPoints;
+use super::jacobian_view::{self, LinearSvd};
 use super::model::{HoverSource, Model};
+use super::settings::Overlay;
 use super::{Panel, style, tr, trf};
 
 /// Plain text rows, space-aligned.
@@ -388,7 +390,8 @@ impl Panel for MatricesPanel {
             .id_salt("jacobian")
             .default_open(true)
             .show(ui, |ui| {
-                jacobian_block(model, self.analysis(model), ui, decimals)
+                let analysis = self.analysis(model);
+                jacobian_block(model, analysis, ui, decimals)
             });
         let hovered = egui::CollapsingHeader::new(tr(model, Key::LinkTransforms))
             .id_salt("link_transforms")
@@ -454,7 +457,12 @@ fn link_blocks(model: &Model, ui: &mut egui::Ui, decimals: usize) -> Option<usiz
     hovered
 }
 
-fn jacobian_block(model: &Model, analysis: &JacobianAnalysis, ui: &mut egui::Ui, decimals: usize) {
+fn jacobian_block(
+    model: &mut Model,
+    analysis: &JacobianAnalysis,
+    ui: &mut egui::Ui,
+    decimals: usize,
+) {
     let j = &analysis.geometric;
     let jm = DMatrix::from_fn(6, j.ncols(), |r, c| j[(r, c)]);
     matrix_block(
@@ -481,36 +489,146 @@ fn jacobian_block(model: &Model, analysis: &JacobianAnalysis, ui: &mut egui::Ui,
         );
     }
     measures_grid(model, &analysis.measures, ui);
+    overlay_switches(model, ui);
+    if model.settings().overlays.contains(Overlay::JacobianColumns)
+        || model.settings().overlays.contains(Overlay::AngularColumns)
+    {
+        column_legend(model, ui);
+    } else {
+        model.set_hovered_column(None, HoverSource::Matrices);
+    }
+    if let Some(lost) = LinearSvd::of(model.jacobian()).and_then(|s| s.lost_direction()) {
+        let d = format!("{:.2}, {:.2}, {:.2}", lost.x, lost.y, lost.z);
+        ui.colored_label(style::UNREACHABLE, trf(model, Key::LostDirection, &[&d]));
+    }
 }
 
+/// The switches of the Jacobian's drawings in the 3D view.
+fn overlay_switches(model: &mut Model, ui: &mut egui::Ui) {
+    ui.horizontal_wrapped(|ui| {
+        ui.label(tr(model, Key::DrawIn3d));
+        let switches = [
+            (
+                Overlay::JacobianColumns,
+                Key::DrawColumns,
+                Key::DrawColumnsHint,
+            ),
+            (
+                Overlay::AngularColumns,
+                Key::DrawAngular,
+                Key::DrawAngularHint,
+            ),
+            (
+                Overlay::VelocityEllipsoid,
+                Key::DrawVelocityEllipsoid,
+                Key::DrawVelocityEllipsoidHint,
+            ),
+            (
+                Overlay::ForceEllipsoid,
+                Key::DrawForceEllipsoid,
+                Key::DrawForceEllipsoidHint,
+            ),
+        ];
+        for (overlay, label, hint) in switches {
+            overlay_checkbox(model, ui, overlay, label, hint);
+        }
+    });
+}
+
+/// A checkbox that turns one overlay on or off.
+pub fn overlay_checkbox(
+    model: &mut Model,
+    ui: &mut egui::Ui,
+    overlay: Overlay,
+    label: Key,
+    hint: Key,
+) {
+    let mut on = model.settings().overlays.contains(overlay);
+    if ui
+        .checkbox(&mut on, tr(model, label))
+        .on_hover_text(tr(model, hint))
+        .changed()
+    {
+        let mut settings = model.settings().clone();
+        settings.overlays.set(overlay, on);
+        model.set_settings(settings);
+    }
+}
+
+/// The columns' colours and numbers, as the arrows have them; hovering one highlights its
+/// arrow (and hovering an arrow highlights its entry).
+fn column_legend(model: &mut Model, ui: &mut egui::Ui) {
+    let mut hovered = None;
+    ui.horizontal_wrapped(|ui| {
+        ui.label(tr(model, Key::ColumnLegend));
+        for i in 0..model.robot().dof() {
+            let [r, g, b] = jacobian_view::column_color(i);
+            let mut text =
+                egui::RichText::new(format!("■ {}", i + 1)).color(egui::Color32::from_rgb(r, g, b));
+            if model.hovered_column() == Some(i) {
+                text = text.strong().underline();
+            }
+            let name = &model.robot().joints[i].name;
+            let response = ui
+                .add(egui::Label::new(text).sense(egui::Sense::hover()))
+                .on_hover_text(trf(model, Key::ColumnHint, &[&(i + 1), name]));
+            if response.hovered() {
+                hovered = Some(i);
+            }
+        }
+    });
+    model.set_hovered_column(hovered, HoverSource::Matrices);
+}
+
+/// The measures of the task rows: as displayed (in the robot's units, what a student
+/// computes from the matrix above) beside the unit-free versions (linear rows ÷ L).
 fn measures_grid(model: &Model, m: &JacobianMeasures, ui: &mut egui::Ui) {
     let sv: Vec<String> = m.singular_values.iter().map(|s| number(*s, 4)).collect();
-    egui::Grid::new("measures").num_columns(2).show(ui, |ui| {
+    let unit = model.robot().length_unit.symbol();
+    let scale = number(m.length_scale, 1);
+    // det J and √det(J·Jᵀ) carry a length cubed (three linear rows); √det(Jᵀ·J) of an arm
+    // with fewer joints than task rows mixes lengths and angles.
+    let cubed = format!(" {unit}³");
+    let rows = model.task().rows();
+    let w_unit = if rows <= model.robot().dof() {
+        cubed.as_str()
+    } else {
+        ""
+    };
+    let infinite = |c: Option<f64>, d| c.map_or("∞".to_string(), |c| number(c, d));
+    egui::Grid::new("measures").num_columns(3).show(ui, |ui| {
         ui.label(tr(model, Key::TaskRows))
             .on_hover_text(tr(model, Key::TaskRowsHint));
-        ui.label(format!("{}", model.task().rows()));
+        ui.label(format!("{rows}"));
+        ui.end_row();
+        ui.label("");
+        ui.label(tr(model, Key::MeasuresDisplayed))
+            .on_hover_text(trf(model, Key::MeasuresDisplayedHint, &[&unit]));
+        ui.label(tr(model, Key::MeasuresUnitFree))
+            .on_hover_text(trf(model, Key::MeasuresUnitFreeHint, &[&scale, &unit]));
         ui.end_row();
         ui.label(tr(model, Key::SingularValues)).on_hover_text(trf(
             model,
             Key::SingularValuesHint,
-            &[
-                &number(m.length_scale, 0),
-                &model.robot().length_unit.symbol(),
-            ],
+            &[&scale, &unit],
         ));
+        ui.label("");
         ui.monospace(sv.join("  "));
         ui.end_row();
         ui.label(tr(model, Key::Manipulability))
             .on_hover_text(tr(model, Key::ManipulabilityHint));
+        ui.monospace(format!("{}{w_unit}", number(m.displayed.manipulability, 5)));
         ui.monospace(number(m.manipulability, 5));
         ui.end_row();
-        if let Some(det) = m.determinant {
+        if let (Some(shown), Some(det)) = (m.displayed.determinant, m.determinant) {
             ui.label("det J");
+            ui.monospace(format!("{}{cubed}", number(shown, 5)));
             ui.monospace(number(det, 5));
             ui.end_row();
         }
         ui.label(tr(model, Key::ConditionNumber));
-        ui.monospace(m.condition_number.map_or("∞".to_string(), |c| number(c, 2)));
+        ui.monospace(infinite(m.displayed.condition_number, 2));
+        ui.monospace(infinite(m.condition_number, 2));
         ui.end_row();
     });
     if m.near_singular {

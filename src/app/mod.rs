@@ -19,6 +19,7 @@ pub mod files;
 pub mod format;
 pub mod hook;
 pub mod ik_panel;
+pub mod jacobian_view;
 pub mod joints;
 pub mod layout;
 pub mod matrices;

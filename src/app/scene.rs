@@ -41,7 +41,7 @@ pub struct MarkerLook {
 }
 
 /// A unit-shape instance stretched from `a` to `b` with this cross-section.
-fn segment(
+pub(crate) fn segment(
     shape: Shape,
     a: &Point3<f64>,
     b: &Point3<f64>,
@@ -64,15 +64,45 @@ fn segment(
     ))
 }
 
+/// An arrow from `start` to `tip`: a cylinder shaft of width `shaft` and a cone head of
+/// `head` = [width, length] (shortened to half the arrow when the arrow is short).
+pub(crate) fn arrow(
+    start: &Point3<f64>,
+    tip: &Point3<f64>,
+    shaft: f64,
+    head: [f64; 2],
+    color: [u8; 4],
+) -> impl Iterator<Item = Instance> {
+    let v = tip - start;
+    let len = v.norm();
+    let parts = (len > 1e-12).then(|| {
+        let dir = v / len;
+        let head_len = head[1].min(len * 0.5);
+        let neck = tip - dir * head_len;
+        let cone = instance(
+            Shape::Cone,
+            &neck,
+            &rotation_to(&dir),
+            Vector3::new(head[0], head[0], head_len),
+            color,
+        );
+        segment(Shape::Cylinder, start, &neck, shaft, color)
+            .into_iter()
+            .chain(std::iter::once(cone))
+    });
+    parts.into_iter().flatten()
+}
+
 /// The rotation taking z to `dir`.
-fn rotation_to(dir: &Vector3<f64>) -> Rotation3<f64> {
+pub(crate) fn rotation_to(dir: &Vector3<f64>) -> Rotation3<f64> {
     Rotation3::rotation_between(&Vector3::z(), dir).unwrap_or_else(|| {
         // dir = −z: any half turn about a horizontal axis.
         Rotation3::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI)
     })
 }
 
-fn instance(
+/// A unit shape placed at `centre`, turned by `rot` and scaled along its own axes.
+pub(crate) fn instance(
     shape: Shape,
     centre: &Point3<f64>,
     rot: &Rotation3<f64>,
@@ -411,19 +441,10 @@ fn marker(input: &SceneInput<'_>, out: &mut Vec<Instance>) {
         let active = marker.active == Some(Handle::Axis(c));
         let color = if active { HIGHLIGHT } else { AXIS[c] };
         let tip = centre + dir * (handle_px::ARROW * px);
-        let cone_len = 16.0 * px;
-        let shaft_end = tip - dir * cone_len;
         let shaft_start = centre + dir * (handle_px::BALL * px);
         let shaft_w = if active { 6.0 * px } else { 4.0 * px };
-        out.extend(segment(Shape::Cylinder, &shaft_start, &shaft_end, shaft_w, color).map(on_top));
-        let cone_size = Vector3::new(12.0 * px, 12.0 * px, cone_len);
-        out.push(on_top(instance(
-            Shape::Cone,
-            &shaft_end,
-            &rotation_to(dir),
-            cone_size,
-            color,
-        )));
+        let head = [12.0 * px, 16.0 * px];
+        out.extend(arrow(&shaft_start, &tip, shaft_w, head, color).map(on_top));
         if marker.rings {
             let active = marker.active == Some(Handle::Ring(c));
             let color = if active { HIGHLIGHT } else { AXIS[c] };

@@ -40,64 +40,144 @@ impl PanelKind {
     pub fn from_id(id: &str) -> Option<PanelKind> {
         PanelKind::ALL.into_iter().find(|k| k.id() == id)
     }
+}
 
-    fn bit(self) -> u8 {
-        1 << (self as u8)
+/// What the 3D view can draw besides the arm (docs/kinematics.md §6 and §4.4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Overlay {
+    /// The Jacobian's columns as arrows at the tool: the linear velocity each joint gives.
+    JacobianColumns,
+    /// The columns' angular parts.
+    AngularColumns,
+    /// The velocity manipulability ellipsoid.
+    VelocityEllipsoid,
+    /// The force manipulability ellipsoid.
+    ForceEllipsoid,
+    /// How each joint origin moves along the self-motion (redundant arms).
+    NullSpace,
+    /// The tool's velocity v and ω for the joint speeds q̇.
+    Twist,
+}
+
+impl Overlay {
+    /// Every overlay, in the order of the switches.
+    pub const ALL: [Overlay; 6] = [
+        Overlay::JacobianColumns,
+        Overlay::AngularColumns,
+        Overlay::VelocityEllipsoid,
+        Overlay::ForceEllipsoid,
+        Overlay::NullSpace,
+        Overlay::Twist,
+    ];
+
+    /// The id a link uses.
+    pub fn id(self) -> &'static str {
+        match self {
+            Overlay::JacobianColumns => "jcols",
+            Overlay::AngularColumns => "jang",
+            Overlay::VelocityEllipsoid => "vel",
+            Overlay::ForceEllipsoid => "force",
+            Overlay::NullSpace => "null",
+            Overlay::Twist => "twist",
+        }
     }
 }
 
-/// A set of panels (which are open).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct PanelSet(u8);
+/// A kind a [`FlagSet`] holds: a few named values with link ids.
+pub trait Flag: Copy + Eq + 'static {
+    /// Every value, in display order (at most 16).
+    const VALUES: &'static [Self];
+    /// The id a link uses.
+    fn link_id(self) -> &'static str;
+}
 
-impl PanelSet {
-    /// Every panel.
-    pub const ALL: PanelSet = PanelSet(0b1111);
-    /// No panel.
-    pub const NONE: PanelSet = PanelSet(0);
+impl Flag for PanelKind {
+    const VALUES: &'static [Self] = &PanelKind::ALL;
+    fn link_id(self) -> &'static str {
+        self.id()
+    }
+}
 
-    /// A set of the given panels.
-    pub fn of(kinds: &[PanelKind]) -> PanelSet {
-        PanelSet(kinds.iter().fold(0, |bits, k| bits | k.bit()))
+impl Flag for Overlay {
+    const VALUES: &'static [Self] = &Overlay::ALL;
+    fn link_id(self) -> &'static str {
+        self.id()
+    }
+}
+
+/// A set of flags (which panels are open, which overlays are drawn).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FlagSet<K>(u16, std::marker::PhantomData<K>);
+
+/// Which panels are open.
+pub type PanelSet = FlagSet<PanelKind>;
+/// Which overlays the 3D view draws.
+pub type OverlaySet = FlagSet<Overlay>;
+
+impl<K: Flag> Default for FlagSet<K> {
+    fn default() -> Self {
+        Self::NONE
+    }
+}
+
+impl<K: Flag> FlagSet<K> {
+    /// Every value.
+    pub const ALL: Self = FlagSet((1 << K::VALUES.len()) - 1, std::marker::PhantomData);
+    /// None.
+    pub const NONE: Self = FlagSet(0, std::marker::PhantomData);
+
+    fn bit(kind: K) -> u16 {
+        let index = K::VALUES.iter().position(|k| *k == kind).unwrap_or(0);
+        1 << index
+    }
+
+    /// A set of the given values.
+    pub fn of(kinds: &[K]) -> Self {
+        FlagSet(
+            kinds.iter().fold(0, |bits, k| bits | Self::bit(*k)),
+            std::marker::PhantomData,
+        )
     }
 
     /// Whether `kind` is in the set.
-    pub fn contains(self, kind: PanelKind) -> bool {
-        self.0 & kind.bit() != 0
+    pub fn contains(self, kind: K) -> bool {
+        self.0 & Self::bit(kind) != 0
     }
 
     /// Adds or removes `kind`.
-    pub fn set(&mut self, kind: PanelKind, open: bool) {
-        if open {
-            self.0 |= kind.bit();
+    pub fn set(&mut self, kind: K, on: bool) {
+        if on {
+            self.0 |= Self::bit(kind);
         } else {
-            self.0 &= !kind.bit();
+            self.0 &= !Self::bit(kind);
         }
     }
 
-    /// The panels in the set, in tab order.
-    pub fn iter(self) -> impl Iterator<Item = PanelKind> {
-        PanelKind::ALL
-            .into_iter()
-            .filter(move |k| self.contains(*k))
+    /// The values in the set, in display order.
+    pub fn iter(self) -> impl Iterator<Item = K> {
+        K::VALUES.iter().copied().filter(move |k| self.contains(*k))
     }
 
     /// The link form: ids joined by commas, `none` for the empty set.
     pub fn to_link(self) -> String {
-        if self == PanelSet::NONE {
+        if self == Self::NONE {
             return "none".to_string();
         }
-        self.iter().map(PanelKind::id).collect::<Vec<_>>().join(",")
+        self.iter().map(K::link_id).collect::<Vec<_>>().join(",")
     }
 
     /// Reads the link form; the first unknown id is the error.
-    pub fn from_link(text: &str) -> Result<PanelSet, String> {
+    pub fn from_link(text: &str) -> Result<Self, String> {
         if text == "none" {
-            return Ok(PanelSet::NONE);
+            return Ok(Self::NONE);
         }
-        let mut set = PanelSet::NONE;
+        let mut set = Self::NONE;
         for id in text.split(',') {
-            set.set(PanelKind::from_id(id).ok_or_else(|| id.to_string())?, true);
+            let kind = K::VALUES
+                .iter()
+                .find(|k| k.link_id() == id)
+                .ok_or_else(|| id.to_string())?;
+            set.set(*kind, true);
         }
         Ok(set)
     }
@@ -120,6 +200,8 @@ pub struct Settings {
     pub panels: PanelSet,
     /// The panels open in presentation mode (the lecturer's choice, kept apart).
     pub presentation_panels: PanelSet,
+    /// What the 3D view draws besides the arm.
+    pub overlays: OverlaySet,
 }
 
 impl Default for Settings {
@@ -132,6 +214,7 @@ impl Default for Settings {
             lang: Lang::En,
             panels: PanelSet::ALL,
             presentation_panels: PanelSet::of(&[PanelKind::Joints, PanelKind::Matrices]),
+            overlays: OverlaySet::NONE,
         }
     }
 }
@@ -173,6 +256,8 @@ pub struct DisplayPatch {
     pub panels: Option<PanelSet>,
     /// `ppanels=...`: presentation mode's panels.
     pub presentation_panels: Option<PanelSet>,
+    /// `show=jcols,jang,vel,force,null,twist` (or `none`): the 3D view's overlays.
+    pub overlays: Option<OverlaySet>,
 }
 
 /// The most decimals the matrices show.
@@ -189,6 +274,7 @@ impl DisplayPatch {
             lang: Some(settings.lang),
             panels: Some(settings.panels),
             presentation_panels: Some(settings.presentation_panels),
+            overlays: Some(settings.overlays),
         }
     }
 
@@ -202,6 +288,7 @@ impl DisplayPatch {
             lang,
             panels,
             presentation_panels,
+            overlays,
         } = self.clone();
         settings.degrees = degrees.unwrap_or(settings.degrees);
         settings.show_frames = show_frames.unwrap_or(settings.show_frames);
@@ -210,6 +297,7 @@ impl DisplayPatch {
         settings.lang = lang.unwrap_or(settings.lang);
         settings.panels = panels.unwrap_or(settings.panels);
         settings.presentation_panels = presentation_panels.unwrap_or(settings.presentation_panels);
+        settings.overlays = overlays.unwrap_or(settings.overlays);
     }
 
     /// The link's `key=value` parts for the fields it has.
@@ -236,6 +324,9 @@ impl DisplayPatch {
         }
         if let Some(p) = self.presentation_panels {
             parts.push(format!("ppanels={}", p.to_link()));
+        }
+        if let Some(o) = self.overlays {
+            parts.push(format!("show={}", o.to_link()));
         }
         parts
     }
@@ -276,6 +367,9 @@ impl DisplayPatch {
                 } else {
                     self.presentation_panels = Some(set);
                 }
+            }
+            "show" => {
+                self.overlays = Some(OverlaySet::from_link(value).map_err(|_| Key::AllowedShow)?);
             }
             _ => return Ok(false),
         }
@@ -320,10 +414,23 @@ mod tests {
 
     #[test]
     fn panel_sets_round_trip_through_the_link_form() {
-        for bits in 0..16u8 {
-            let set = PanelSet(bits);
+        for bits in 0..16u16 {
+            let set = PanelSet::of(
+                &PanelKind::ALL
+                    .into_iter()
+                    .enumerate()
+                    .filter(|(i, _)| bits & (1 << i) != 0)
+                    .map(|(_, k)| k)
+                    .collect::<Vec<_>>(),
+            );
             assert_eq!(PanelSet::from_link(&set.to_link()), Ok(set));
         }
+        assert_eq!(PanelSet::ALL.iter().count(), 4);
+        assert_eq!(
+            OverlaySet::from_link("jcols,vel").map(|s| s.iter().count()),
+            Ok(2)
+        );
+        assert_eq!(OverlaySet::from_link("vel,ghost"), Err("ghost".to_string()));
         assert_eq!(PanelSet::from_link("joints,arms"), Err("arms".to_string()));
     }
 
@@ -337,6 +444,7 @@ mod tests {
             lang: Lang::Fi,
             panels: PanelSet::of(&[PanelKind::Ik]),
             presentation_panels: PanelSet::NONE,
+            overlays: OverlaySet::of(&[Overlay::JacobianColumns, Overlay::ForceEllipsoid]),
         };
         let mut read = DisplayPatch::default();
         for part in DisplayPatch::of(&settings).to_parts() {

@@ -201,10 +201,27 @@ pub fn task_jacobian(
     out
 }
 
-/// The unit-free measures of a task Jacobian (docs/kinematics.md §6).
+/// The measures of the task Jacobian as the matrices panel displays it, in the robot's
+/// units: a student who computes det J of the displayed rows gets [`Self::determinant`].
+/// They change with the length unit (det J and the manipulability scale with L³, the
+/// three linear rows each carrying one length); the unit-free versions are
+/// [`JacobianMeasures`]' other fields.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DisplayedMeasures {
+    /// √det(J·Jᵀ) (or √det(Jᵀ·J) with fewer joints than task rows) of the unscaled rows.
+    pub manipulability: f64,
+    /// det J of the unscaled task rows, when square.
+    pub determinant: Option<f64>,
+    /// σ_max/σ_min of the unscaled rows; `None` when exactly singular.
+    pub condition_number: Option<f64>,
+}
+
+/// The unit-free measures of a task Jacobian (docs/kinematics.md §6), and the same
+/// measures of the rows as displayed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct JacobianMeasures {
-    /// The characteristic length the linear rows were divided by (the arm's reach).
+    /// The characteristic length the linear rows were divided by
+    /// ([`Robot::length_scale`]: the same for every DH table of the same arm).
     pub length_scale: f64,
     /// Singular values of the scaled task Jacobian, largest first.
     pub singular_values: Vec<f64>,
@@ -220,19 +237,14 @@ pub struct JacobianMeasures {
     /// [`SINGULARITY_THRESHOLD`]. (An arm with fewer joints than task rows always lacks
     /// some task direction; that alone does not set the flag.)
     pub near_singular: bool,
+    /// The measures of the unscaled rows, in the robot's units.
+    pub displayed: DisplayedMeasures,
 }
 
-/// Measures of the task rows of `j` at the given tool rotation, with the linear rows
-/// divided by `reach` so that mm and m give the same numbers.
-pub fn jacobian_measures(
-    j: &Matrix6xX<f64>,
-    task: Task,
-    tool_rotation: &nalgebra::Matrix3<f64>,
-    reach: f64,
-) -> JacobianMeasures {
-    let scaled = task_jacobian(j, task, tool_rotation, 1.0 / reach);
-    let (m, n) = scaled.shape();
-    let mut singular_values: Vec<f64> = scaled
+/// Singular values (largest first), their product, det J when square, and σ_max/σ_min.
+fn singular_measures(rows: &DMatrix<f64>) -> (Vec<f64>, f64, Option<f64>, Option<f64>) {
+    let (m, n) = rows.shape();
+    let mut singular_values: Vec<f64> = rows
         .clone()
         .svd(false, false)
         .singular_values
@@ -240,18 +252,41 @@ pub fn jacobian_measures(
         .copied()
         .collect();
     singular_values.sort_by(|a, b| b.total_cmp(a));
-    let manipulability = singular_values.iter().product();
-    let determinant = (m == n).then(|| scaled.determinant());
+    let product = singular_values.iter().product();
+    let determinant = (m == n).then(|| rows.determinant());
     let smallest = singular_values.last().copied().unwrap_or(0.0);
     let largest = singular_values.first().copied().unwrap_or(0.0);
     let condition_number = (smallest > 0.0).then(|| largest / smallest);
+    (singular_values, product, determinant, condition_number)
+}
+
+/// Measures of the task rows of `j` at the given tool rotation, with the linear rows
+/// divided by `length_scale` so that mm and m, and every DH table of the same arm, give
+/// the same numbers; and the same measures of the rows as displayed.
+pub fn jacobian_measures(
+    j: &Matrix6xX<f64>,
+    task: Task,
+    tool_rotation: &nalgebra::Matrix3<f64>,
+    length_scale: f64,
+) -> JacobianMeasures {
+    let scaled = task_jacobian(j, task, tool_rotation, 1.0 / length_scale);
+    let (singular_values, manipulability, determinant, condition_number) =
+        singular_measures(&scaled);
+    let smallest = singular_values.last().copied().unwrap_or(0.0);
+    let raw = task_jacobian(j, task, tool_rotation, 1.0);
+    let (_, raw_manipulability, raw_determinant, raw_condition) = singular_measures(&raw);
     JacobianMeasures {
-        length_scale: reach,
+        length_scale,
         singular_values,
         manipulability,
         determinant,
         condition_number,
         near_singular: smallest < SINGULARITY_THRESHOLD,
+        displayed: DisplayedMeasures {
+            manipulability: raw_manipulability,
+            determinant: raw_determinant,
+            condition_number: raw_condition,
+        },
     }
 }
 
@@ -296,7 +331,8 @@ impl JacobianAnalysis {
         let numerical = numerical_jacobian(robot, q, NUMERIC_EPSILON);
         let max_difference = (&geometric - &numerical).abs().max();
         let tolerance = JACOBIAN_AGREEMENT * geometric.norm().max(1.0);
-        let measures = jacobian_measures(&geometric, task, fk.tool_rotation(), robot.reach());
+        let measures =
+            jacobian_measures(&geometric, task, fk.tool_rotation(), robot.length_scale());
         JacobianAnalysis {
             agrees: max_difference <= tolerance,
             geometric,

@@ -12,6 +12,7 @@ pub mod ik;
 pub mod jacobian;
 pub mod orientation;
 pub mod presets;
+pub mod redundancy;
 pub mod rng;
 pub mod robot;
 

@@ -169,6 +169,16 @@ pub struct Joint {
 }
 
 impl Joint {
+    /// |d| of this row, for a prismatic joint at its largest extension within its limits.
+    fn largest_offset(&self) -> f64 {
+        match self.kind {
+            JointKind::Revolute => self.dh.d.abs(),
+            JointKind::Prismatic => (self.dh.d + self.limits.min)
+                .abs()
+                .max((self.dh.d + self.limits.max).abs()),
+        }
+    }
+
     /// Whether this revolute joint's angle wraps to (−π, π] (limits of ±180°), rather
     /// than being kept as the 2π-equivalent inside wider or narrower limits.
     pub fn wraps(&self) -> bool {
@@ -243,18 +253,29 @@ impl Robot {
         let links: f64 = self
             .joints
             .iter()
-            .map(|j| {
-                let d = match j.kind {
-                    JointKind::Revolute => j.dh.d.abs(),
-                    JointKind::Prismatic => (j.dh.d + j.limits.min)
-                        .abs()
-                        .max((j.dh.d + j.limits.max).abs()),
-                };
-                j.dh.a.hypot(d)
-            })
+            .map(|j| j.dh.a.hypot(j.largest_offset()))
             .sum();
         let reach = links + self.flange_from_tool.translation.vector.norm();
         if reach > 0.0 { reach } else { 1.0 }
+    }
+
+    /// The arm's characteristic length for the unit-free Jacobian measures: the sum of
+    /// |a| and |d| over the rows (a prismatic joint at its largest extension) plus the
+    /// tool offset. Unlike [`Robot::reach`], which pairs each row's a and d, it does not
+    /// depend on the DH convention: a standard and a modified table of the same arm carry
+    /// the same lengths in other rows, so they get the same scale and the same measures.
+    pub fn length_scale(&self) -> f64 {
+        let links: f64 = self
+            .joints
+            .iter()
+            .map(|j| j.dh.a.abs() + j.largest_offset())
+            .sum();
+        let scale = links + self.flange_from_tool.translation.vector.norm();
+        if scale > 0.0 && scale.is_finite() {
+            scale
+        } else {
+            1.0
+        }
     }
 
     /// Checks every number and structural rule; returns the robot unchanged when valid.

@@ -20,9 +20,10 @@ use crate::render::camera::OrbitCamera;
 
 use super::FrameTime;
 use super::hook::{self, ScreenPoints};
+use super::jacobian_view::{self, JacobianScene};
 use super::model::{HoverSource, Model};
 use super::scene::{self, MarkerLook, handle_px};
-use super::settings::CameraPose;
+use super::settings::{CameraPose, Overlay};
 use super::style;
 use super::top_bar::ViewAction;
 use marker::{Handle, MarkerDrag, ViewGeometry, dist_to_segment, drag_marker, pick};
@@ -301,6 +302,11 @@ impl Viewport {
         if model.hover_source() != Some(HoverSource::Matrices) {
             model.set_hovered_link(link, HoverSource::View);
         }
+        let column = match (self.drag.is_none(), response.hover_pos()) {
+            (true, Some(p)) => hovered_column(model, &view, to_array(p)),
+            _ => None,
+        };
+        model.set_hovered_column(column, HoverSource::View);
     }
 
     /// Builds the scene from the model and has the renderer draw it into the view.
@@ -340,7 +346,7 @@ impl Viewport {
             (rect.height() * ppp).round() as u32,
         ];
         let t0 = hook::now_ms();
-        let (scene, step) = scene::build(&scene::SceneInput {
+        let (mut scene, step) = scene::build(&scene::SceneInput {
             robot: model.robot(),
             fk: model.fk(),
             camera: &self.camera,
@@ -351,6 +357,7 @@ impl Viewport {
             marker: &look,
             background: [bg.r(), bg.g(), bg.b()],
         });
+        jacobian_view::instances(&jacobian_scene(model), &mut scene.instances);
         self.grid_step = step;
         let t1 = hook::now_ms();
         let texture = renderer.render(rs, px_size, &scene);
@@ -432,6 +439,41 @@ fn marker_axes(model: &Model) -> [Vector3<f64>; 3] {
 }
 
 /// The link (1-based) whose segment between consecutive frame origins is under `at`.
+/// The Jacobian column whose arrow passes within 8 points of `at`, when the arrows are
+/// drawn.
+fn hovered_column(model: &Model, view: &ViewGeometry<'_>, at: [f64; 2]) -> Option<usize> {
+    let scene = jacobian_scene(model);
+    if !scene.overlays.contains(Overlay::JacobianColumns) {
+        return None;
+    }
+    let tool = view.project(&scene.tool)?;
+    let mut best: Option<(f64, usize)> = None;
+    for (i, tip) in jacobian_view::column_tips(&scene).iter().enumerate() {
+        if let Some(b) = view.project(tip) {
+            let d = dist_to_segment(at, tool, b);
+            if d < 8.0 && best.is_none_or(|(bd, _)| d < bd) {
+                best = Some((d, i));
+            }
+        }
+    }
+    best.map(|(_, i)| i)
+}
+
+/// What the Jacobian overlays are drawn from this frame.
+fn jacobian_scene(model: &Model) -> JacobianScene<'_> {
+    JacobianScene {
+        jacobian: model.jacobian(),
+        tool: Point3::from(model.fk().tool_position()),
+        reach: model.robot().reach(),
+        overlays: model.settings().overlays,
+        hovered: model.hovered_column(),
+        robot: model.robot(),
+        q: model.q(),
+        task: model.task(),
+        speeds: model.joint_speeds(),
+    }
+}
+
 fn hovered_link(model: &Model, view: &ViewGeometry<'_>, at: [f64; 2]) -> Option<usize> {
     let mut prev = Point3::from(model.robot().world_from_base.translation.vector);
     let mut best: Option<(f64, usize)> = None;
