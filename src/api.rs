@@ -297,6 +297,15 @@ fn ik_method(value: &Value) -> Result<IkMethod, ApiError> {
     }
 }
 
+/// The typed error of a setting that takes one of a few values.
+fn setting_choice(name: &'static str, value: &Value, allowed: String) -> ApiError {
+    ApiError::Ik(IkError::SettingChoice {
+        name,
+        value: value.to_string(),
+        allowed,
+    })
+}
+
 fn ik_settings(value: &Value, drag: bool) -> Result<crate::kinematics::IkSettings, ApiError> {
     use crate::kinematics::{IkSettings, JacobianSource};
     let mut s = if drag {
@@ -346,9 +355,22 @@ fn ik_settings(value: &Value, drag: bool) -> Result<crate::kinematics::IkSetting
                     ApiError::Request("\"settings.trace\" must be true or false".into())
                 })?
             }
+            "wrap" => {
+                s.wrap = v
+                    .as_bool()
+                    .ok_or_else(|| setting_choice("wrap", v, "true, false".into()))?
+            }
+            "objective" => {
+                s.objective = v
+                    .as_str()
+                    .and_then(crate::kinematics::Objective::from_id)
+                    .ok_or_else(|| {
+                        setting_choice("objective", v, crate::kinematics::Objective::id_list())
+                    })?
+            }
             other => {
                 return Err(ApiError::Request(format!(
-                    "\"settings.{other}\" is not known; the known settings are: position_tolerance, orientation_tolerance, max_iterations, budget, restarts, seed, max_joint_change, trace"
+                    "\"settings.{other}\" is not known; the known settings are: position_tolerance, orientation_tolerance, max_iterations, budget, restarts, seed, max_joint_change, trace, wrap, objective"
                 )));
             }
         }
@@ -378,14 +400,18 @@ fn ik_settings(value: &Value, drag: bool) -> Result<crate::kinematics::IkSetting
 ///   `max_joint_change`, default 0.1 rad, per call).
 /// - `settings`: `position_tolerance` (metres), `orientation_tolerance` (rad),
 ///   `max_iterations` (per attempt), `budget` (iterations per call), `restarts`, `seed`,
-///   `max_joint_change` (rad, or null), `trace` (record every iteration).
+///   `max_joint_change` (rad, or null), `trace` (record every iteration), `wrap`
+///   (true by default; false leaves the angles as the steps accumulate them),
+///   `objective` (`"half-squared"` by default, or `"squared"`: the fixed-step gradient
+///   descends ‖e‖², a step of 2α·Jᵀe).
 ///
 /// Response: `q`, `success`, `unreachable`, `singular`, `clipped`, `within_limits`,
 /// `position_error` (robot units), `orientation_error` (rad), `iterations`, `restarts`,
-/// `tool` (4×4 rows of FK(q)), `trace` (list of `{q, raw_q, error, position_error,
+/// `tool` (4×4 rows of FK(q)), `wrapped_q` (q's wrapped equivalents), `trace` (list of `{q, raw_q, error, position_error,
 /// orientation_error, step, damping, accepted, restart}`; empty unless asked for) and,
 /// for the closed form, `solutions` (every branch: `{q, label, within_limits, singular,
-/// exact}`) with `family`.
+/// exact, free_joints, coincident}`; `label` and `coincident` are branch ids such as
+/// `"right-up-noflip"`) with `family`.
 pub fn ik(request: &str) -> Result<String, ApiError> {
     use crate::kinematics::{IkSolver, closed_form_solutions, tool_pose};
     let req = parse_request(request)?;
@@ -430,6 +456,7 @@ pub fn ik(request: &str) -> Result<String, ApiError> {
         "iterations": r.iterations,
         "restarts": r.restarts,
         "tool": pose_rows(&tool_pose(&req.robot, &r.q)),
+        "wrapped_q": crate::kinematics::wrapped_equivalent(&req.robot, &r.q),
         "trace": trace,
     });
     if method == IkMethod::ClosedForm {
@@ -444,6 +471,8 @@ pub fn ik(request: &str) -> Result<String, ApiError> {
                         .map(|s| json!({
                             "q": s.q, "label": s.label, "within_limits": s.within_limits,
                             "singular": s.singular, "exact": s.exact,
+                            "free_joints": s.free_joints,
+                            "coincident": s.coincident.iter().map(|b| b.id()).collect::<Vec<_>>(),
                         }))
                         .collect::<Vec<_>>()
                 ),

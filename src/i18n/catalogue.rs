@@ -293,5 +293,6 @@ catalogue! {
     TargetNotFinite: "it holds a value that is not finite" / "jokin arvo ei ole äärellinen",
     TargetNotRotation: "its 3×3 part is not a rotation (orthonormal, determinant +1)" / "3×3-osa ei ole rotaatio (ortonormaali, determinantti +1)",
     IkBadSettings: "The IK settings are not valid: {0} must be a positive number, not {1}." / "IK-asetukset eivät kelpaa: arvon {0} on oltava positiivinen luku, ei {1}.",
-    IkNoClosedForm: "\"{0}\" has no closed-form IK in ArmLab (only the planar 2R, the RRR arm and the UR family do): use a numeric method." / "Robotilla \"{0}\" ei ole ArmLabissa suljetun muodon käänteiskinematiikkaa (vain tason 2R-robotilla, RRR-käsivarrella ja UR-perheellä on): käytä numeerista menetelmää.",
+    IkBadChoice: "The IK setting {0} cannot be {1}: use one of {2}." / "IK-asetus {0} ei voi olla {1}: käytä jotakin näistä: {2}.",
+    IkNoClosedForm: "\"{0}\" has no closed-form IK in ArmLab (only the planar 2R, the RRR arm, the UR family, the SCARA and arms with a spherical wrist such as the Puma 560 and the Stanford arm do): use a numeric method." / "Robotilla \"{0}\" ei ole ArmLabissa suljetun muodon käänteiskinematiikkaa (vain tason 2R-robotilla, RRR-käsivarrella, UR-perheellä, SCARA-robotilla ja pallomaisen ranteen käsivarsilla, kuten Puma 560:llä ja Stanford-käsivarrella, on): käytä numeerista menetelmää.",
 }

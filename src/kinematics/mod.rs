@@ -15,6 +15,7 @@ pub mod presets;
 pub mod redundancy;
 pub mod rng;
 pub mod robot;
+pub mod workspace;
 
 pub use error::{DhColumn, Expected, Field, Place, RobotError};
 pub use file::{robot_from_json, robot_from_value, robot_to_json};
@@ -22,9 +23,10 @@ pub use fk::{
     ForwardKinematics, link_transform, modified_dh_transform, standard_dh_transform, tool_pose,
 };
 pub use ik::{
-    BadTarget, ClosedFormFamily, ClosedFormSet, ClosedFormSolution, DEFAULT_MAX_JOINT_CHANGE,
-    IkError, IkMethod, IkResult, IkSettings, IkSolver, IkStep, JacobianSource, Reach,
-    closed_form_family, closed_form_solutions, drag_step, solve,
+    BadTarget, Branch, BranchChoice, BranchStep, ClosedFormFamily, ClosedFormSet,
+    ClosedFormSolution, DEFAULT_MAX_JOINT_CHANGE, Elbow, IkError, IkMethod, IkResult, IkSettings,
+    IkSolver, IkStep, JacobianSource, Objective, Reach, Shoulder, Wrist, branch_of, branch_step,
+    closed_form_family, closed_form_solutions, drag_step, follow_branch, solve, wrapped_equivalent,
 };
 pub use jacobian::{
     JACOBIAN_AGREEMENT, JacobianAnalysis, JacobianMeasures, NUMERIC_EPSILON, SINGULARITY_THRESHOLD,
@@ -36,4 +38,8 @@ pub use presets::{PRESETS, preset, preset_ids, preset_names};
 pub use rng::SplitMix64;
 pub use robot::{
     Convention, DhRow, Joint, JointKind, JointLimits, LengthUnit, PartSizes, Robot, RobotParts,
+};
+pub use workspace::{
+    HeldAtLimit, NearestSample, WorkspaceCloud, WorkspaceMeasure, joints_held_at_limits,
+    linear_manipulability, linear_sigma_min,
 };

@@ -19,7 +19,9 @@
 //! [`IkSolver::drag_step`] every frame; the hot loop then never allocates. [`solve`] and
 //! [`drag_step`] are the one-shot forms. The core has no clock: budgets are iterations.
 
+mod branches;
 mod closed_form;
+mod distinct;
 mod numeric;
 
 use nalgebra::{IsometryMatrix3, Matrix3, Vector3};
@@ -30,8 +32,15 @@ use super::jacobian::Task;
 use super::robot::{JointKind, Robot};
 use crate::i18n::{Key, Lang, fill, text};
 
+pub use branches::{
+    Branch, BranchChoice, BranchStep, Elbow, Shoulder, Wrist, branch_of, branch_step, follow_branch,
+};
 pub use closed_form::{
     ClosedFormFamily, ClosedFormSet, ClosedFormSolution, closed_form_family, closed_form_solutions,
+};
+pub use distinct::{
+    DistinctSolutions, FoundSolution, MAX_CONTINUUM_SAMPLES, MAX_DISTINCT, SAME_SOLUTION,
+    configuration_signs, distinct_solutions,
 };
 use numeric::{TaskTarget, Workspace, evaluate};
 
@@ -180,6 +189,68 @@ pub struct IkSettings {
     pub jacobian: JacobianSource,
     /// Record every iteration in [`IkResult::trace`] (allocates; off for dragging).
     pub record_trace: bool,
+    /// Keep every step's joint values as in docs/kinematics.md §3 (wrapped to (−π, π] or
+    /// the 2π-equivalent inside the limits). `false` leaves revolute values as the steps
+    /// accumulate them (the lecture notebook's `θ += solve(J, e)`: raw angles several
+    /// turns away; [`wrapped_equivalent`] gives the wrapped values beside them);
+    /// prismatic joints still clamp to their stroke. Default `true` (SPEC §2).
+    pub wrap: bool,
+    /// The cost whose gradient a fixed-step gradient method follows (docs/kinematics.md
+    /// §8.2): ½‖e‖² (`Δq = α·Jᵀe`, the default) or ‖e‖² (`Δq = 2α·Jᵀe`, the notebook's
+    /// `θ −= α·∇F` with ∇F = 2·Jᵀ·(f − t)). The adaptive step is the same for both.
+    pub objective: Objective,
+}
+
+/// The cost a fixed-step gradient method descends (docs/kinematics.md §8.2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Objective {
+    /// F = ½‖e‖², ∇F = −Jᵀe: the step is `α·Jᵀe`.
+    #[default]
+    HalfSquared,
+    /// F = ‖e‖², ∇F = −2·Jᵀe: the step is `2α·Jᵀe` (the lecture notebook's).
+    Squared,
+}
+
+impl Objective {
+    /// Both objectives, the default first.
+    pub const ALL: [Objective; 2] = [Objective::HalfSquared, Objective::Squared];
+
+    /// The id of the JSON API and links: `half-squared`, `squared`.
+    pub fn id(self) -> &'static str {
+        match self {
+            Objective::HalfSquared => "half-squared",
+            Objective::Squared => "squared",
+        }
+    }
+
+    /// The objective of an id.
+    pub fn from_id(id: &str) -> Option<Objective> {
+        Objective::ALL.into_iter().find(|o| o.id() == id)
+    }
+
+    /// Every id, for messages: `half-squared, squared`.
+    pub fn id_list() -> String {
+        Objective::ALL.map(Objective::id).join(", ")
+    }
+
+    /// The factor of `α·Jᵀe` in the step: 1 for ½‖e‖², 2 for ‖e‖².
+    pub fn gradient_factor(self) -> f64 {
+        match self {
+            Objective::HalfSquared => 1.0,
+            Objective::Squared => 2.0,
+        }
+    }
+}
+
+/// Each joint value of `q` as the robot keeps it (docs/kinematics.md §3): the wrapped
+/// equivalents of a run with [`IkSettings::wrap`] off (−5.98 rad → 0.30 rad).
+pub fn wrapped_equivalent(robot: &Robot, q: &[f64]) -> Vec<f64> {
+    robot
+        .joints
+        .iter()
+        .zip(q)
+        .map(|(j, v)| j.keep(*v, crate::kinematics::angles::wrap_to_pi(*v)))
+        .collect()
 }
 
 impl Default for IkSettings {
@@ -194,6 +265,8 @@ impl Default for IkSettings {
             max_joint_change: None,
             jacobian: JacobianSource::Geometric,
             record_trace: false,
+            wrap: true,
+            objective: Objective::HalfSquared,
         }
     }
 }
@@ -307,6 +380,15 @@ pub enum IkError {
     },
     /// The closed form was asked for an arm that has none here.
     NoClosedForm(String),
+    /// A setting that takes one of a few values got another (`objective`, `wrap`).
+    SettingChoice {
+        /// The setting's name.
+        name: &'static str,
+        /// The value given, as written (JSON text: `"cubed"`, `2`).
+        value: String,
+        /// The values it takes, comma-separated (`half-squared, squared`).
+        allowed: String,
+    },
 }
 
 /// What is wrong with a target pose.
@@ -335,6 +417,11 @@ impl IkError {
             }
             IkError::Settings { name, value } => fill(lang, Key::IkBadSettings, &[name, value]),
             IkError::NoClosedForm(robot) => fill(lang, Key::IkNoClosedForm, &[robot]),
+            IkError::SettingChoice {
+                name,
+                value,
+                allowed,
+            } => fill(lang, Key::IkBadChoice, &[name, value, allowed]),
         }
     }
 }
@@ -373,6 +460,19 @@ pub fn pose_error(
     (ev.position_error, ev.orientation_error)
 }
 
+/// The task error vector e (docs/kinematics.md §5) of the tool at `pose` against
+/// `target`, the linear rows multiplied by `linear_scale`: as many rows as the task has,
+/// in the order of [`crate::kinematics::task_jacobian`]'s rows.
+pub fn task_error_vector(
+    target: &IsometryMatrix3<f64>,
+    pose: &IsometryMatrix3<f64>,
+    task: Task,
+    linear_scale: f64,
+) -> nalgebra::DVector<f64> {
+    let ev = evaluate(&TaskTarget::new(target, task), pose, linear_scale);
+    nalgebra::DVector::from_iterator(task.rows(), ev.e.iter().copied().take(task.rows()))
+}
+
 /// The wrapped-difference distance Σ change(a_i, b_i)² between two joint vectors.
 pub fn joint_distance(robot: &Robot, a: &[f64], b: &[f64]) -> f64 {
     robot
@@ -395,7 +495,7 @@ pub fn within_limits(robot: &Robot, q: &[f64]) -> bool {
         .all(|(j, v)| j.limits.contains(*v, 1e-9))
 }
 
-fn check_target(target: &IsometryMatrix3<f64>) -> Result<(), IkError> {
+pub(crate) fn check_target(target: &IsometryMatrix3<f64>) -> Result<(), IkError> {
     let t = target.translation.vector;
     let r = target.rotation.matrix();
     if !t.iter().chain(r.iter()).all(|v| v.is_finite()) {

@@ -185,6 +185,10 @@ struct Ctx<'a> {
     inv_len: f64,
     tol_p: f64,
     tol_o: f64,
+    /// Keep joint values (docs/kinematics.md §3) after each step, or leave them raw.
+    wrap: bool,
+    /// The fixed-step gradient's factor (1 for ½‖e‖², 2 for ‖e‖²).
+    gradient_factor: f64,
 }
 
 impl Ctx<'_> {
@@ -234,11 +238,13 @@ impl Workspace {
             inv_len,
             tol_p: settings.position_tolerance / robot.length_unit.in_metres(),
             tol_o: settings.orientation_tolerance,
+            wrap: settings.wrap,
+            gradient_factor: settings.objective.gradient_factor(),
         };
         let mut trace = Vec::new();
         let mut rng = SplitMix64::new(settings.seed);
         for ((v, s), joint) in self.q.iter_mut().zip(seed).zip(&robot.joints) {
-            *v = keep(joint, *s, *s);
+            *v = keep_or_raw(ctx.wrap, joint, *s, *s);
         }
         if settings.record_trace {
             self.fk.update(robot, &self.q);
@@ -376,11 +382,11 @@ impl Workspace {
     }
 
     /// `q_try = keep(q + dq)` (and the raw sum in `raw`).
-    fn take_step(&mut self, robot: &Robot) {
+    fn take_step(&mut self, robot: &Robot, wrap: bool) {
         for (i, joint) in robot.joints.iter().enumerate() {
             let (current, raw) = (self.q[i], self.q[i] + self.dq[i]);
             self.raw[i] = raw;
-            self.q_try[i] = keep(joint, raw, current);
+            self.q_try[i] = keep_or_raw(wrap, joint, raw, current);
         }
     }
 
@@ -417,7 +423,7 @@ impl Workspace {
                 }
                 IkMethod::JacobianTranspose { alpha } => {
                     let alpha = match alpha {
-                        Some(a) => a,
+                        Some(a) => a * ctx.gradient_factor,
                         None => {
                             let me = self.m * ev.e;
                             let den = me.norm_squared();
@@ -453,7 +459,7 @@ impl Workspace {
                 out.stationary = true;
                 break;
             }
-            self.take_step(robot);
+            self.take_step(robot, ctx.wrap);
             self.fk.update(robot, &self.q_try);
             let ev_try = evaluate(&ctx.tt, &self.fk.base_from_tool, ctx.inv_len);
             let damped = matches!(
@@ -537,6 +543,16 @@ fn keep(joint: &Joint, raw: f64, current: f64) -> f64 {
         raw
     } else {
         joint.keep(raw, current)
+    }
+}
+
+/// [`keep`] when `wrap` is on; else the raw value (a prismatic joint still clamps).
+#[inline]
+fn keep_or_raw(wrap: bool, joint: &Joint, raw: f64, current: f64) -> f64 {
+    if wrap || joint.kind == JointKind::Prismatic {
+        keep(joint, raw, current)
+    } else {
+        raw
     }
 }
 

@@ -1,0 +1,129 @@
+//! The sampled workspace (docs/kinematics.md §10): slices add up to the whole, the
+//! determinant-based manipulability and the closed-form σ_min agree with the SVD of the
+//! measures, the nearest-point query, and the joints that hold a stalled IK at a limit.
+
+// On wasm32 the tests are `wasm_bindgen_test`s, which clippy does not see as tests, so
+// clippy.toml's allow-unwrap-in-tests does not reach them.
+#![cfg_attr(target_arch = "wasm32", allow(clippy::unwrap_used))]
+
+#[cfg(target_arch = "wasm32")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+
+mod common;
+
+use armlab::kinematics::workspace::smallest_symmetric_eigenvalue;
+use armlab::kinematics::{
+    ForwardKinematics, Task, WorkspaceCloud, WorkspaceMeasure, geometric_jacobian,
+    jacobian_measures, joints_held_at_limits, linear_manipulability, linear_sigma_min, preset,
+    tool_pose,
+};
+use nalgebra::{Matrix3, Vector3};
+use std::f64::consts::FRAC_PI_4;
+
+#[test]
+fn slices_fill_the_same_cloud_as_one_call() {
+    let robot = preset("ur10").unwrap();
+    let mut whole = WorkspaceCloud::new(&robot, WorkspaceMeasure::Manipulability, 5000, 7);
+    assert_eq!(whole.fill(usize::MAX), 5000);
+    assert!(whole.is_full() && whole.fill(10) == 0);
+    let mut sliced = WorkspaceCloud::new(&robot, WorkspaceMeasure::Manipulability, 5000, 7);
+    let mut calls = 0;
+    while !sliced.is_full() {
+        let added = sliced.fill(333);
+        assert!(added <= 333);
+        calls += 1;
+    }
+    assert_eq!(calls, 16);
+    assert_eq!(sliced.positions, whole.positions);
+    assert_eq!(sliced.values, whole.values);
+    assert_eq!(sliced.progress(), 1.0);
+    // Every point lies within the arm's reach of the base.
+    assert!(whole.outer_reach() <= robot.reach());
+    assert!(whole.outer_reach() > 0.8 * 1300.0);
+}
+
+#[test]
+fn the_measures_agree_with_the_svd() {
+    for id in ["ur10", "puma560", "planar-2r", "scara", "panda", "metrover"] {
+        let robot = preset(id).unwrap();
+        let mut rng = common::rng(2);
+        for _ in 0..50 {
+            let q = rng.joint_vector(&robot);
+            let fk = ForwardKinematics::new(&robot, &q).unwrap();
+            let measures = jacobian_measures(
+                &geometric_jacobian(&fk),
+                Task::Position,
+                fk.tool_rotation(),
+                robot.reach(),
+            );
+            let inv = 1.0 / robot.reach();
+            let w = linear_manipulability(&fk, inv);
+            let s = linear_sigma_min(&fk, inv);
+            let svd_min = *measures.singular_values.last().unwrap();
+            let scale = measures.singular_values[0].max(1e-12);
+            assert!(
+                (w - measures.manipulability).abs() <= 1e-9 * scale.powi(3).max(1e-12),
+                "{id}: det {w} vs svd {}",
+                measures.manipulability
+            );
+            assert!(
+                (s - svd_min).abs() <= 1e-7 * scale,
+                "{id}: σ_min {s} vs {svd_min}"
+            );
+        }
+    }
+    // The closed-form eigenvalue on a matrix with known eigenvalues 1, 2, 5.
+    let r = nalgebra::Rotation3::from_euler_angles(0.3, -0.7, 1.1);
+    let a =
+        r.matrix() * Matrix3::from_diagonal(&Vector3::new(5.0, 1.0, 2.0)) * r.matrix().transpose();
+    assert!((smallest_symmetric_eigenvalue(&a) - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn nearest_sample_and_inside_the_sampled_workspace() {
+    // The planar 2R (l = 2, 1) reaches the annulus 1 ≤ r ≤ 3.
+    let robot = preset("planar-2r").unwrap();
+    let mut cloud = WorkspaceCloud::new(&robot, WorkspaceMeasure::SigmaMin, 20_000, 3);
+    assert!(cloud.nearest(&Vector3::zeros()).is_none());
+    cloud.fill(20_000);
+    let p = cloud.positions[123];
+    let n = cloud.nearest(&p).unwrap();
+    assert_eq!((n.index, n.distance), (123, 0.0));
+    assert!(
+        cloud.spacing() > 0.0 && cloud.spacing() < 0.1,
+        "{}",
+        cloud.spacing()
+    );
+    assert!(cloud.contains(&Vector3::new(2.0, 0.5, 0.0)));
+    assert!(!cloud.contains(&Vector3::new(3.5, 0.0, 0.0)));
+    assert!(!cloud.contains(&Vector3::new(0.2, 0.1, 0.0)));
+    let far = cloud.nearest(&Vector3::new(4.0, 0.0, 0.0)).unwrap();
+    assert!((far.distance - 1.0).abs() < 0.05, "{}", far.distance);
+    // σ_min vanishes toward the stretched rim.
+    let (rim, _) = cloud
+        .positions
+        .iter()
+        .zip(&cloud.values)
+        .max_by(|a, b| a.0.norm().total_cmp(&b.0.norm()))
+        .unwrap();
+    let k = cloud.nearest(rim).unwrap().index;
+    assert!(cloud.values[k] < 0.05 * cloud.largest_value());
+}
+
+#[test]
+fn the_joint_holding_a_stalled_puma_at_its_limit_is_named() {
+    let robot = preset("puma560").unwrap();
+    // Joint 2 at its −45° limit; the target needs it further (−50°).
+    let q = [0.3, -FRAC_PI_4, -2.0, 0.2, 0.5, 0.1];
+    let beyond = tool_pose(&robot, &[0.3, -FRAC_PI_4 - 0.09, -2.0, 0.2, 0.5, 0.1]);
+    let held = joints_held_at_limits(&robot, &q, &beyond, Task::Position, 1e-9);
+    assert_eq!(
+        held.first().map(|h| (h.joint, h.at_max)),
+        Some((1, false)),
+        "{held:?}"
+    );
+    // A target back inside the range pulls joint 2 inward: nothing holds it.
+    let inside = tool_pose(&robot, &[0.3, -FRAC_PI_4 + 0.09, -2.0, 0.2, 0.5, 0.1]);
+    let held = joints_held_at_limits(&robot, &q, &inside, Task::Position, 1e-9);
+    assert!(held.iter().all(|h| h.joint != 1), "{held:?}");
+}
