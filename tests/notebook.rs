@@ -1,4 +1,4 @@
-//! The lecture notebook's IK runs reproduced exactly (SPEC §1.3, docs/kinematics.md §8.6):
+//! The lecture notebook's IK runs reproduced exactly (SPEC §1.3, docs/kinematics.md §8.7):
 //! Newton–Raphson without wrapping and gradient descent on ‖e‖² with α = 0.01, to the
 //! notebook's printed precision, with the wrapped equivalents beside them; and the
 //! settings through the JSON API with typed errors.

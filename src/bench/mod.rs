@@ -1,5 +1,6 @@
 //! Benchmarks, outside the clock-free core: the IK benchmark protocol and its JSON report
-//! ([`ik`]), and the one statistics helper every benchmark uses ([`stats`]). The clock is
+//! ([`ik`]), the workspace sampling and branch-count reports ([`workspace`]), and the one
+//! statistics helper every benchmark uses ([`stats`]). The clock is
 //! the caller's (`Instant` in the native binaries, `performance.now()` through the JS
 //! API), passed in as `now`.
 //!
@@ -8,3 +9,4 @@
 
 pub mod ik;
 pub mod stats;
+pub mod workspace;

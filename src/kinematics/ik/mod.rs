@@ -5,8 +5,10 @@
 //!   targets), Newton with the Moore–Penrose pseudo-inverse `Δq = J⁺·e`, and Jacobian
 //!   transpose / gradient descent on ½‖e‖², `Δq = α·Jᵀ·e`. Each can use the geometric or
 //!   the central-difference Jacobian.
-//! - Closed form where the arm allows it: the planar 2R, the RRR arm and the
-//!   UR family (all up to eight solutions), see [`closed_form_solutions`].
+//! - Closed form where the arm allows it: the planar 2R, the RRR arm, the UR family, the
+//!   SCARA and spherical-wrist arms (up to eight solutions, each labelled by its
+//!   [`Branch`]), see [`closed_form_solutions`]; [`branch_step`] keeps a branch while
+//!   dragging. Arms without one: [`distinct_solutions`] from seeded restarts.
 //!
 //! The error vector `e` has the position error `p_target − p` in its first three rows
 //! and, by task: nothing more (position), the rotation turning the chosen tool axis `a`
@@ -78,7 +80,8 @@ pub enum IkMethod {
         /// The fixed step α, or `None` for the adaptive one.
         alpha: Option<f64>,
     },
-    /// The closed form of the arm's family (2R, RRR, UR), the branch nearest the seed.
+    /// The closed form of the arm's family (2R, RRR, UR, SCARA, spherical wrist), the
+    /// branch nearest the seed.
     ClosedForm,
 }
 
