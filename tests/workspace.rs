@@ -13,9 +13,9 @@ mod common;
 
 use armlab::kinematics::workspace::smallest_symmetric_eigenvalue;
 use armlab::kinematics::{
-    ForwardKinematics, Task, WorkspaceCloud, WorkspaceMeasure, geometric_jacobian,
-    jacobian_measures, joints_held_at_limits, linear_manipulability, linear_sigma_min, preset,
-    tool_pose,
+    ForwardKinematics, IkSettings, Task, ToolAxis, WorkspaceCloud, WorkspaceMeasure,
+    direction_reachability, geometric_jacobian, jacobian_measures, joints_held_at_limits,
+    linear_manipulability, linear_sigma_min, preset, sphere_directions, tool_pose,
 };
 use nalgebra::{Matrix3, Vector3};
 use std::f64::consts::FRAC_PI_4;
@@ -126,4 +126,45 @@ fn the_joint_holding_a_stalled_puma_at_its_limit_is_named() {
     let inside = tool_pose(&robot, &[0.3, -FRAC_PI_4 + 0.09, -2.0, 0.2, 0.5, 0.1]);
     let held = joints_held_at_limits(&robot, &q, &inside, Task::Position, 1e-9);
     assert!(held.iter().all(|h| h.joint != 1), "{held:?}");
+}
+
+#[test]
+fn a_five_axis_arm_reaches_only_some_tool_directions_at_one_position() {
+    // The Metrover's tool y axis is joint 5's axis, set by joints 1–4, which also set
+    // the position: at one position it can only point along a curve of directions (none
+    // of 48 spread over the sphere but its own). Joint 5 rolls the hand about it, so the
+    // tool's z axis can point anywhere.
+    let robot = preset("metrover").unwrap();
+    let q0 = [0.3, 1.0, 0.4, 0.5, 0.2];
+    let pose = tool_pose(&robot, &q0);
+    let position = pose.translation.vector;
+    let settings = IkSettings {
+        restarts: 8,
+        budget: 1000,
+        ..IkSettings::default()
+    };
+    let spread = sphere_directions(48);
+    for d in &spread {
+        assert!((d.norm() - 1.0).abs() < 1e-12);
+    }
+    for (axis, k, at_least, at_most) in [(ToolAxis::Y, 1, 0, 3), (ToolAxis::Z, 2, 44, 48)] {
+        let mut directions = spread.clone();
+        directions.push(pose.rotation.matrix().column(k).into_owned());
+        let reach =
+            direction_reachability(&robot, &position, axis, &directions, &q0, &settings).unwrap();
+        assert_eq!(reach.len(), 49);
+        // The arm's own direction is reachable (it is already there).
+        assert!(reach[48].reachable, "{axis:?}");
+        let reachable = reach[..48].iter().filter(|r| r.reachable).count();
+        assert!(
+            (at_least..=at_most).contains(&reachable),
+            "{axis:?}: {reachable} of 48 reachable"
+        );
+        for r in reach.iter().filter(|r| r.reachable) {
+            let p = tool_pose(&robot, &r.q);
+            assert!((p.translation.vector - position).norm() < 1e-3);
+            let a = p.rotation.matrix().column(k).into_owned();
+            assert!(a.dot(&r.direction) > 1.0 - 1e-9, "{a} vs {}", r.direction);
+        }
+    }
 }

@@ -41,6 +41,7 @@ pub use robot::{
     Convention, DhRow, Joint, JointKind, JointLimits, LengthUnit, PartSizes, Robot, RobotParts,
 };
 pub use workspace::{
-    HeldAtLimit, NearestSample, WorkspaceCloud, WorkspaceMeasure, joints_held_at_limits,
-    linear_manipulability, linear_sigma_min,
+    DirectionReach, HeldAtLimit, NearestSample, WorkspaceCloud, WorkspaceMeasure,
+    direction_reachability, joints_held_at_limits, linear_manipulability, linear_sigma_min,
+    sphere_directions,
 };

@@ -55,8 +55,10 @@ pub struct WorkspaceCloud {
     pub positions: Vec<Vector3<f64>>,
     /// The measure at each position (unit-free).
     pub values: Vec<f64>,
-    /// The joint vector of each sample (for "take the arm there").
+    /// The joint vector of each sample (for "take the arm there"), when kept
+    /// ([`WorkspaceCloud::keep_joint_vectors`]).
     pub joint_vectors: Vec<Vec<f64>>,
+    keep_q: bool,
     min: Vector3<f64>,
     max: Vector3<f64>,
     largest_value: f64,
@@ -78,6 +80,7 @@ impl WorkspaceCloud {
             positions: Vec::with_capacity(samples),
             values: Vec::with_capacity(samples),
             joint_vectors: Vec::new(),
+            keep_q: false,
             min: Vector3::repeat(f64::INFINITY),
             max: Vector3::repeat(f64::NEG_INFINITY),
             largest_value: 0.0,
@@ -89,6 +92,7 @@ impl WorkspaceCloud {
     /// default: n numbers more per point).
     pub fn keep_joint_vectors(mut self) -> Self {
         self.joint_vectors = Vec::with_capacity(self.target);
+        self.keep_q = true;
         self
     }
 
@@ -119,7 +123,7 @@ impl WorkspaceCloud {
             self.farthest = self.farthest.max((p - base).norm());
             self.positions.push(p);
             self.values.push(value);
-            if self.joint_vectors.capacity() > 0 {
+            if self.keep_q {
                 self.joint_vectors.push(self.q.clone());
             }
         }
@@ -339,4 +343,86 @@ pub fn joints_held_at_limits(
             .unwrap_or(std::cmp::Ordering::Equal)
     });
     held
+}
+
+/// `n` unit directions spread evenly over the sphere (the Fibonacci lattice: heights
+/// `z_k = 1 − (2k + 1)/n`, turned by the golden angle π(3 − √5) each).
+pub fn sphere_directions(n: usize) -> Vec<Vector3<f64>> {
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    (0..n)
+        .map(|k| {
+            let z = 1.0 - (2.0 * k as f64 + 1.0) / n as f64;
+            let r = (1.0 - z * z).max(0.0).sqrt();
+            let (s, c) = (golden * k as f64).sin_cos();
+            Vector3::new(r * c, r * s, z)
+        })
+        .collect()
+}
+
+/// Whether the tool can point its `axis` along one direction at a position.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DirectionReach {
+    /// The unit direction asked for.
+    pub direction: Vector3<f64>,
+    /// The 5D task (position + that axis) was solved within the settings' tolerances.
+    pub reachable: bool,
+    /// The joint vector found (the closest one when not reachable).
+    pub q: Vec<f64>,
+}
+
+/// For each direction, whether the tool reaches `position` with its `axis` along it:
+/// the 5D task of docs/kinematics.md §5 solved by damped least squares from `seed` (and
+/// the settings' random restarts). For a 5-axis arm (the Metrover) this draws why five
+/// joints cannot set a full pose: at one position only some directions are reachable.
+/// Directions that are not unit vectors are normalised; a zero one is not reachable.
+pub fn direction_reachability(
+    robot: &Robot,
+    position: &Vector3<f64>,
+    axis: super::jacobian::ToolAxis,
+    directions: &[Vector3<f64>],
+    seed: &[f64],
+    settings: &super::ik::IkSettings,
+) -> Result<Vec<DirectionReach>, super::ik::IkError> {
+    use super::ik::{IkMethod, IkSolver};
+    use super::jacobian::Task;
+    let mut solver = IkSolver::new();
+    let k = axis.index();
+    let mut out = Vec::with_capacity(directions.len());
+    for d in directions {
+        let Some(dir) = d.try_normalize(1e-12) else {
+            out.push(DirectionReach {
+                direction: *d,
+                reachable: false,
+                q: seed.to_vec(),
+            });
+            continue;
+        };
+        // A rotation whose column k is `dir`: u ⟂ dir, then dir × u (right-handed).
+        let helper = if dir.x.abs() < 0.9 {
+            Vector3::x()
+        } else {
+            Vector3::y()
+        };
+        let u = helper.cross(&dir).normalize();
+        let w = dir.cross(&u);
+        let mut cols = [Vector3::zeros(); 3];
+        cols[k] = dir;
+        cols[(k + 1) % 3] = u;
+        cols[(k + 2) % 3] = w;
+        let target = super::ik::target_pose(*position, Matrix3::from_columns(&cols));
+        let r = solver.solve(
+            robot,
+            &target,
+            Task::PositionAndAxis(axis),
+            seed,
+            IkMethod::DampedLeastSquares,
+            settings,
+        )?;
+        out.push(DirectionReach {
+            direction: dir,
+            reachable: r.success,
+            q: r.q,
+        });
+    }
+    Ok(out)
 }
