@@ -54,9 +54,9 @@ fn the_measures_agree_with_the_svd() {
                 &geometric_jacobian(&fk),
                 Task::Position,
                 fk.tool_rotation(),
-                robot.reach(),
+                robot.length_scale(),
             );
-            let inv = 1.0 / robot.reach();
+            let inv = 1.0 / robot.length_scale();
             let w = linear_manipulability(&fk, inv);
             let s = linear_sigma_min(&fk, inv);
             let svd_min = *measures.singular_values.last().unwrap();

@@ -1,4 +1,4 @@
-//! Two reports for the workspace and branch notes (docs/kinematics.md §11): the cost of
+//! Two reports for the workspace and branch notes (docs/kinematics.md §12): the cost of
 //! sampling the workspace (forward kinematics + the determinant manipulability, and
 //! σ_min separately) and the number of closed-form branches per robot over random
 //! reachable targets. The clock is the caller's (`now`, seconds).

@@ -1,5 +1,5 @@
 //! Closed-form branch counts per robot over random reachable targets, as JSON
-//! (docs/kinematics.md §11).
+//! (docs/kinematics.md §12).
 //!
 //! `cargo run --release --no-default-features --bin branchcount [targets]`
 

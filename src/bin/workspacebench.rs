@@ -1,4 +1,4 @@
-//! The workspace benchmark natively: prints JSON (docs/kinematics.md §11). UR10,
+//! The workspace benchmark natively: prints JSON (docs/kinematics.md §12). UR10,
 //! forward kinematics + manipulability by the determinant, one thread; σ_min apart.
 //!
 //! `cargo run --release --no-default-features --bin workspacebench [samples] [repeats]`

@@ -1,4 +1,4 @@
-//! The reachable workspace, sampled (docs/kinematics.md §11): tool positions from random
+//! The reachable workspace, sampled (docs/kinematics.md §12): tool positions from random
 //! joint vectors within the limits, each with a measure of how well the arm can move
 //! there. Filled in slices ([`WorkspaceCloud::fill`]) so that a page can spread the work
 //! over frames; the core has no clock, so a slice is a number of samples.
@@ -13,7 +13,8 @@ use super::robot::{JointKind, Robot};
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum WorkspaceMeasure {
     /// Yoshikawa's manipulability of the linear rows, `√det(J̃v·J̃vᵀ)` from the 3×3
-    /// determinant (no SVD), with J̃v = Jv / L (L the reach): 0 at a singularity. With
+    /// determinant (no SVD), with J̃v = Jv / L (L = [`Robot::length_scale`], as the
+    /// measures of docs/kinematics.md §6): 0 at a singularity. With
     /// fewer than three joints, `√det(J̃vᵀ·J̃v)`.
     #[default]
     Manipulability,
@@ -75,7 +76,7 @@ impl WorkspaceCloud {
             rng: SplitMix64::new(seed),
             fk: ForwardKinematics::default(),
             q: vec![0.0; robot.dof()],
-            inv_len: 1.0 / robot.reach(),
+            inv_len: 1.0 / robot.length_scale(),
             target: samples,
             positions: Vec::with_capacity(samples),
             values: Vec::with_capacity(samples),
@@ -235,7 +236,7 @@ fn linear_columns(fk: &ForwardKinematics, inv_len: f64) -> (Matrix3<f64>, [Vecto
 }
 
 /// `√det(J̃v·J̃vᵀ)`, or `√det(J̃vᵀ·J̃v)` with fewer than three joints (docs/kinematics.md
-/// §11.1).
+/// §12.1).
 pub fn linear_manipulability(fk: &ForwardKinematics, inv_len: f64) -> f64 {
     let (m, cols) = linear_columns(fk, inv_len);
     let det = match fk.dof() {
@@ -251,7 +252,7 @@ pub fn linear_manipulability(fk: &ForwardKinematics, inv_len: f64) -> f64 {
 }
 
 /// The smallest singular value of J̃v (the smallest of min(3, n)), from the eigenvalues
-/// of the symmetric 3×3 (or n×n) Gram matrix in closed form (docs/kinematics.md §11.1).
+/// of the symmetric 3×3 (or n×n) Gram matrix in closed form (docs/kinematics.md §12.1).
 pub fn linear_sigma_min(fk: &ForwardKinematics, inv_len: f64) -> f64 {
     let (m, cols) = linear_columns(fk, inv_len);
     let smallest = match fk.dof() {
@@ -288,7 +289,7 @@ pub fn smallest_symmetric_eigenvalue(a: &Matrix3<f64>) -> f64 {
     q + 2.0 * p * (phi + 2.0 * std::f64::consts::PI / 3.0).cos()
 }
 
-/// Where a stalled IK is held by a joint limit (docs/kinematics.md §11.2).
+/// Where a stalled IK is held by a joint limit (docs/kinematics.md §12.2).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HeldAtLimit {
     /// The joint's index (from 0).
