@@ -42,6 +42,7 @@ pub(super) const SAME_IN_BOTH: &[Key] = &[
     Key::CopyLatex,
     Key::CopyNumpy,
     Key::ErrorPlotRange,
+    Key::ToolTwist,
 ];
 
 catalogue! {
