@@ -680,3 +680,51 @@ fn the_jacobian_columns_and_the_velocity_ellipsoid_are_drawn_at_the_tool() {
     );
     h.snapshot("jacobian_columns_ellipsoid");
 }
+
+#[test]
+fn every_ur10_branch_is_listed_and_a_click_on_its_ghost_moves_the_arm_there() {
+    let mut h = harness("#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2&show=ghosts&panels=ik");
+    h.run_steps(2);
+    let rows = h
+        .state()
+        .model()
+        .branches()
+        .expect("the IK panel listed the solutions")
+        .rows
+        .clone();
+    assert_eq!(rows.len(), 8, "the UR10 has eight branches here");
+    // Wrist flipped and not: two rows each.
+    assert_eq!(
+        h.query_all_by_label_contains("shoulder right, elbow up").count(),
+        2
+    );
+    let q0 = h.state().model().q().to_vec();
+    let (name, pos) = h
+        .state()
+        .points()
+        .all()
+        .iter()
+        .find(|(n, _)| n.starts_with("ghost-"))
+        .cloned()
+        .expect("a ghost on screen");
+    let index: usize = name["ghost-".len()..].parse().unwrap();
+    let at = egui::pos2(pos[0], pos[1]);
+    h.event(egui::Event::PointerMoved(at));
+    h.run_steps(1);
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos: at,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        });
+        h.run_steps(1);
+    }
+    let q = h.state().model().q().to_vec();
+    assert_ne!(q, q0, "the arm moved");
+    let want = &rows[index - 1].q;
+    for (a, b) in q.iter().zip(want) {
+        assert!((a - b).abs() < 1e-9, "{q:?} is solution {index} {want:?}");
+    }
+    h.snapshot("ghosts");
+}

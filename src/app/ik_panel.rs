@@ -67,6 +67,7 @@ impl Panel for IkPanel {
         });
         status(model, ui);
         replay_ui(&mut self.replay, model, ui);
+        super::solutions::solutions_ui(model, ui);
     }
 }
 

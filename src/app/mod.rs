@@ -29,6 +29,7 @@ pub mod scene;
 pub mod session;
 pub mod settings;
 pub mod shell;
+pub mod solutions;
 pub mod style;
 pub mod top_bar;
 pub mod viewport;

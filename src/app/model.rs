@@ -97,6 +97,29 @@ pub enum HoverSource {
     View,
 }
 
+/// One IK solution of the current target, as the IK panel lists it and the 3D view draws
+/// it as a ghost arm.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BranchRow {
+    /// The joint values.
+    pub q: Vec<f64>,
+    /// Its name (the branch in words, or the configuration signs).
+    pub label: String,
+    /// Every joint within its limits.
+    pub within_limits: bool,
+}
+
+/// The solutions of one target, with what they were found for.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Branches {
+    target: IsometryMatrix3<f64>,
+    robot_changes: u64,
+    /// The solutions.
+    pub rows: Vec<BranchRow>,
+    /// The rows are samples of a continuum (a redundant task), not every solution.
+    pub continuum: bool,
+}
+
 /// The session, the settings and everything derived from them.
 #[derive(Debug, Clone)]
 pub struct Model {
@@ -114,6 +137,7 @@ pub struct Model {
     hover: Option<(usize, HoverSource)>,
     hovered_column: Option<(usize, HoverSource)>,
     joint_speeds: Vec<f64>,
+    branches: Option<Branches>,
     message: Option<Message>,
     loads: u64,
     robot_changes: u64,
@@ -140,6 +164,7 @@ impl Model {
             hover: None,
             hovered_column: None,
             joint_speeds: Vec::new(),
+            branches: None,
             message: None,
             loads: 0,
             robot_changes: 0,
@@ -220,6 +245,14 @@ impl Model {
             .collect()
     }
 
+    /// The IK solutions of the current target, when the IK panel found them for this
+    /// target and robot.
+    pub fn branches(&self) -> Option<&Branches> {
+        self.branches
+            .as_ref()
+            .filter(|b| b.target == self.target && b.robot_changes == self.robot_changes)
+    }
+
     /// The Jacobian column (0-based) under the pointer, in the matrices panel's legend or
     /// as an arrow in the 3D view: both highlight it.
     pub fn hovered_column(&self) -> Option<usize> {
@@ -286,6 +319,17 @@ impl Model {
     }
 
     // --- Writing -------------------------------------------------------------------------
+
+    /// Keeps the solutions found for the current target (the IK panel's list, the view's
+    /// ghosts).
+    pub fn set_branches(&mut self, rows: Vec<BranchRow>, continuum: bool) {
+        self.branches = Some(Branches {
+            target: self.target,
+            robot_changes: self.robot_changes,
+            rows,
+            continuum,
+        });
+    }
 
     /// Sets the joint speeds q̇ of the velocity-kinematics rows (one per joint; missing
     /// ones are 0, non-finite ones 0).

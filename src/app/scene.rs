@@ -184,10 +184,12 @@ pub fn build(input: &SceneInput<'_>) -> (Scene, f64) {
     let sizes = Proportions::of(input.robot);
     let mut instances = Vec::with_capacity(64);
     instances.push(base_block(input.robot, &sizes));
-    for i in 0..input.robot.dof() {
-        link_parts(input, i, &sizes, &mut instances);
-    }
-    gripper(input, &sizes, &mut instances);
+    let arm = Arm {
+        robot: input.robot,
+        fk: input.fk,
+        highlighted_link: input.highlighted_link,
+    };
+    arm_parts(&arm, &sizes, &mut instances);
     if input.show_frames {
         dh_frames(input, &sizes, &mut instances);
     }
@@ -213,6 +215,38 @@ pub fn build(input: &SceneInput<'_>) -> (Scene, f64) {
     )
 }
 
+/// One arm's moving parts: the robot at the frames `fk`, a link to highlight.
+struct Arm<'a> {
+    robot: &'a Robot,
+    fk: &'a ForwardKinematics,
+    highlighted_link: Option<usize>,
+}
+
+/// Every link with its joint housing, and the gripper.
+fn arm_parts(arm: &Arm<'_>, sizes: &Proportions, out: &mut Vec<Instance>) {
+    for i in 0..arm.robot.dof() {
+        link_parts(arm, i, sizes, out);
+    }
+    gripper(arm, sizes, out);
+}
+
+/// A ghost arm: the moving parts of `robot` at the frames `fk`, every part in `color`
+/// (translucent: another IK solution of the same target, drawn beside the arm).
+pub fn ghost_instances(robot: &Robot, fk: &ForwardKinematics, color: [u8; 4]) -> Vec<Instance> {
+    let sizes = Proportions::of(robot);
+    let mut out = Vec::with_capacity(4 * robot.dof() + 6);
+    let arm = Arm {
+        robot,
+        fk,
+        highlighted_link: None,
+    };
+    arm_parts(&arm, &sizes, &mut out);
+    for part in &mut out {
+        part.color = color;
+    }
+    out
+}
+
 /// The base: a block under frame 0 with its top at z = 0 of the base frame.
 fn base_block(robot: &Robot, sizes: &Proportions) -> Instance {
     let base = &robot.world_from_base;
@@ -227,7 +261,7 @@ fn base_block(robot: &Robot, sizes: &Proportions) -> Instance {
 
 /// Link `i`'s parts (0-based): the link along its DH offsets from the previous frame's
 /// origin, and its joint's housing along the joint axis.
-fn link_parts(input: &SceneInput<'_>, i: usize, sizes: &Proportions, out: &mut Vec<Instance>) {
+fn link_parts(input: &Arm<'_>, i: usize, sizes: &Proportions, out: &mut Vec<Instance>) {
     let (robot, fk) = (input.robot, input.fk);
     let joint = &robot.joints[i];
     let highlighted = input.highlighted_link == Some(i + 1);
@@ -298,7 +332,7 @@ fn link_parts(input: &SceneInput<'_>, i: usize, sizes: &Proportions, out: &mut V
 }
 
 /// Joint `i`'s housing along its axis: a cylinder for revolute, a box for prismatic.
-fn joint_housing(input: &SceneInput<'_>, i: usize, sizes: &Proportions) -> Instance {
+fn joint_housing(input: &Arm<'_>, i: usize, sizes: &Proportions) -> Instance {
     let fk = input.fk;
     let at = Point3::from(fk.joint_origins[i]);
     let rot = rotation_to(&fk.joint_axes[i]);
@@ -322,7 +356,7 @@ fn joint_housing(input: &SceneInput<'_>, i: usize, sizes: &Proportions) -> Insta
 
 /// The flange and a U-shaped gripper around the tool point: a palm behind it and two
 /// fingers reaching past it (outer size from the robot file when given).
-fn gripper(input: &SceneInput<'_>, sizes: &Proportions, out: &mut Vec<Instance>) {
+fn gripper(input: &Arm<'_>, sizes: &Proportions, out: &mut Vec<Instance>) {
     let (robot, fk) = (input.robot, input.fk);
     let tool = fk.base_from_tool;
     let last = fk

@@ -57,17 +57,20 @@ pub enum Overlay {
     NullSpace,
     /// The tool's velocity v and ω for the joint speeds q̇.
     Twist,
+    /// Every other IK solution of the target as a translucent arm.
+    Ghosts,
 }
 
 impl Overlay {
     /// Every overlay, in the order of the switches.
-    pub const ALL: [Overlay; 6] = [
+    pub const ALL: [Overlay; 7] = [
         Overlay::JacobianColumns,
         Overlay::AngularColumns,
         Overlay::VelocityEllipsoid,
         Overlay::ForceEllipsoid,
         Overlay::NullSpace,
         Overlay::Twist,
+        Overlay::Ghosts,
     ];
 
     /// The id a link uses.
@@ -79,6 +82,7 @@ impl Overlay {
             Overlay::ForceEllipsoid => "force",
             Overlay::NullSpace => "null",
             Overlay::Twist => "twist",
+            Overlay::Ghosts => "ghosts",
         }
     }
 }
@@ -256,7 +260,7 @@ pub struct DisplayPatch {
     pub panels: Option<PanelSet>,
     /// `ppanels=...`: presentation mode's panels.
     pub presentation_panels: Option<PanelSet>,
-    /// `show=jcols,jang,vel,force,null,twist` (or `none`): the 3D view's overlays.
+    /// `show=jcols,jang,vel,force,null,twist,ghosts` (or `none`): the 3D view's overlays.
     pub overlays: Option<OverlaySet>,
 }
 

@@ -7,6 +7,7 @@
 //! named steps: input (camera and marker drags; the marker geometry is the pure
 //! [`marker`] module), the IK step, the scene, the overlay text, and the test points.
 
+mod ghosts;
 pub mod marker;
 mod overlay;
 
@@ -147,7 +148,23 @@ impl Viewport {
             }
         }
         if response.drag_stopped() {
+            // A press and release without movement (egui's click) on a ghost arm moves
+            // the arm to that solution; on the target it was only a grab.
+            let grabbed = self.dragging();
             self.drag = None;
+            let click = ui.input(|i| i.pointer.any_click().then(|| i.pointer.interact_pos()));
+            if let (false, Some(Some(at))) = (grabbed, click) {
+                let view = view_geometry(&self.camera, model, rect);
+                if let Some(i) = ghosts::pick(model, &view, to_array(at)) {
+                    let q = model
+                        .branches()
+                        .and_then(|b| b.rows.get(i))
+                        .map(|r| r.q.clone());
+                    if let Some(q) = q {
+                        model.set_q_exact(q);
+                    }
+                }
+            }
         }
         self.update_hover(model, &response, &axes);
         self.draw_scene(model, ui, rect, render_state, &axes, timing);
@@ -358,6 +375,7 @@ impl Viewport {
             background: [bg.r(), bg.g(), bg.b()],
         });
         jacobian_view::instances(&jacobian_scene(model), &mut scene.instances);
+        ghosts::instances(model, &mut scene.instances);
         self.grid_step = step;
         let t1 = hook::now_ms();
         let texture = renderer.render(rs, px_size, &scene);
@@ -402,6 +420,7 @@ impl Viewport {
                 );
             }
         }
+        ghosts::points(model, &mut add);
         add("tool".into(), &Point3::from(model.fk().tool_position()));
         let base = model.robot().world_from_base.translation.vector;
         add("base".into(), &Point3::from(base));
