@@ -155,6 +155,11 @@ const DLS_MU_DOWN: f64 = 0.3;
 const DLS_MU_UP: f64 = 10.0;
 /// An accepted step lowering the cost by less than this fraction means a minimum.
 const DLS_STATIONARY: f64 = 1e-9;
+/// The linear rows of the error and the Jacobian are divided by reach / LINEAR_WEIGHT:
+/// a position error of a quarter of the reach weighs as one radian. With the whole reach
+/// (weight 1) the orientation dominated the first steps and attempts stalled more often
+/// with the orientation met and the position not (docs/kinematics.md §8.3).
+const LINEAR_WEIGHT: f64 = 4.0;
 /// An attempt that does not halve its cost every this many iterations is restarted.
 const SLOW_WINDOW: usize = 8;
 
@@ -243,7 +248,7 @@ impl Workspace {
         self.chain.set(robot);
         let inv_len = match method {
             IkMethod::JacobianTranspose { alpha: Some(_) } => 1.0,
-            _ => 1.0 / self.chain.reach(),
+            _ => LINEAR_WEIGHT / self.chain.reach(),
         };
         let ctx = Ctx {
             robot,
