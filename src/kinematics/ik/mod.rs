@@ -242,8 +242,8 @@ pub struct IkStep {
     /// The joint vector the step asked for, `q_before + Δq`, before wrapping or clamping
     /// (for the seed entry: the seed as given).
     pub raw_q: Vec<f64>,
-    /// The solver's error norm ‖e‖ (linear rows divided by a quarter of the reach, except for the
-    /// fixed-step gradient method) at `q`.
+    /// The solver's error norm ‖e‖ (linear rows divided by a quarter of the reach, except
+    /// for the fixed-step gradient method) at `q`.
     pub error: f64,
     /// Position error at `q`, in the robot's length unit.
     pub position_error: f64,
