@@ -601,3 +601,25 @@ fn start_step(q: &[f64], raw_q: &[f64], ev: &Eval, restart: bool) -> IkStep {
         restart,
     }
 }
+
+#[cfg(test)]
+// On wasm the tests are wasm_bindgen_tests (run in Node like the other core tests).
+mod tests {
+    use super::angle_over_sin;
+    #[cfg(target_arch = "wasm32")]
+    use wasm_bindgen_test::wasm_bindgen_test as test;
+
+    #[test]
+    fn angle_over_sin_is_atan2_over_sin() {
+        for k in 1..2000 {
+            let theta = std::f64::consts::PI * k as f64 / 2000.0;
+            let (s, c) = theta.sin_cos();
+            let want = s.atan2(c) / s;
+            let got = angle_over_sin(s, c);
+            assert!(
+                (got - want).abs() <= 1e-14 * want,
+                "θ = {theta}: {got} vs {want}"
+            );
+        }
+    }
+}
