@@ -97,10 +97,15 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
                     + z * (2.480158728947673e-5
                         + z * (-2.7557314351390663e-7
                             + z * (2.087572321298175e-9 + z * -1.1359647557788195e-11)))));
-    match (k as i64).rem_euclid(4) {
-        0 => (s, c),
-        1 => (c, -s),
-        2 => (-s, -c),
-        _ => (-c, s),
-    }
+    // The quadrant without a branch (random angles would mispredict one): odd quadrants
+    // swap sin and cos; sin is negated in quadrants 2 and 3, cos in 1 and 2.
+    let q = (k as i64) as u64;
+    let odd = q & 1 == 1;
+    let (s, c) = (if odd { c } else { s }, if odd { s } else { c });
+    let sign_s = (q & 2) << 62;
+    let sign_c = (q.wrapping_add(1) & 2) << 62;
+    (
+        f64::from_bits(s.to_bits() ^ sign_s),
+        f64::from_bits(c.to_bits() ^ sign_c),
+    )
 }

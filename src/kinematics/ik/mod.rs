@@ -15,13 +15,14 @@
 //! onto the target's (the direction of `a × a_target`, of length the angle between them,
 //! in the two directions perpendicular to `a`: a 5D task), or the rotation vector
 //! `vee(log(R_target·Rᵀ))` (full pose). The damped and pseudo-inverse methods divide the
-//! linear rows by the arm's reach so that mm and m give the same steps.
+//! linear rows by a quarter of the arm's reach so that mm and m give the same steps.
 //!
 //! [`IkSolver`] holds the workspaces: keep one and call [`IkSolver::solve`] or
 //! [`IkSolver::drag_step`] every frame; the hot loop then never allocates. [`solve`] and
 //! [`drag_step`] are the one-shot forms. The core has no clock: budgets are iterations.
 
 mod branches;
+mod chain;
 mod closed_form;
 mod distinct;
 mod numeric;
@@ -317,8 +318,8 @@ pub struct IkStep {
     /// The joint vector the step asked for, `q_before + Δq`, before wrapping or clamping
     /// (for the seed entry: the seed as given).
     pub raw_q: Vec<f64>,
-    /// The solver's error norm ‖e‖ (linear rows divided by the reach, except for the
-    /// fixed-step gradient method) at `q`.
+    /// The solver's error norm ‖e‖ (linear rows divided by a quarter of the reach, except
+    /// for the fixed-step gradient method) at `q`.
     pub error: f64,
     /// Position error at `q`, in the robot's length unit.
     pub position_error: f64,

@@ -1,0 +1,265 @@
+//! The numeric solver's own forward kinematics (docs/kinematics.md §9.4): the DH rows
+//! with sin α and cos α computed once per robot, one pass down the chain per iteration
+//! keeping only what the solver reads (each joint's axis and a point on it, and the tool
+//! pose; not the link transforms A_i or the frames the app shows), and the task Jacobian
+//! built from those axes with `J·Jᵀ` summed on its upper triangle.
+
+use nalgebra::{IsometryMatrix3, Matrix3, Matrix6, Matrix6xX, Rotation3, Translation3, Vector3};
+
+use crate::kinematics::angles::sin_cos;
+use crate::kinematics::jacobian::Task;
+use crate::kinematics::robot::{Convention, JointKind, Robot};
+
+/// One DH row in the form the pass needs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Link {
+    sa: f64,
+    ca: f64,
+    a: f64,
+    d: f64,
+    theta: f64,
+    prismatic: bool,
+    /// The row's α and the joint's limits, to notice a changed robot.
+    alpha: f64,
+    limits: (f64, f64),
+}
+
+/// The chain of one robot and the result of the last [`Chain::update`].
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Chain {
+    links: Vec<Link>,
+    modified: bool,
+    base_r: Matrix3<f64>,
+    base_o: Vector3<f64>,
+    /// `flange_from_tool`, `None` when it is the identity.
+    tool: Option<IsometryMatrix3<f64>>,
+    /// Axis of joint i in the base frame (unit).
+    axes: Vec<Vector3<f64>>,
+    /// A point on joint i's axis in the base frame.
+    origins: Vec<Vector3<f64>>,
+    /// (sin θ_i, cos θ_i) and d_i of the last update.
+    sc: Vec<(f64, f64, f64)>,
+    /// The tool pose at the last update.
+    pub pose: IsometryMatrix3<f64>,
+    reach: f64,
+}
+
+impl Chain {
+    /// Takes `robot`'s rows; nothing is recomputed when they are the ones it holds
+    /// (sin α and cos α, the reach).
+    pub fn set(&mut self, robot: &Robot) {
+        let n = robot.dof();
+        let tool = (robot.flange_from_tool != IsometryMatrix3::identity())
+            .then_some(robot.flange_from_tool);
+        let modified = robot.convention == Convention::Modified;
+        let same = self.links.len() == n
+            && self.modified == modified
+            && self.tool == tool
+            && self.base_r == *robot.world_from_base.rotation.matrix()
+            && self.base_o == robot.world_from_base.translation.vector
+            && self.links.iter().zip(&robot.joints).all(|(l, j)| {
+                l.alpha.to_bits() == j.dh.alpha.to_bits()
+                    && l.a.to_bits() == j.dh.a.to_bits()
+                    && l.d.to_bits() == j.dh.d.to_bits()
+                    && l.theta.to_bits() == j.dh.theta.to_bits()
+                    && l.prismatic == (j.kind == JointKind::Prismatic)
+                    && l.limits == (j.limits.min, j.limits.max)
+            });
+        if same {
+            return;
+        }
+        self.links.clear();
+        self.links.extend(robot.joints.iter().map(|joint| {
+            let (sa, ca) = sin_cos(joint.dh.alpha);
+            Link {
+                sa,
+                ca,
+                a: joint.dh.a,
+                d: joint.dh.d,
+                theta: joint.dh.theta,
+                prismatic: joint.kind == JointKind::Prismatic,
+                alpha: joint.dh.alpha,
+                limits: (joint.limits.min, joint.limits.max),
+            }
+        }));
+        self.axes.resize(n, Vector3::z());
+        self.origins.resize(n, Vector3::zeros());
+        self.sc.resize(n, (0.0, 1.0, 0.0));
+        self.modified = modified;
+        self.base_r = *robot.world_from_base.rotation.matrix();
+        self.base_o = robot.world_from_base.translation.vector;
+        self.tool = tool;
+        self.reach = robot.reach();
+    }
+
+    /// The robot's reach ([`Robot::reach`]), kept with its rows.
+    pub fn reach(&self) -> f64 {
+        self.reach
+    }
+
+    /// Forward kinematics at `q` (one entry per joint): the tool pose, and each joint's
+    /// axis and point for [`Chain::task_jacobian`].
+    pub fn update(&mut self, q: &[f64]) {
+        // Every joint's sine and cosine first, in a loop of independent work (the chain
+        // below is one long dependency; the sines no longer wait in it).
+        for ((link, &qi), sc) in self.links.iter().zip(q).zip(self.sc.iter_mut()) {
+            let (theta, d) = if link.prismatic {
+                (link.theta, link.d + qi)
+            } else {
+                (link.theta + qi, link.d)
+            };
+            let (st, ct) = sin_cos(theta);
+            *sc = (st, ct, d);
+        }
+        let mut r = self.base_r;
+        let mut o = self.base_o;
+        let modified = self.modified;
+        for (((link, &(st, ct, d)), axis), origin) in self
+            .links
+            .iter()
+            .zip(&self.sc)
+            .zip(self.axes.iter_mut())
+            .zip(self.origins.iter_mut())
+        {
+            let (sa, ca) = (link.sa, link.ca);
+            let c0 = r.column(0).into_owned();
+            let c1 = r.column(1).into_owned();
+            let c2 = r.column(2).into_owned();
+            if modified {
+                // R_i = R·Rx(α)·Rz(θ), o_i = o + a·x_{i−1} + d·z_i; axis z_i at o_i.
+                let y1 = c1 * ca + c2 * sa;
+                let z = c2 * ca - c1 * sa;
+                let x = c0 * ct + y1 * st;
+                let y = y1 * ct - c0 * st;
+                o += c0 * link.a + z * d;
+                *axis = z;
+                *origin = o;
+                r = Matrix3::from_columns(&[x, y, z]);
+            } else {
+                // R_i = R·Rz(θ)·Rx(α), o_i = o + a·x_i + d·z_{i−1}; axis z_{i−1} at o_{i−1}.
+                let x = c0 * ct + c1 * st;
+                let y0 = c1 * ct - c0 * st;
+                let y = y0 * ca + c2 * sa;
+                let z = c2 * ca - y0 * sa;
+                *axis = c2;
+                *origin = o;
+                o += x * link.a + c2 * d;
+                r = Matrix3::from_columns(&[x, y, z]);
+            }
+        }
+        let flange =
+            IsometryMatrix3::from_parts(Translation3::from(o), Rotation3::from_matrix_unchecked(r));
+        self.pose = match &self.tool {
+            Some(tool) => flange * tool,
+            None => flange,
+        };
+    }
+
+    /// The task rows of the geometric Jacobian at the last update into `jt` (linear rows
+    /// times `inv_len`; unused rows zero), and `m = jt·jtᵀ`.
+    pub fn task_jacobian(
+        &self,
+        task: Task,
+        inv_len: f64,
+        jt: &mut Matrix6xX<f64>,
+        m: &mut Matrix6<f64>,
+    ) {
+        let p = self.pose.translation.vector;
+        let r = self.pose.rotation.matrix();
+        // 5D: the angular rows projected on the two directions perpendicular to the axis.
+        let (u1, u2) = match task {
+            Task::PositionAndAxis(axis) => {
+                let k = axis.index();
+                (
+                    r.column((k + 1) % 3).into_owned(),
+                    r.column((k + 2) % 3).into_owned(),
+                )
+            }
+            _ => (Vector3::zeros(), Vector3::zeros()),
+        };
+        let mut upper = [0.0; 21];
+        for ((link, (z, o)), mut col) in self
+            .links
+            .iter()
+            .zip(self.axes.iter().zip(&self.origins))
+            .zip(jt.column_iter_mut())
+        {
+            let (v, w) = if link.prismatic {
+                (*z, Vector3::zeros())
+            } else {
+                (z.cross(&(p - o)), *z)
+            };
+            let v = v * inv_len;
+            let c: [f64; 6] = match task {
+                Task::Position => [v.x, v.y, v.z, 0.0, 0.0, 0.0],
+                Task::FullPose => [v.x, v.y, v.z, w.x, w.y, w.z],
+                Task::PositionAndAxis(_) => [v.x, v.y, v.z, u1.dot(&w), u2.dot(&w), 0.0],
+            };
+            let mut k = 0;
+            for a in 0..6 {
+                for b in a..6 {
+                    upper[k] += c[a] * c[b];
+                    k += 1;
+                }
+            }
+            col.copy_from_slice(&c);
+        }
+        let mut k = 0;
+        for a in 0..6 {
+            for b in a..6 {
+                m[(a, b)] = upper[k];
+                m[(b, a)] = upper[k];
+                k += 1;
+            }
+        }
+    }
+}
+
+/// Solves `A·y = b` for a symmetric positive definite 6×6 `A` by its `L·D·Lᵀ`
+/// factorisation (L unit lower triangular, D diagonal: Cholesky without square roots),
+/// then forward substitution, division by D and back substitution, written out on arrays
+/// (one division per pivot). `None` when a pivot is not positive (A is not positive
+/// definite to working precision).
+pub(crate) fn solve_spd6(a: &Matrix6<f64>, b: &nalgebra::Vector6<f64>) -> Option<[f64; 6]> {
+    let mut l = [[0.0f64; 6]; 6];
+    let mut dd = [0.0f64; 6];
+    let mut inv_d = [0.0f64; 6];
+    for j in 0..6 {
+        // w[k] = L[j][k]·D[k] for k < j
+        let mut w = [0.0f64; 6];
+        let mut d = a[(j, j)];
+        for k in 0..j {
+            w[k] = l[j][k] * dd[k];
+            d -= w[k] * l[j][k];
+        }
+        if d.is_nan() || d <= 0.0 {
+            return None;
+        }
+        let inv = 1.0 / d;
+        dd[j] = d;
+        inv_d[j] = inv;
+        for i in j + 1..6 {
+            let mut s = a[(i, j)];
+            for k in 0..j {
+                s -= l[i][k] * w[k];
+            }
+            l[i][j] = s * inv;
+        }
+    }
+    let mut y = [0.0f64; 6];
+    for i in 0..6 {
+        let mut s = b[i];
+        for k in 0..i {
+            s -= l[i][k] * y[k];
+        }
+        y[i] = s;
+    }
+    for i in (0..6).rev() {
+        let mut s = y[i] * inv_d[i];
+        for k in i + 1..6 {
+            s -= l[k][i] * y[k];
+        }
+        y[i] = s;
+    }
+    Some(y)
+}
