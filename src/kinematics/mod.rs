@@ -14,6 +14,7 @@ pub mod orientation;
 pub mod presets;
 pub mod rng;
 pub mod robot;
+pub mod symbolic;
 
 pub use error::{DhColumn, Expected, Field, Place, RobotError};
 pub use file::{robot_from_json, robot_from_value, robot_to_json};
