@@ -5,6 +5,8 @@
 //! [`geometric_jacobian`] → measures and IK.
 
 pub mod angles;
+pub mod convention;
+pub mod edit;
 pub mod error;
 pub mod file;
 pub mod fk;
