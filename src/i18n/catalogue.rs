@@ -261,4 +261,23 @@ catalogue! {
     TargetNotRotation: "its 3×3 part is not a rotation (orthonormal, determinant +1)" / "3×3-osa ei ole rotaatio (ortonormaali, determinantti +1)",
     IkBadSettings: "The IK settings are not valid: {0} must be a positive number, not {1}." / "IK-asetukset eivät kelpaa: arvon {0} on oltava positiivinen luku, ei {1}.",
     IkNoClosedForm: "\"{0}\" has no closed-form IK in ArmLab (only the planar 2R, the RRR arm and the UR family do): use a numeric method." / "Robotilla \"{0}\" ei ole ArmLabissa suljetun muodon käänteiskinematiikkaa (vain tason 2R-robotilla, RRR-käsivarrella ja UR-perheellä on): käytä numeerista menetelmää.",
+
+    // --- The DH-table exercise ----------------------------------------------------------
+    ExerciseCorrect: "Correct: your table gives the robot's tool pose at every pose tried." / "Oikein: taulukkosi antaa robotin työkalun asennon jokaisessa kokeillussa asennossa.",
+    ExerciseJointCount: "The robot has {0} joints; your table has {1}." / "Robotilla on {0} niveltä; taulukossasi on {1}.",
+    ExerciseRevolute: "revolute" / "kiertyvä",
+    ExercisePrismatic: "prismatic" / "liukuva",
+    ExerciseJointKind: "Joint {0} should be {1}." / "Nivelen {0} pitäisi olla {1}.",
+    ExerciseAxisReversed: "Joint {0}'s axis lies in the right place but points the wrong way: the joint moves the other way round." / "Nivelen {0} akseli on oikeassa paikassa mutta osoittaa väärään suuntaan: nivel liikkuu toisin päin.",
+    ExerciseAtJoint: "Joint {0}'s frame is the first to disagree" / "Nivelen {0} koordinaatisto poikkeaa ensimmäisenä",
+    ExerciseAtTool: "Every joint axis is right but the tool frame disagrees" / "Kaikki nivelakselit ovat oikein, mutta työkalun koordinaatisto poikkeaa",
+    ExerciseTwistSign: "{0}: the twist α in row {1} has the wrong sign." / "{0}: rivin {1} kiertymän α etumerkki on väärä.",
+    ExerciseMissingOffset: "{0}: θ in row {1} is missing an offset of {2}." / "{0}: rivin {1} θ:sta puuttuu siirtymä {2}.",
+    ExerciseLengthInWrongRow: "{0}: the length {1} in row {2} belongs in column {3} of row {4}." / "{0}: rivin {2} pituus {1} kuuluu rivin {4} sarakkeeseen {3}.",
+    ExerciseLengthSign: "{0}: the length {1} in row {2} has the wrong sign." / "{0}: rivin {2} pituuden {1} etumerkki on väärä.",
+    ExerciseFrameDisagrees: "Joint {0}'s frame is the first to disagree with the robot; no single change to one cell explains it." / "Nivelen {0} koordinaatisto poikkeaa robotista ensimmäisenä; mikään yksittäinen solun muutos ei selitä sitä.",
+    ExerciseToolDisagrees: "Every joint axis is right but the tool frame is not: check the last row and the tool." / "Kaikki nivelakselit ovat oikein, mutta työkalun koordinaatisto ei ole: tarkista viimeinen rivi ja työkalu.",
+
+    // --- Symbolic matrices --------------------------------------------------------------
+    SymbolicTooLong: "too long to show ({0} terms)" / "liian pitkä näytettäväksi ({0} termiä)",
 }

@@ -8,6 +8,7 @@ pub mod angles;
 pub mod convention;
 pub mod edit;
 pub mod error;
+pub mod exercise;
 pub mod file;
 pub mod fk;
 pub mod ik;
