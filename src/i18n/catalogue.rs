@@ -280,4 +280,15 @@ catalogue! {
 
     // --- Symbolic matrices --------------------------------------------------------------
     SymbolicTooLong: "too long to show ({0} terms)" / "liian pitkä näytettäväksi ({0} termiä)",
+
+    // --- URDF import --------------------------------------------------------------------
+    UrdfParse: "The URDF file could not be read: {0}." / "URDF-tiedostoa ei voitu lukea: {0}.",
+    UrdfUnknownLink: "The URDF joint \"{0}\" names the link \"{1}\", which the file does not define." / "URDF-nivel \"{0}\" viittaa linkkiin \"{1}\", jota tiedostossa ei ole.",
+    UrdfNoSingleRoot: "The URDF file has no single root link: ArmLab reads one serial chain." / "URDF-tiedostossa ei ole yhtä juurilinkkiä: ArmLab lukee yhden sarjaketjun.",
+    UrdfBranches: "The URDF link \"{0}\" has more than one child joint: ArmLab reads serial chains only." / "URDF-linkillä \"{0}\" on useampi lapsinivel: ArmLab lukee vain sarjaketjuja.",
+    UrdfUnsupportedJoint: "The URDF joint \"{0}\" is of type \"{1}\": ArmLab reads revolute, continuous, prismatic and fixed joints." / "URDF-nivelen \"{0}\" tyyppi on \"{1}\": ArmLab lukee kiertyvät (revolute, continuous), liukuvat (prismatic) ja kiinteät (fixed) nivelet.",
+    UrdfBadAxis: "The URDF joint \"{0}\" has an axis that is zero or not a number." / "URDF-nivelen \"{0}\" akseli on nolla tai ei ole luku.",
+    UrdfBadOrigin: "The URDF joint \"{0}\" has an origin that is not a finite number." / "URDF-nivelen \"{0}\" origin ei ole äärellinen luku.",
+    UrdfPrismaticWithoutLimits: "The URDF joint \"{0}\" is prismatic and needs finite lower and upper limits." / "URDF-nivel \"{0}\" on liukuva ja tarvitsee äärelliset ala- ja ylärajat.",
+    UrdfNoMovingJoints: "The URDF chain has no moving joint." / "URDF-ketjussa ei ole liikkuvaa niveltä.",
 }

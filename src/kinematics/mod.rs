@@ -18,6 +18,8 @@ pub mod presets;
 pub mod rng;
 pub mod robot;
 pub mod symbolic;
+#[cfg(feature = "urdf")]
+pub mod urdf;
 
 pub use error::{DhColumn, Expected, Field, Place, RobotError};
 pub use file::{robot_from_json, robot_from_value, robot_to_json};
