@@ -58,3 +58,23 @@ pub fn ik_benchmark(request: &str) -> Result<String, JsError> {
     let now = || performance_now() * 1e-3;
     crate::bench::ik::run_json(request, &now).map_err(|e| JsError::new(&e.to_string()))
 }
+
+/// A URDF text (one serial chain) as an ArmLab robot file (JSON): a standard DH table
+/// with base and tool transforms, in metres (docs/kinematics.md §14.2). Feature `urdf`.
+#[cfg(feature = "urdf")]
+#[wasm_bindgen]
+pub fn urdf_to_robot(urdf: &str) -> Result<String, JsError> {
+    crate::kinematics::urdf::robot_from_urdf(urdf)
+        .map(|robot| crate::kinematics::robot_to_json(&robot))
+        .map_err(|e| JsError::new(&e.to_string()))
+}
+
+/// An ArmLab robot file (JSON) as URDF text, in metres (docs/kinematics.md §14.1).
+/// Feature `urdf`.
+#[cfg(feature = "urdf")]
+#[wasm_bindgen]
+pub fn robot_to_urdf(robot: &str) -> Result<String, JsError> {
+    let robot =
+        crate::kinematics::robot_from_json(robot).map_err(|e| JsError::new(&e.to_string()))?;
+    crate::kinematics::urdf::robot_to_urdf(&robot).map_err(|e| JsError::new(&e.to_string()))
+}

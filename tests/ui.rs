@@ -695,7 +695,8 @@ fn every_ur10_branch_is_listed_and_a_click_on_its_ghost_moves_the_arm_there() {
     assert_eq!(rows.len(), 8, "the UR10 has eight branches here");
     // Wrist flipped and not: two rows each.
     assert_eq!(
-        h.query_all_by_label_contains("shoulder right, elbow up").count(),
+        h.query_all_by_label_contains("shoulder right, elbow up")
+            .count(),
         2
     );
     let q0 = h.state().model().q().to_vec();

@@ -64,6 +64,8 @@ run clippy-native cargo clippy --all-targets -- -D warnings
 run clippy-core cargo clippy --no-default-features --all-targets -- -D warnings
 run clippy-wasm-app cargo clippy --target wasm32-unknown-unknown --lib --bins --tests -- -D warnings
 run clippy-wasm-core cargo clippy --target wasm32-unknown-unknown --no-default-features --features js --lib --tests -- -D warnings
+# URDF support is an opt-in feature (it doubles the JS API's wasm): lint and test it on its own.
+run clippy-urdf cargo clippy --no-default-features --features js,urdf --all-targets -- -D warnings
 
 say "the core has no GUI or web dependency"
 if cargo tree --no-default-features -e normal --prefix none | grep -E '^(egui|eframe|wgpu|web-sys|wasm-bindgen|js-sys)[ -]'; then
@@ -87,6 +89,8 @@ if [ "$native" -eq 0 ] || [ "$native" != "$wasm" ]; then
   echo "FAILED: the core's tests must pass in the same number natively and as wasm"; exit 1
 fi
 add core-native; add core-doc; add core-wasm
+run core-urdf cargo test --no-default-features --features urdf --test urdf
+add core-urdf
 
 run ui cargo test --lib --test ui --test ui_finnish
 add ui

@@ -3,6 +3,7 @@
 //! loading robot files. Every way of loading a robot goes through
 //! [`RobotPanel::load_robot`].
 
+use crate::kinematics::edit::switch_convention;
 use crate::kinematics::{
     Convention, DhRow, Joint, JointKind, JointLimits, Robot, RobotError, preset, preset_names,
     robot_from_json, robot_to_json,
@@ -405,6 +406,15 @@ fn dh_table(
 ) {
     let mut edited = editor.clone();
     let mut changed = convention_row(&mut edited, model, ui);
+    // Switching the convention rewrites the table so the arm keeps its shape
+    // (docs/kinematics.md §14.3), instead of reading the same numbers the other way.
+    let mut converted = None;
+    if let Some(to) = edited.convention.filter(|&c| c != model.robot().convention) {
+        let robot = switch_convention(model.robot(), to);
+        edited = DhEditor::from_robot(&robot);
+        converted = Some(robot);
+        changed = false;
+    }
     let unit = model.robot().length_unit.symbol();
     ui.label(egui::RichText::new(trf(model, Key::LengthsIn, &[&unit])).small());
     let mut remove = None;
@@ -438,7 +448,12 @@ fn dh_table(
         });
         changed = true;
     }
-    if changed {
+    if let Some(robot) = converted {
+        // Not through `to_robot`: the conversion may move a link part into the base or
+        // tool transform, which the table's texts do not hold.
+        *editor = edited;
+        model.edit_robot(robot, RobotSource::Custom);
+    } else if changed {
         apply_edit(editor, edited, model);
     }
     if editor.rows.is_empty() {

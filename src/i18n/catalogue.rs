@@ -313,4 +313,34 @@ catalogue! {
     IkBadSettings: "The IK settings are not valid: {0} must be a positive number, not {1}." / "IK-asetukset eivät kelpaa: arvon {0} on oltava positiivinen luku, ei {1}.",
     IkBadChoice: "The IK setting {0} cannot be {1}: use one of {2}." / "IK-asetus {0} ei voi olla {1}: käytä jotakin näistä: {2}.",
     IkNoClosedForm: "\"{0}\" has no closed-form IK in ArmLab (only the planar 2R, the RRR arm, the UR family, the SCARA and arms with a spherical wrist such as the Puma 560 and the Stanford arm do): use a numeric method." / "Robotilla \"{0}\" ei ole ArmLabissa suljetun muodon käänteiskinematiikkaa (vain tason 2R-robotilla, RRR-käsivarrella, UR-perheellä, SCARA-robotilla ja pallomaisen ranteen käsivarsilla, kuten Puma 560:llä ja Stanford-käsivarrella, on): käytä numeerista menetelmää.",
+
+    // --- The DH-table exercise ----------------------------------------------------------
+    ExerciseCorrect: "Correct: your table gives the robot's tool pose at every pose tried." / "Oikein: taulukkosi antaa robotin työkalun asennon jokaisessa kokeillussa asennossa.",
+    ExerciseJointCount: "The robot has {0} joints; your table has {1}." / "Robotilla on {0} niveltä; taulukossasi on {1}.",
+    ExerciseRevolute: "revolute" / "kiertyvä",
+    ExercisePrismatic: "prismatic" / "liukuva",
+    ExerciseJointKind: "Joint {0} should be {1}." / "Nivelen {0} pitäisi olla {1}.",
+    ExerciseAxisReversed: "Joint {0}'s axis lies in the right place but points the wrong way: the joint moves the other way round." / "Nivelen {0} akseli on oikeassa paikassa mutta osoittaa väärään suuntaan: nivel liikkuu toisin päin.",
+    ExerciseAtJoint: "Joint {0}'s frame is the first to disagree" / "Nivelen {0} koordinaatisto poikkeaa ensimmäisenä",
+    ExerciseAtTool: "Every joint axis is right but the tool frame disagrees" / "Kaikki nivelakselit ovat oikein, mutta työkalun koordinaatisto poikkeaa",
+    ExerciseTwistSign: "{0}: the twist α in row {1} has the wrong sign." / "{0}: rivin {1} kiertymän α etumerkki on väärä.",
+    ExerciseMissingOffset: "{0}: θ in row {1} is missing an offset of {2}." / "{0}: rivin {1} θ:sta puuttuu siirtymä {2}.",
+    ExerciseLengthInWrongRow: "{0}: the length {1} in row {2} belongs in column {3} of row {4}." / "{0}: rivin {2} pituus {1} kuuluu rivin {4} sarakkeeseen {3}.",
+    ExerciseLengthSign: "{0}: the length {1} in row {2} has the wrong sign." / "{0}: rivin {2} pituuden {1} etumerkki on väärä.",
+    ExerciseFrameDisagrees: "Joint {0}'s frame is the first to disagree with the robot; no single change to one cell explains it." / "Nivelen {0} koordinaatisto poikkeaa robotista ensimmäisenä; mikään yksittäinen solun muutos ei selitä sitä.",
+    ExerciseToolDisagrees: "Every joint axis is right but the tool frame is not: check the last row and the tool." / "Kaikki nivelakselit ovat oikein, mutta työkalun koordinaatisto ei ole: tarkista viimeinen rivi ja työkalu.",
+
+    // --- Symbolic matrices --------------------------------------------------------------
+    SymbolicTooLong: "too long to show ({0} terms)" / "liian pitkä näytettäväksi ({0} termiä)",
+
+    // --- URDF import --------------------------------------------------------------------
+    UrdfParse: "The URDF file could not be read: {0}." / "URDF-tiedostoa ei voitu lukea: {0}.",
+    UrdfUnknownLink: "The URDF joint \"{0}\" names the link \"{1}\", which the file does not define." / "URDF-nivel \"{0}\" viittaa linkkiin \"{1}\", jota tiedostossa ei ole.",
+    UrdfNoSingleRoot: "The URDF file has no single root link: ArmLab reads one serial chain." / "URDF-tiedostossa ei ole yhtä juurilinkkiä: ArmLab lukee yhden sarjaketjun.",
+    UrdfBranches: "The URDF link \"{0}\" has more than one child joint: ArmLab reads serial chains only." / "URDF-linkillä \"{0}\" on useampi lapsinivel: ArmLab lukee vain sarjaketjuja.",
+    UrdfUnsupportedJoint: "The URDF joint \"{0}\" is of type \"{1}\": ArmLab reads revolute, continuous, prismatic and fixed joints." / "URDF-nivelen \"{0}\" tyyppi on \"{1}\": ArmLab lukee kiertyvät (revolute, continuous), liukuvat (prismatic) ja kiinteät (fixed) nivelet.",
+    UrdfBadAxis: "The URDF joint \"{0}\" has an axis that is zero or not a number." / "URDF-nivelen \"{0}\" akseli on nolla tai ei ole luku.",
+    UrdfBadOrigin: "The URDF joint \"{0}\" has an origin that is not a finite number." / "URDF-nivelen \"{0}\" origin ei ole äärellinen luku.",
+    UrdfPrismaticWithoutLimits: "The URDF joint \"{0}\" is prismatic and needs finite lower and upper limits." / "URDF-nivel \"{0}\" on liukuva ja tarvitsee äärelliset ala- ja ylärajat.",
+    UrdfNoMovingJoints: "The URDF chain has no moving joint." / "URDF-ketjussa ei ole liikkuvaa niveltä.",
 }

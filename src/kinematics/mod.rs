@@ -5,7 +5,10 @@
 //! [`geometric_jacobian`] → measures and IK.
 
 pub mod angles;
+pub mod convention;
+pub mod edit;
 pub mod error;
+pub mod exercise;
 pub mod file;
 pub mod fk;
 pub mod ik;
@@ -15,6 +18,9 @@ pub mod presets;
 pub mod redundancy;
 pub mod rng;
 pub mod robot;
+pub mod symbolic;
+#[cfg(feature = "urdf")]
+pub mod urdf;
 pub mod workspace;
 
 pub use error::{DhColumn, Expected, Field, Place, RobotError};

@@ -1,0 +1,263 @@
+//! docs/kinematics.md §16: URDF out and in. Every preset exported, read back as a URDF
+//! chain and imported as a DH table gives the same tool pose at 1000 random q; a Panda
+//! URDF written from its published joint origins gives SPEC §1.5's flange pose; bad URDF
+//! gets a typed error naming the element. Needs the `urdf` feature.
+#![cfg(feature = "urdf")]
+// On wasm the tests are wasm_bindgen_tests, which clippy does not treat as tests.
+#![cfg_attr(
+    target_arch = "wasm32",
+    allow(clippy::unwrap_used, clippy::expect_used)
+)]
+
+#[cfg(target_arch = "wasm32")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+
+mod common;
+
+use armlab::i18n::Lang;
+use armlab::kinematics::urdf::{UrdfChain, UrdfError, robot_from_urdf, robot_to_urdf};
+use armlab::kinematics::{JointKind, Robot, tool_pose};
+use nalgebra::IsometryMatrix3;
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
+
+/// A pose with its translation in metres.
+fn in_metres(robot: &Robot, pose: IsometryMatrix3<f64>) -> IsometryMatrix3<f64> {
+    let mut p = pose;
+    p.translation.vector *= robot.length_unit.in_metres();
+    p
+}
+
+fn difference(a: &IsometryMatrix3<f64>, b: &IsometryMatrix3<f64>) -> f64 {
+    (a.to_homogeneous() - b.to_homogeneous()).abs().max()
+}
+
+#[test]
+fn every_preset_round_trips_through_urdf_at_1000_random_q() {
+    for (id, robot) in common::all_presets() {
+        let text = robot_to_urdf(&robot).unwrap();
+        let chain = UrdfChain::parse(&text).unwrap();
+        assert_eq!(chain.dof(), robot.dof(), "{id}");
+        let imported = robot_from_urdf(&text).unwrap();
+        assert_eq!(imported.dof(), robot.dof(), "{id}");
+        let mut rng = common::rng(31);
+        let (mut worst_export, mut worst_import): (f64, f64) = (0.0, 0.0);
+        for _ in 0..1000 {
+            let q = rng.joint_vector(&robot);
+            // URDF values are radians and metres.
+            let q_m: Vec<f64> = q
+                .iter()
+                .zip(&robot.joints)
+                .map(|(v, j)| match j.kind {
+                    JointKind::Revolute => *v,
+                    JointKind::Prismatic => v * robot.length_unit.in_metres(),
+                })
+                .collect();
+            let dh = in_metres(&robot, tool_pose(&robot, &q));
+            worst_export = worst_export.max(difference(&dh, &chain.tool_pose(&q_m)));
+            worst_import = worst_import.max(difference(&dh, &tool_pose(&imported, &q_m)));
+        }
+        assert!(
+            worst_export <= 1e-9,
+            "{id}: export differs by {worst_export} m"
+        );
+        assert!(
+            worst_import <= 1e-9,
+            "{id}: import differs by {worst_import} m"
+        );
+    }
+}
+
+/// The Franka Emika Panda arm as franka_description's panda_arm.urdf.xacro publishes it
+/// (joint origins and limits, in metres and radians), with the flange as a fixed joint
+/// 0.107 m along joint 7's axis and an empty hand link; written down by hand here.
+const PANDA_URDF: &str = r#"<?xml version="1.0"?>
+<robot name="panda">
+  <link name="panda_link0"/>
+  <link name="panda_link1"/>
+  <link name="panda_link2"/>
+  <link name="panda_link3"/>
+  <link name="panda_link4"/>
+  <link name="panda_link5"/>
+  <link name="panda_link6"/>
+  <link name="panda_link7"/>
+  <link name="panda_link8"/>
+  <joint name="panda_joint1" type="revolute">
+    <origin xyz="0 0 0.333" rpy="0 0 0"/>
+    <parent link="panda_link0"/><child link="panda_link1"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-2.8973" upper="2.8973" effort="87" velocity="2.1750"/>
+  </joint>
+  <joint name="panda_joint2" type="revolute">
+    <origin xyz="0 0 0" rpy="-1.5707963267948966 0 0"/>
+    <parent link="panda_link1"/><child link="panda_link2"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1.7628" upper="1.7628" effort="87" velocity="2.1750"/>
+  </joint>
+  <joint name="panda_joint3" type="revolute">
+    <origin xyz="0 -0.316 0" rpy="1.5707963267948966 0 0"/>
+    <parent link="panda_link2"/><child link="panda_link3"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-2.8973" upper="2.8973" effort="87" velocity="2.1750"/>
+  </joint>
+  <joint name="panda_joint4" type="revolute">
+    <origin xyz="0.0825 0 0" rpy="1.5707963267948966 0 0"/>
+    <parent link="panda_link3"/><child link="panda_link4"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-3.0718" upper="-0.0698" effort="87" velocity="2.1750"/>
+  </joint>
+  <joint name="panda_joint5" type="revolute">
+    <origin xyz="-0.0825 0.384 0" rpy="-1.5707963267948966 0 0"/>
+    <parent link="panda_link4"/><child link="panda_link5"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-2.8973" upper="2.8973" effort="12" velocity="2.6100"/>
+  </joint>
+  <joint name="panda_joint6" type="revolute">
+    <origin xyz="0 0 0" rpy="1.5707963267948966 0 0"/>
+    <parent link="panda_link5"/><child link="panda_link6"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-0.0175" upper="3.7525" effort="12" velocity="2.6100"/>
+  </joint>
+  <joint name="panda_joint7" type="revolute">
+    <origin xyz="0.088 0 0" rpy="1.5707963267948966 0 0"/>
+    <parent link="panda_link6"/><child link="panda_link7"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-2.8973" upper="2.8973" effort="12" velocity="2.6100"/>
+  </joint>
+  <joint name="panda_joint8" type="fixed">
+    <origin xyz="0 0 0.107" rpy="0 0 0"/>
+    <parent link="panda_link7"/><child link="panda_link8"/>
+  </joint>
+</robot>
+"#;
+
+#[test]
+#[allow(clippy::approx_constant)] // SPEC §1.5's published 0.7071, kept as printed.
+fn a_panda_urdf_from_its_published_origins_gives_the_spec_flange_pose() {
+    let robot = robot_from_urdf(PANDA_URDF).unwrap();
+    assert_eq!(robot.dof(), 7);
+    assert_eq!(robot.joints[0].name, "panda_joint1");
+    let ready = [
+        0.0,
+        -FRAC_PI_4,
+        0.0,
+        -3.0 * FRAC_PI_4,
+        0.0,
+        FRAC_PI_2,
+        FRAC_PI_4,
+    ];
+    let flange = tool_pose(&robot, &ready);
+    common::assert_vec_near("p", &flange.translation.vector, [0.3069, 0.0, 0.5903], 1e-4);
+    common::assert_rot_near(
+        "R",
+        flange.rotation.matrix(),
+        [
+            [0.7071, -0.7071, 0.0],
+            [-0.7071, -0.7071, 0.0],
+            [0.0, 0.0, -1.0],
+        ],
+        1e-4,
+    );
+    // And the same pose as the shipped modified-DH preset at random q.
+    let preset = armlab::kinematics::preset("panda").unwrap();
+    let mut rng = common::rng(32);
+    for _ in 0..1000 {
+        let q = rng.joint_vector(&preset);
+        let d = difference(&tool_pose(&preset, &q), &tool_pose(&robot, &q));
+        assert!(d <= 1e-9, "differs by {d} m");
+    }
+}
+
+fn error_of(text: &str) -> UrdfError {
+    robot_from_urdf(text).expect_err("bad URDF")
+}
+
+#[test]
+fn bad_urdf_gets_an_error_naming_the_element() {
+    assert!(matches!(
+        error_of("<robot name='x'><link"),
+        UrdfError::Parse(_)
+    ));
+    let unknown = PANDA_URDF.replace(
+        r#"<child link="panda_link8"/>"#,
+        r#"<child link="panda_hand"/>"#,
+    );
+    assert_eq!(
+        error_of(&unknown),
+        UrdfError::UnknownLink {
+            joint: "panda_joint8".into(),
+            link: "panda_hand".into()
+        }
+    );
+    let branch = PANDA_URDF.replace(
+        "</robot>",
+        r#"<link name="camera"/><joint name="cam" type="fixed"><parent link="panda_link3"/><child link="camera"/></joint></robot>"#,
+    );
+    assert_eq!(
+        error_of(&branch),
+        UrdfError::Branches {
+            link: "panda_link3".into()
+        }
+    );
+    let floating = PANDA_URDF.replace(
+        r#"<joint name="panda_joint8" type="fixed">"#,
+        r#"<joint name="panda_joint8" type="floating">"#,
+    );
+    let e = error_of(&floating);
+    assert_eq!(
+        e,
+        UrdfError::UnsupportedJoint {
+            joint: "panda_joint8".into(),
+            kind: "floating".into()
+        }
+    );
+    assert_eq!(
+        e.sentence(Lang::En),
+        "The URDF joint \"panda_joint8\" is of type \"floating\": ArmLab reads revolute, continuous, prismatic and fixed joints."
+    );
+    assert!(e.sentence(Lang::Fi).contains("\"panda_joint8\""));
+    let prismatic = PANDA_URDF.replace(
+        r#"<joint name="panda_joint8" type="fixed">"#,
+        r#"<joint name="panda_joint8" type="prismatic">"#,
+    );
+    assert_eq!(
+        error_of(&prismatic),
+        UrdfError::PrismaticWithoutLimits {
+            joint: "panda_joint8".into()
+        }
+    );
+    let axis = PANDA_URDF.replacen(r#"<axis xyz="0 0 1"/>"#, r#"<axis xyz="0 0 0"/>"#, 1);
+    assert_eq!(
+        error_of(&axis),
+        UrdfError::BadAxis {
+            joint: "panda_joint1".into()
+        }
+    );
+    let only_fixed = r#"<robot name="x"><link name="a"/><link name="b"/>
+        <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint></robot>"#;
+    assert_eq!(error_of(only_fixed), UrdfError::NoMovingJoints);
+}
+
+#[test]
+fn continuous_joints_and_offset_axes_import() {
+    // A planar 2R in URDF: one continuous joint about z, the next 0.5 m along x and
+    // turned about y by 90° with its axis along x (so it is again vertical).
+    let text = r#"<robot name="two"><link name="a"/><link name="b"/><link name="c"/><link name="t"/>
+      <joint name="j1" type="continuous"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/></joint>
+      <joint name="j2" type="revolute"><origin xyz="0.5 0 0.1" rpy="0 1.5707963267948966 0"/>
+        <parent link="b"/><child link="c"/><axis xyz="-1 0 0"/>
+        <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+      <joint name="tool" type="fixed"><origin xyz="0 0 0.3"/><parent link="c"/><child link="t"/></joint>
+    </robot>"#;
+    let robot = robot_from_urdf(text).unwrap();
+    let chain = UrdfChain::parse(text).unwrap();
+    assert_eq!(robot.joints[0].limits.max, std::f64::consts::PI);
+    assert_eq!(robot.joints[1].limits.min, -1.0);
+    // Parallel axes: a = 0.5 between them, no twist.
+    assert!((robot.joints[0].dh.a - 0.5).abs() < 1e-12);
+    assert!(robot.joints[0].dh.alpha.abs() < 1e-12);
+    let mut rng = common::rng(33);
+    for _ in 0..200 {
+        let q = [rng.uniform(-3.0, 3.0), rng.uniform(-1.0, 1.0)];
+        assert!(difference(&chain.tool_pose(&q), &tool_pose(&robot, &q)) <= 1e-12);
+    }
+}
