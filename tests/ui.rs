@@ -729,3 +729,21 @@ fn every_ur10_branch_is_listed_and_a_click_on_its_ghost_moves_the_arm_there() {
     }
     h.snapshot("ghosts");
 }
+
+#[test]
+fn the_rrr_symbolic_t03_reads_like_the_lecture_and_highlights_the_hovered_joint() {
+    let mut h = harness("#robot=rrr&panels=joints,matrices");
+    h.get_by_label("symbolic").click();
+    h.run_steps(2);
+    // SPEC §1.4: x = c1(222.1 c2 + 136.2 c23).
+    assert!(
+        h.query_by_label("c1(222.1 c2 + 136.2 c23)").is_some(),
+        "T_03's x entry"
+    );
+    // The pointer over θ2's slider: its link (2) is the one under the pointer.
+    let slider = h.get_by_role_and_label(Role::Slider, "θ2").rect().center();
+    h.event(egui::Event::PointerMoved(slider));
+    h.run_steps(2);
+    assert_eq!(h.state().model().hovered_link(), Some(2));
+    h.snapshot("symbolic_rrr");
+}

@@ -7,7 +7,7 @@ use crate::kinematics::{Joint, JointKind, tool_velocity};
 use super::format::number;
 use super::hook::ScreenPoints;
 use super::matrices::overlay_checkbox;
-use super::model::Model;
+use super::model::{HoverSource, Model};
 use super::settings::Overlay;
 use super::{Panel, tr, trf};
 use crate::i18n::Key;
@@ -62,6 +62,7 @@ impl Panel for JointsPanel {
         });
         let mut q = model.q().to_vec();
         let mut changed = false;
+        let mut slider_under = None;
         self.sliders.clear();
         // The slider fills the column: the label and the value box beside it stay.
         let rail = (ui.available_width() - 110.0).clamp(60.0, 320.0);
@@ -89,12 +90,18 @@ impl Panel for JointsPanel {
                         egui::pos2(r.left() + rail - inset, y),
                     );
                     changed |= response.changed();
+                    if response.hovered() {
+                        slider_under = Some(i + 1);
+                    }
                     ui.end_row();
                 }
             });
         if changed {
             model.set_q_exact(q);
         }
+        // The joint under the pointer highlights its link in 3D and its matrices (and the
+        // symbolic entries that depend on it).
+        model.set_hovered_link(slider_under, HoverSource::Joints);
         self.self_motion_ui(model, ui);
         self.speeds_ui(model, ui);
     }

@@ -15,7 +15,9 @@ use super::hook::ScreenPoints;
 use super::jacobian_view::{self, LinearSvd};
 use super::model::{HoverSource, Model};
 use super::settings::Overlay;
+use super::symbolic_view::{SymbolicCache, symbolic_block};
 use super::{Panel, style, tr, trf};
+use crate::kinematics::symbolic::SymbolicChain;
 
 /// Plain text rows, space-aligned.
 pub fn to_plain(m: &DMatrix<f64>, decimals: usize) -> String {
@@ -333,6 +335,9 @@ fn homogeneous(pose: &nalgebra::IsometryMatrix3<f64>) -> DMatrix<f64> {
 #[derive(Debug, Clone, Default)]
 pub struct MatricesPanel {
     analysis: Option<AnalysisCache>,
+    /// Show A_i and T_0i symbolically instead of as numbers.
+    symbolic: bool,
+    chain: SymbolicCache,
 }
 
 /// A Jacobian analysis and what it was computed for.
@@ -393,10 +398,17 @@ impl Panel for MatricesPanel {
                 let analysis = self.analysis(model);
                 jacobian_block(model, analysis, ui, decimals)
             });
+        let symbolic = self
+            .symbolic
+            .then(|| self.chain.chain(model.robot(), model.robot_changes()));
         let hovered = egui::CollapsingHeader::new(tr(model, Key::LinkTransforms))
             .id_salt("link_transforms")
             .default_open(true)
-            .show(ui, |ui| link_blocks(model, ui, decimals))
+            .show(ui, |ui| {
+                ui.checkbox(&mut self.symbolic, tr(model, Key::ShowSymbolic))
+                    .on_hover_text(tr(model, Key::ShowSymbolicHint));
+                link_blocks(model, ui, decimals, symbolic)
+            })
             .body_returned
             .flatten();
         model.set_hovered_link(hovered, HoverSource::Matrices);
@@ -420,7 +432,12 @@ fn precision_row(model: &mut Model, ui: &mut egui::Ui) {
 }
 
 /// Every A_i and T_0i; returns the link whose matrix is under the pointer.
-fn link_blocks(model: &Model, ui: &mut egui::Ui, decimals: usize) -> Option<usize> {
+fn link_blocks(
+    model: &Model,
+    ui: &mut egui::Ui,
+    decimals: usize,
+    symbolic: Option<&SymbolicChain>,
+) -> Option<usize> {
     let convention = match model.robot().convention {
         Convention::Standard => Key::StandardFormula,
         Convention::Modified => Key::ModifiedFormula,
@@ -428,12 +445,27 @@ fn link_blocks(model: &Model, ui: &mut egui::Ui, decimals: usize) -> Option<usiz
     ui.label(tr(model, convention));
     let lang = model.settings().lang;
     let mut hovered = None;
+    // The joint under the pointer (its slider, its link in 3D, its matrices): symbolic
+    // entries that depend on it are highlighted.
+    let joint_under = model.hovered_link().and_then(|l| l.checked_sub(1));
     for (i, joint) in model.robot().joints.iter().enumerate() {
         let highlighted = model.hovered_link() == Some(i + 1);
         let variable = match joint.kind {
             JointKind::Revolute => "θ",
             JointKind::Prismatic => "d",
         };
+        if let Some(chain) = symbolic {
+            let title = trf(model, Key::LinkTitle, &[&(i + 1), &joint.name, &variable]);
+            let a = &chain.link_transforms[i];
+            let t = &chain.base_from_frames[i];
+            let over_a = symbolic_block(ui, lang, &title, a, joint_under, highlighted);
+            let title = format!("T_0{}", i + 1);
+            let over_t = symbolic_block(ui, lang, &title, t, joint_under, highlighted);
+            if over_a || over_t {
+                hovered = Some(i + 1);
+            }
+            continue;
+        }
         let a = homogeneous(&model.fk().link_transforms[i]);
         let title = trf(model, Key::LinkTitle, &[&(i + 1), &joint.name, &variable]);
         if matrix_block(

@@ -31,6 +31,7 @@ pub mod settings;
 pub mod shell;
 pub mod solutions;
 pub mod style;
+pub mod symbolic_view;
 pub mod top_bar;
 pub mod viewport;
 #[cfg(target_arch = "wasm32")]

@@ -95,6 +95,8 @@ pub enum HoverSource {
     Matrices,
     /// A link under the pointer in the 3D view.
     View,
+    /// A joint's slider under the pointer.
+    Joints,
 }
 
 /// One IK solution of the current target, as the IK panel lists it and the 3D view draws

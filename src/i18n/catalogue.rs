@@ -216,6 +216,8 @@ catalogue! {
     PlayHint: "Moves the arm along q̇ (stops at a joint limit)" / "Liikuttaa vartta nopeudella q̇ (pysähtyy nivelen rajaan)",
     Pause: "Pause" / "Tauko",
     Stop: "Zero q̇" / "Nollaa q̇",
+    ShowSymbolic: "symbolic" / "symbolisina",
+    ShowSymbolicHint: "Each A_i and T_0i as the robot's constants and the sines and cosines of the joints (c1 = cos θ1, s23 = sin(θ2 + θ3)); entries that depend on the joint under the pointer are highlighted" / "Jokainen A_i ja T_0i robotin vakioina sekä nivelten sineinä ja kosineina (c1 = cos θ1, s23 = sin(θ2 + θ3)); osoittimen alla olevasta nivelestä riippuvat alkiot korostetaan",
     Solutions: "Solutions of this target" / "Tämän kohteen ratkaisut",
     SolutionsHint: "Every IK solution of the target: click one (or its ghost in the 3D view) to move the arm there" / "Kohteen kaikki IK-ratkaisut: napsauta ratkaisua (tai sen haamua 3D-näkymässä) siirtääksesi varren siihen",
     ShowGhosts: "show as ghosts" / "näytä haamuina",

@@ -1,0 +1,89 @@
+//! The symbolic A_i and T_0i in the matrices panel (docs/kinematics.md §13): each entry as
+//! the robot's constants and the sines and cosines of joint sums (c1, s23, 222.1), the
+//! entries that depend on the joint under the pointer (its slider, its link in 3D or its
+//! matrix) highlighted, each matrix copyable as LaTeX.
+
+use crate::i18n::{Key, Lang, fill, text};
+use crate::kinematics::symbolic::{EntryText, SymbolicChain, SymbolicMatrix, symbolic_chain};
+
+use super::style;
+
+/// The symbolic chain of the robot last shown, kept until the robot changes.
+#[derive(Debug, Clone, Default)]
+pub struct SymbolicCache {
+    made_for: Option<u64>,
+    chain: Option<SymbolicChain>,
+}
+
+impl SymbolicCache {
+    /// The chain of the robot with this change count (built once per robot: a few
+    /// milliseconds for seven joints).
+    pub fn chain(
+        &mut self,
+        robot: &crate::kinematics::Robot,
+        robot_changes: u64,
+    ) -> &SymbolicChain {
+        if self.made_for != Some(robot_changes) {
+            self.made_for = Some(robot_changes);
+            self.chain = None;
+        }
+        self.chain.get_or_insert_with(|| symbolic_chain(robot))
+    }
+}
+
+/// One symbolic matrix in a framed block: its title, a LaTeX copy button and the 4 × 4
+/// entries; entries that depend on joint `joint` (from 0) are drawn in the highlight
+/// colour. Returns whether the pointer is over the block.
+pub fn symbolic_block(
+    ui: &mut egui::Ui,
+    lang: Lang,
+    title: &str,
+    m: &SymbolicMatrix,
+    joint: Option<usize>,
+    highlighted: bool,
+) -> bool {
+    let stroke = if highlighted {
+        egui::Stroke::new(2.0, style::HIGHLIGHT)
+    } else {
+        ui.visuals().widgets.noninteractive.bg_stroke
+    };
+    let frame = egui::Frame::group(ui.style()).stroke(stroke);
+    let response = frame.show(ui, |ui| {
+        ui.horizontal_wrapped(|ui| {
+            ui.strong(title);
+            if ui
+                .small_button(text(lang, Key::CopyLatex))
+                .on_hover_text(text(lang, Key::CopyAsLatex))
+                .clicked()
+            {
+                ui.ctx().copy_text(m.latex());
+            }
+        });
+        egui::Grid::new(("symbolic", title))
+            .num_columns(4)
+            .spacing([14.0, 2.0])
+            .show(ui, |ui| {
+                for row in &m.entries {
+                    for entry in row {
+                        let shown = match entry.text() {
+                            EntryText::Shown { plain, .. } => {
+                                egui::RichText::new(plain).monospace()
+                            }
+                            EntryText::TooLong { terms } => {
+                                egui::RichText::new(fill(lang, Key::SymbolicTooLong, &[&terms]))
+                                    .weak()
+                            }
+                        };
+                        let hot = joint.is_some_and(|j| entry.depends_on(j));
+                        ui.label(if hot {
+                            shown.color(style::HIGHLIGHT).strong()
+                        } else {
+                            shown
+                        });
+                    }
+                    ui.end_row();
+                }
+            });
+    });
+    response.response.hovered() || ui.rect_contains_pointer(response.response.rect)
+}
