@@ -747,3 +747,35 @@ fn the_rrr_symbolic_t03_reads_like_the_lecture_and_highlights_the_hovered_joint(
     assert_eq!(h.state().model().hovered_link(), Some(2));
     h.snapshot("symbolic_rrr");
 }
+
+#[test]
+fn the_notebook_demos_print_the_notebooks_numbers_and_plot_the_error() {
+    let mut h = harness("#robot=ur10&panels=ik");
+    h.get_by_label("The lecture notebook's runs").click();
+    h.run_steps(2);
+    for (button, printed, decimals) in [
+        ("Newton–Raphson", [-5.9844821, 20.54568008], [7, 8]),
+        ("Gradient descent", [0.46058393, 2.0236129], [8, 7]),
+    ] {
+        h.get_by_label(button).click();
+        h.run_steps(3);
+        let run = h
+            .state()
+            .ik_panel()
+            .replay()
+            .run
+            .clone()
+            .expect("the demo ran");
+        for ((got, want), d) in run.q.iter().zip(printed).zip(decimals) {
+            let half = 0.5 * 10f64.powi(-d);
+            assert!(
+                (got - want).abs() <= half,
+                "{button}: {got} prints as {want}"
+            );
+        }
+        assert_eq!(h.state().model().robot().name, "Planar 2R");
+        assert!(h.query_by_label_contains("never wrapped").is_some());
+        assert!(h.query_by_label_contains("wrapped into").is_some());
+    }
+    h.snapshot("notebook_gradient");
+}

@@ -3,12 +3,13 @@
 //! the error per iteration. The drag step itself is the model's ([`Model::drag_step`]).
 
 use crate::kinematics::ik::{IkResult, Reach};
-use crate::kinematics::{IkMethod, Task};
+use crate::kinematics::{IkMethod, Task, wrapped_equivalent};
 
 use crate::i18n::Key;
 
 use super::hook::ScreenPoints;
 use super::model::Model;
+use super::notebook::NotebookDemo;
 use super::{Panel, style, tr, trf};
 
 /// The replay of the last full solve.
@@ -24,6 +25,8 @@ pub struct Replay {
 #[derive(Debug, Clone, Default)]
 pub struct IkPanel {
     replay: Replay,
+    /// The notebook run last started, if the replay is one.
+    demo: Option<NotebookDemo>,
 }
 
 impl IkPanel {
@@ -34,12 +37,56 @@ impl IkPanel {
 
     /// Runs the chosen method to convergence with a trace and keeps it for replay.
     pub fn solve(&mut self, model: &mut Model) {
+        self.demo = None;
         if let Some(run) = model.solve_with_trace() {
             self.replay = Replay {
                 step: run.trace.len().saturating_sub(1),
                 run: Some(run),
             };
         }
+    }
+}
+
+impl IkPanel {
+    /// The notebook's two runs, one click each; after a run, its answer as the notebook
+    /// printed it (never wrapped) beside the wrapped equivalent.
+    fn notebook_ui(&mut self, model: &mut Model, ui: &mut egui::Ui) {
+        egui::CollapsingHeader::new(tr(model, Key::NotebookRuns))
+            .id_salt("notebook_runs")
+            .default_open(false)
+            .show(ui, |ui| {
+                ui.label(egui::RichText::new(tr(model, Key::NotebookHint)).small());
+                ui.horizontal_wrapped(|ui| {
+                    for (demo, key) in [
+                        (NotebookDemo::Newton, Key::NotebookNewton),
+                        (NotebookDemo::Gradient, Key::NotebookGradient),
+                    ] {
+                        if ui.button(tr(model, key)).clicked()
+                            && let Some(run) = demo.run(model)
+                        {
+                            self.replay = Replay {
+                                step: run.trace.len().saturating_sub(1),
+                                run: Some(run),
+                            };
+                            self.demo = Some(demo);
+                        }
+                    }
+                });
+                let (Some(demo), Some(run)) = (self.demo, self.replay.run.as_ref()) else {
+                    return;
+                };
+                let list = |q: &[f64]| {
+                    let v: Vec<String> = q.iter().map(|v| format!("{v:.8}")).collect();
+                    format!("[{}]", v.join(", "))
+                };
+                let wrapped = wrapped_equivalent(model.robot(), &run.q);
+                ui.monospace(trf(
+                    model,
+                    Key::NotebookRaw,
+                    &[&list(&run.q), &demo.printed()],
+                ));
+                ui.monospace(trf(model, Key::NotebookWrapped, &[&list(&wrapped)]));
+            });
     }
 }
 
@@ -67,6 +114,7 @@ impl Panel for IkPanel {
         });
         status(model, ui);
         replay_ui(&mut self.replay, model, ui);
+        self.notebook_ui(model, ui);
         super::solutions::solutions_ui(model, ui);
     }
 }
@@ -180,57 +228,31 @@ fn replay_ui(replay: &mut Replay, model: &mut Model, ui: &mut egui::Ui) {
 }
 
 /// The error per iteration on a log scale.
+/// The error per iteration on a log scale (egui_plot), the replayed iteration marked.
 fn error_plot(model: &Model, ui: &mut egui::Ui, run: &IkResult, current: usize) {
-    let (rect, _) = ui.allocate_exact_size(
-        egui::vec2(ui.available_width().min(300.0), 90.0),
-        egui::Sense::hover(),
-    );
-    let painter = ui.painter_at(rect);
-    painter.rect_stroke(
-        rect,
-        2.0,
-        ui.visuals().widgets.noninteractive.bg_stroke,
-        egui::StrokeKind::Inside,
-    );
-    let errs: Vec<f64> = run
+    use egui_plot::{Line, Plot, PlotPoints, Points, VLine};
+    let errs: Vec<[f64; 2]> = run
         .trace
         .iter()
-        .map(|s| s.error.max(1e-16).log10())
-        .collect();
-    let (lo, hi) = errs
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-            (a.min(*v), b.max(*v))
-        });
-    let span = (hi - lo).max(1e-9);
-    let n = errs.len().max(2) - 1;
-    let to_screen = |i: usize, v: f64| {
-        egui::pos2(
-            rect.left() + rect.width() * i as f32 / n as f32,
-            rect.bottom() - rect.height() * ((v - lo) / span) as f32,
-        )
-    };
-    let points: Vec<egui::Pos2> = errs
-        .iter()
         .enumerate()
-        .map(|(i, v)| to_screen(i, *v))
+        .map(|(i, s)| [i as f64, s.error.max(1e-16).log10()])
         .collect();
-    painter.add(egui::Shape::line(
-        points,
-        egui::Stroke::new(1.5, style::PENDING),
-    ));
-    if let Some(v) = errs.get(current) {
-        painter.circle_filled(to_screen(current, *v), 3.5, style::HIGHLIGHT);
-    }
-    painter.text(
-        rect.left_top() + egui::vec2(4.0, 2.0),
-        egui::Align2::LEFT_TOP,
-        trf(
-            model,
-            Key::ErrorPlotRange,
-            &[&format!("{hi:.1}"), &format!("{lo:.1}")],
-        ),
-        egui::FontId::proportional(11.0),
-        ui.visuals().text_color(),
-    );
+    let marked = errs.get(current).copied();
+    let label = tr(model, Key::ErrorPlotAxis);
+    Plot::new("ik_error_plot")
+        .height(120.0)
+        .allow_drag(false)
+        .allow_zoom(false)
+        .allow_scroll(false)
+        .allow_boxed_zoom(false)
+        .x_axis_label(tr(model, Key::Iteration))
+        .y_axis_label(label)
+        .y_axis_formatter(|mark, _| format!("1e{}", mark.value.round()))
+        .show(ui, |plot| {
+            plot.line(Line::new(label, PlotPoints::from(errs)).color(style::PENDING));
+            if let Some(p) = marked {
+                plot.vline(VLine::new("", p[0]).color(style::HIGHLIGHT));
+                plot.points(Points::new("", vec![p]).radius(3.5).color(style::HIGHLIGHT));
+            }
+        });
 }

@@ -24,6 +24,7 @@ pub mod joints;
 pub mod layout;
 pub mod matrices;
 pub mod model;
+pub mod notebook;
 pub mod robot_panel;
 pub mod scene;
 pub mod session;

@@ -536,20 +536,25 @@ impl Model {
     /// Runs the method to convergence from q with every iteration recorded, moves the
     /// arm to its answer and returns the run (for replay).
     pub fn solve_with_trace(&mut self) -> Option<IkResult> {
-        let settings = IkSettings {
+        self.solve_with_settings(&IkSettings {
             record_trace: true,
             restarts: 0,
             max_iterations: 2000,
             budget: 2000,
             ..IkSettings::default()
-        };
+        })
+    }
+
+    /// Runs the chosen method with these settings from the current q (the notebook's
+    /// demos set their own tolerance, wrapping and objective); the arm takes the answer.
+    pub fn solve_with_settings(&mut self, settings: &IkSettings) -> Option<IkResult> {
         let result = self.solver.solve(
             &self.robot,
             &self.target,
             self.task,
             &self.q,
             self.method,
-            &settings,
+            settings,
         );
         self.apply_result(result)
     }

@@ -41,8 +41,8 @@ pub(super) const SAME_IN_BOTH: &[Key] = &[
     Key::TabIk,
     Key::CopyLatex,
     Key::CopyNumpy,
-    Key::ErrorPlotRange,
     Key::ToolTwist,
+    Key::NotebookNewton,
 ];
 
 catalogue! {
@@ -118,7 +118,7 @@ catalogue! {
     StepLine: "‖e‖ = {0}   step = {1}   λ = {2}" / "‖e‖ = {0}   askel = {1}   λ = {2}",
     RawQ: "raw q: {0}" / "rajaamaton q: {0}",
     KeptQ: "kept q: {0}" / "rajattu q: {0}",
-    ErrorPlotRange: "log10 ‖e‖: {0} … {1}" / "log10 ‖e‖: {0} … {1}",
+    ErrorPlotAxis: "error ‖e‖" / "virhe ‖e‖",
 
     // --- The robot panel and its DH editor -------------------------------------------------
     Preset: "Preset" / "Valmisrobotti",
@@ -218,6 +218,12 @@ catalogue! {
     Stop: "Zero q̇" / "Nollaa q̇",
     ShowSymbolic: "symbolic" / "symbolisina",
     ShowSymbolicHint: "Each A_i and T_0i as the robot's constants and the sines and cosines of the joints (c1 = cos θ1, s23 = sin(θ2 + θ3)); entries that depend on the joint under the pointer are highlighted" / "Jokainen A_i ja T_0i robotin vakioina sekä nivelten sineinä ja kosineina (c1 = cos θ1, s23 = sin(θ2 + θ3)); osoittimen alla olevasta nivelestä riippuvat alkiot korostetaan",
+    NotebookRuns: "The lecture notebook's runs" / "Luentomuistion ajot",
+    NotebookHint: "Planar 2R (l = 2, 1) from θ = (0.1, 0.1): Newton–Raphson to (1.5, 1.5) never wrapping θ, and gradient descent on ‖e‖² with α = 0.01 to (1.0, 1.5), as the notebook runs them" / "Tason 2R (l = 2, 1) alkaen θ = (0,1, 0,1): Newton–Raphson pisteeseen (1,5, 1,5) θ:aa koskaan kiertämättä ja gradienttimenetelmä ‖e‖²:lle, α = 0,01, pisteeseen (1,0, 1,5), kuten muistio ne ajaa",
+    NotebookNewton: "Newton–Raphson" / "Newton–Raphson",
+    NotebookGradient: "Gradient descent" / "Gradienttimenetelmä",
+    NotebookRaw: "θ = {0} (never wrapped; the notebook prints {1})" / "θ = {0} (ei kierretty; muistio tulostaa {1})",
+    NotebookWrapped: "wrapped into (−π, π]: {0}" / "kierrettynä välille (−π, π]: {0}",
     Solutions: "Solutions of this target" / "Tämän kohteen ratkaisut",
     SolutionsHint: "Every IK solution of the target: click one (or its ghost in the 3D view) to move the arm there" / "Kohteen kaikki IK-ratkaisut: napsauta ratkaisua (tai sen haamua 3D-näkymässä) siirtääksesi varren siihen",
     ShowGhosts: "show as ghosts" / "näytä haamuina",
