@@ -779,3 +779,32 @@ fn the_notebook_demos_print_the_notebooks_numbers_and_plot_the_error() {
     }
     h.snapshot("notebook_gradient");
 }
+
+#[test]
+fn the_workspace_cloud_fills_over_frames_and_says_where_the_target_lies() {
+    use armlab::app::workspace_view::{SAMPLES, measure};
+    let mut h = harness("#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2&show=cloud&panels=ik");
+    h.get_by_label("Reachable workspace").click();
+    // A few milliseconds a frame: it grows over frames and is not full at once.
+    let mut counts = Vec::new();
+    for _ in 0..3 {
+        h.run_steps(1);
+        counts.push(h.state().model().workspace().map_or(0, |c| c.len()));
+    }
+    assert!(counts[0] > 0 && counts[2] > counts[0], "{counts:?}");
+    assert!(counts[2] < SAMPLES, "{counts:?}");
+    // The rest at once (a debug build's frames are slow), then the panel reads it.
+    let m = measure(h.state().model());
+    h.state_mut()
+        .model_mut()
+        .fill_workspace(m, SAMPLES, f64::INFINITY, armlab::app::hook::now_ms);
+    h.run_steps(2);
+    let cloud = h.state().model().workspace().expect("a cloud");
+    assert!(cloud.is_full() && cloud.len() == SAMPLES, "{}", cloud.len());
+    // The target sits on the tool: inside the sampled workspace.
+    assert!(
+        h.query_by_label_contains("The target is inside the sampled workspace")
+            .is_some()
+    );
+    h.snapshot("workspace_cloud");
+}

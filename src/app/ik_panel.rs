@@ -116,6 +116,7 @@ impl Panel for IkPanel {
         replay_ui(&mut self.replay, model, ui);
         self.notebook_ui(model, ui);
         super::solutions::solutions_ui(model, ui);
+        super::workspace_view::workspace_ui(model, ui);
     }
 }
 

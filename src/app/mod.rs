@@ -37,6 +37,7 @@ pub mod top_bar;
 pub mod viewport;
 #[cfg(target_arch = "wasm32")]
 pub mod web;
+pub mod workspace_view;
 
 use hook::ScreenPoints;
 use model::{Message, Model};
@@ -68,6 +69,8 @@ pub struct FrameTime {
     /// Encoding and submitting the 3D view's draw calls to wgpu (GPU work issued from the
     /// main thread: on WebGL2 these are the GL calls).
     pub render_ms: f64,
+    /// Of `app_ms`: filling the workspace cloud (at most about 4 ms a frame).
+    pub workspace_ms: f64,
 }
 
 /// What the device says before any link is read: the browser's language and whether its

@@ -11,6 +11,7 @@ use crate::kinematics::ik::{
     IkError, IkResult, IkSettings, IkSolver, REACHED_ORIENTATION_TOLERANCE,
     REACHED_POSITION_TOLERANCE_M, Reach, closed_form_family, pose_error,
 };
+use crate::kinematics::workspace::{WorkspaceCloud, WorkspaceMeasure};
 use crate::kinematics::{ForwardKinematics, IkMethod, Robot, Task, geometric_jacobian_into};
 
 use super::session::{RobotSource, Session};
@@ -140,6 +141,7 @@ pub struct Model {
     hovered_column: Option<(usize, HoverSource)>,
     joint_speeds: Vec<f64>,
     branches: Option<Branches>,
+    workspace: Option<(u64, WorkspaceCloud)>,
     message: Option<Message>,
     loads: u64,
     robot_changes: u64,
@@ -167,6 +169,7 @@ impl Model {
             hovered_column: None,
             joint_speeds: Vec::new(),
             branches: None,
+            workspace: None,
             message: None,
             loads: 0,
             robot_changes: 0,
@@ -247,6 +250,15 @@ impl Model {
             .collect()
     }
 
+    /// The sampled workspace of the current robot, if one was started (it fills over
+    /// frames: [`Model::fill_workspace`]).
+    pub fn workspace(&self) -> Option<&WorkspaceCloud> {
+        self.workspace
+            .as_ref()
+            .filter(|(made_for, _)| *made_for == self.robot_changes)
+            .map(|(_, cloud)| cloud)
+    }
+
     /// The IK solutions of the current target, when the IK panel found them for this
     /// target and robot.
     pub fn branches(&self) -> Option<&Branches> {
@@ -321,6 +333,34 @@ impl Model {
     }
 
     // --- Writing -------------------------------------------------------------------------
+
+    /// Adds workspace samples for at most `budget_ms` (measured with `clock`, the app's
+    /// milliseconds), starting a new cloud of `samples` points when the robot or the
+    /// measure changed; returns the milliseconds spent.
+    pub fn fill_workspace(
+        &mut self,
+        measure: WorkspaceMeasure,
+        samples: usize,
+        budget_ms: f64,
+        clock: impl Fn() -> f64,
+    ) -> f64 {
+        let fresh = self
+            .workspace
+            .as_ref()
+            .is_some_and(|(made_for, c)| *made_for == self.robot_changes && c.measure() == measure);
+        if !fresh {
+            let cloud = WorkspaceCloud::new(&self.robot, measure, samples, 0x5eed);
+            self.workspace = Some((self.robot_changes, cloud));
+        }
+        let start = clock();
+        if let Some((_, cloud)) = self.workspace.as_mut() {
+            // Slices of 256 samples (about 0.1–0.3 ms each natively) until the budget.
+            while !cloud.is_full() && clock() - start < budget_ms {
+                cloud.fill(256);
+            }
+        }
+        clock() - start
+    }
 
     /// Keeps the solutions found for the current target (the IK panel's list, the view's
     /// ghosts).

@@ -59,11 +59,17 @@ pub enum Overlay {
     Twist,
     /// Every other IK solution of the target as a translucent arm.
     Ghosts,
+    /// The sampled reachable workspace as a point cloud.
+    Workspace,
+    /// Only the cloud's slice through the target (a horizontal layer).
+    WorkspaceSlice,
+    /// Colour the cloud by σ_min (distance to a singularity) instead of manipulability.
+    WorkspaceSigma,
 }
 
 impl Overlay {
     /// Every overlay, in the order of the switches.
-    pub const ALL: [Overlay; 7] = [
+    pub const ALL: [Overlay; 10] = [
         Overlay::JacobianColumns,
         Overlay::AngularColumns,
         Overlay::VelocityEllipsoid,
@@ -71,6 +77,9 @@ impl Overlay {
         Overlay::NullSpace,
         Overlay::Twist,
         Overlay::Ghosts,
+        Overlay::Workspace,
+        Overlay::WorkspaceSlice,
+        Overlay::WorkspaceSigma,
     ];
 
     /// The id a link uses.
@@ -83,6 +92,9 @@ impl Overlay {
             Overlay::NullSpace => "null",
             Overlay::Twist => "twist",
             Overlay::Ghosts => "ghosts",
+            Overlay::Workspace => "cloud",
+            Overlay::WorkspaceSlice => "slice",
+            Overlay::WorkspaceSigma => "sigma",
         }
     }
 }
@@ -260,7 +272,7 @@ pub struct DisplayPatch {
     pub panels: Option<PanelSet>,
     /// `ppanels=...`: presentation mode's panels.
     pub presentation_panels: Option<PanelSet>,
-    /// `show=jcols,jang,vel,force,null,twist,ghosts` (or `none`): the 3D view's overlays.
+    /// `show=jcols,jang,vel,force,null,twist,ghosts,cloud,slice,sigma` (or `none`): the 3D view's overlays.
     pub overlays: Option<OverlaySet>,
 }
 

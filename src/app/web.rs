@@ -428,6 +428,7 @@ fn install_hook(window: &web_sys::Window) {
                     ("ik", t.ik_ms),
                     ("scene", t.scene_ms),
                     ("render", t.render_ms),
+                    ("workspace", t.workspace_ms),
                 ] {
                     set_field(&o, key, &ms.into());
                 }

@@ -224,6 +224,19 @@ catalogue! {
     NotebookGradient: "Gradient descent" / "Gradienttimenetelmä",
     NotebookRaw: "θ = {0} (never wrapped; the notebook prints {1})" / "θ = {0} (ei kierretty; muistio tulostaa {1})",
     NotebookWrapped: "wrapped into (−π, π]: {0}" / "kierrettynä välille (−π, π]: {0}",
+    Workspace: "Reachable workspace" / "Ulottuvuusalue",
+    WorkspaceCloud: "show the cloud" / "näytä pistepilvi",
+    WorkspaceCloudHint: "Tool positions of 20 000 random joint vectors within the limits, coloured by the measure (blue low, yellow high); filled a few milliseconds per frame" / "Työkalun paikat 20 000 satunnaisella nivelvektorilla rajojen sisällä, väritettynä mitan mukaan (sininen pieni, keltainen suuri); täytetään muutama millisekunti kuvaa kohti",
+    WorkspaceSlice: "slice through the target" / "leikkaus kohteen kautta",
+    WorkspaceSliceHint: "Only the samples within one sample spacing of the target's height" / "Vain näytteet, jotka ovat yhden näytevälin päässä kohteen korkeudesta",
+    WorkspaceSigma: "colour by σ_min" / "väritä σ_min:n mukaan",
+    WorkspaceSigmaHint: "Colour by the smallest singular value of the linear rows (distance to a singularity) instead of the manipulability" / "Väritä lineaaristen rivien pienimmän singulaariarvon (etäisyys singulaarisuuteen) mukaan manipuloitavuuden sijaan",
+    WorkspaceFilling: "{0} of {1} samples" / "{0}/{1} näytettä",
+    WorkspaceInside: "The target is inside the sampled workspace: the nearest sample is {0} {1} away." / "Kohde on näytteistetyn alueen sisällä: lähin näyte on {0} {1} päässä.",
+    WorkspaceOutside: "The target is outside the sampled workspace: the nearest sample is {0} {1} away." / "Kohde on näytteistetyn alueen ulkopuolella: lähin näyte on {0} {1} päässä.",
+    HeldAtLimit: "Joint {0} is held at its {1} limit: the target may be reached from another branch (Solutions) or by Solve from another start." / "Nivel {0} on kiinni {1}rajassaan: kohteeseen voi ylettyä toisesta haarasta (Ratkaisut) tai ratkaisemalla toisesta alkuasennosta.",
+    LimitMin: "lower" / "ala",
+    LimitMax: "upper" / "ylä",
     Solutions: "Solutions of this target" / "Tämän kohteen ratkaisut",
     SolutionsHint: "Every IK solution of the target: click one (or its ghost in the 3D view) to move the arm there" / "Kohteen kaikki IK-ratkaisut: napsauta ratkaisua (tai sen haamua 3D-näkymässä) siirtääksesi varren siihen",
     ShowGhosts: "show as ghosts" / "näytä haamuina",
@@ -282,7 +295,7 @@ catalogue! {
     AllowedDecimals: "a whole number from 0 to 8" / "kokonaisluku väliltä 0–8",
     AllowedLang: "en or fi" / "en tai fi",
     AllowedPanels: "joints, ik, matrices, robot (joined by commas) or none" / "joints, ik, matrices, robot (pilkuin erotettuina) tai none",
-    AllowedShow: "jcols, jang, vel, force, null, twist, ghosts (joined by commas) or none" / "jcols, jang, vel, force, null, twist, ghosts (pilkuin erotettuina) tai none",
+    AllowedShow: "jcols, jang, vel, force, null, twist, ghosts, cloud, slice, sigma (joined by commas) or none" / "jcols, jang, vel, force, null, twist, ghosts, cloud, slice, sigma (pilkuin erotettuina) tai none",
 
     // --- The core's errors: robot descriptions -----------------------------------------------
     // A place opens the Finnish sentence, inflected ("Nivelessä 2 …"); English keeps "In".

@@ -27,6 +27,7 @@ use super::scene::{self, MarkerLook, handle_px};
 use super::settings::{CameraPose, Overlay};
 use super::style;
 use super::top_bar::ViewAction;
+use super::workspace_view;
 use marker::{Handle, MarkerDrag, ViewGeometry, dist_to_segment, drag_marker, pick};
 
 /// What the pointer is dragging.
@@ -167,6 +168,15 @@ impl Viewport {
             }
         }
         self.update_hover(model, &response, &axes);
+        if model.settings().overlays.contains(Overlay::Workspace) {
+            let measure = workspace_view::measure(model);
+            let (samples, budget) = (workspace_view::SAMPLES, workspace_view::BUDGET_MS);
+            let ms = model.fill_workspace(measure, samples, budget, hook::now_ms);
+            timing.workspace_ms += ms;
+            if model.workspace().is_some_and(|c| !c.is_full()) {
+                ui.ctx().request_repaint();
+            }
+        }
         self.draw_scene(model, ui, rect, render_state, &axes, timing);
         let touch = ui.spacing().interact_size.y >= style::TOUCH_TARGET;
         overlay::draw(model, &ui.painter_at(rect), rect, self.grid_step, touch);
@@ -375,6 +385,7 @@ impl Viewport {
             background: [bg.r(), bg.g(), bg.b()],
         });
         jacobian_view::instances(&jacobian_scene(model), &mut scene.instances);
+        workspace_view::instances(model, &mut scene.instances);
         ghosts::instances(model, &mut scene.instances);
         self.grid_step = step;
         let t1 = hook::now_ms();

@@ -1,0 +1,135 @@
+//! The reachable workspace (docs/kinematics.md §12): a cloud of tool positions from random
+//! joint vectors, filled a few milliseconds per frame, coloured by a measure, optionally
+//! only its slice through the target; and the IK panel's section that switches it and
+//! says where the target lies.
+
+use nalgebra::{Point3, Rotation3, Vector3};
+
+use crate::i18n::Key;
+use crate::kinematics::ik::Reach;
+use crate::kinematics::workspace::{WorkspaceMeasure, joints_held_at_limits};
+
+use super::format::number;
+use super::matrices::overlay_checkbox;
+use super::model::Model;
+use super::scene::instance;
+use super::settings::Overlay;
+use super::{style, tr, trf};
+use crate::render::{Instance, Shape};
+
+/// Samples in the cloud.
+pub const SAMPLES: usize = 20_000;
+/// Milliseconds a frame may spend filling it.
+pub const BUDGET_MS: f64 = 4.0;
+
+/// The measure the cloud is coloured by.
+pub fn measure(model: &Model) -> WorkspaceMeasure {
+    if model.settings().overlays.contains(Overlay::WorkspaceSigma) {
+        WorkspaceMeasure::SigmaMin
+    } else {
+        WorkspaceMeasure::Manipulability
+    }
+}
+
+/// Blue (low) to yellow (high).
+fn ramp(t: f64) -> [u8; 4] {
+    let t = t.clamp(0.0, 1.0);
+    let lerp = |a: f64, b: f64| (a + (b - a) * t) as u8;
+    [lerp(40.0, 250.0), lerp(90.0, 220.0), lerp(220.0, 60.0), 255]
+}
+
+/// The cloud's points as small cubes (only the slice through the target when asked).
+pub fn instances(model: &Model, out: &mut Vec<Instance>) {
+    let overlays = model.settings().overlays;
+    let Some(cloud) = model
+        .workspace()
+        .filter(|_| overlays.contains(Overlay::Workspace))
+    else {
+        return;
+    };
+    let spacing = cloud.spacing();
+    let size = Vector3::repeat(spacing * 0.2);
+    let largest = cloud.largest_value().max(1e-300);
+    let target_z = model.target().translation.vector.z;
+    let slice = overlays.contains(Overlay::WorkspaceSlice);
+    let rot = Rotation3::identity();
+    for (p, v) in cloud.positions.iter().zip(&cloud.values) {
+        if slice && (p.z - target_z).abs() > spacing {
+            continue;
+        }
+        out.push(instance(
+            Shape::Box,
+            &Point3::from(*p),
+            &rot,
+            size,
+            ramp(v / largest),
+        ));
+    }
+}
+
+/// The workspace section of the IK panel: the switches, the filling, where the target
+/// lies, and which joint holds a stalled drag at its limit.
+pub fn workspace_ui(model: &mut Model, ui: &mut egui::Ui) {
+    held_at_limit(model, ui);
+    egui::CollapsingHeader::new(tr(model, Key::Workspace))
+        .id_salt("workspace")
+        .default_open(false)
+        .show(ui, |ui| {
+            let switches = [
+                (
+                    Overlay::Workspace,
+                    Key::WorkspaceCloud,
+                    Key::WorkspaceCloudHint,
+                ),
+                (
+                    Overlay::WorkspaceSlice,
+                    Key::WorkspaceSlice,
+                    Key::WorkspaceSliceHint,
+                ),
+                (
+                    Overlay::WorkspaceSigma,
+                    Key::WorkspaceSigma,
+                    Key::WorkspaceSigmaHint,
+                ),
+            ];
+            for (overlay, label, hint) in switches {
+                overlay_checkbox(model, ui, overlay, label, hint);
+            }
+            let Some(cloud) = model.workspace() else {
+                return;
+            };
+            ui.label(trf(model, Key::WorkspaceFilling, &[&cloud.len(), &SAMPLES]));
+            let target = model.target().translation.vector;
+            if let Some(near) = cloud.nearest(&target) {
+                let key = if cloud.contains(&target) {
+                    Key::WorkspaceInside
+                } else {
+                    Key::WorkspaceOutside
+                };
+                let unit = model.robot().length_unit.symbol();
+                ui.label(trf(model, key, &[&number(near.distance, 1), &unit]));
+            }
+        });
+}
+
+/// When the target is out of reach with a joint at its limit, which joint holds it.
+fn held_at_limit(model: &Model, ui: &mut egui::Ui) {
+    if model.ik().reach != Reach::OutOfReach {
+        return;
+    }
+    let held = joints_held_at_limits(model.robot(), model.q(), model.target(), model.task(), 1e-6);
+    if let Some(h) = held.first() {
+        let side = tr(
+            model,
+            if h.at_max {
+                Key::LimitMax
+            } else {
+                Key::LimitMin
+            },
+        );
+        ui.colored_label(
+            style::UNREACHABLE,
+            trf(model, Key::HeldAtLimit, &[&(h.joint + 1), &side]),
+        );
+    }
+}
