@@ -808,3 +808,26 @@ fn the_workspace_cloud_fills_over_frames_and_says_where_the_target_lies() {
     );
     h.snapshot("workspace_cloud");
 }
+
+#[test]
+fn both_conventions_are_shown_side_by_side_and_agree() {
+    let mut h = harness("#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2&show=both&panels=robot");
+    h.get_by_label("Both conventions side by side").click();
+    h.run_steps(2);
+    assert!(h.query_by_label("standard (Spong)").is_some());
+    assert!(h.query_by_label("modified (Craig)").is_some());
+    let agree = h
+        .query_by_label_contains("tables' T_0n agree to")
+        .expect("the agreement is shown");
+    let text = agree
+        .accesskit_node()
+        .value()
+        .unwrap_or_default()
+        .to_string();
+    let number: f64 = text
+        .split_whitespace()
+        .find_map(|w| w.parse().ok())
+        .expect("a number");
+    assert!(number < 1e-9, "{text}");
+    h.snapshot("both_conventions");
+}

@@ -14,6 +14,7 @@
 //! model's frames and the renderer draws it.
 #![deny(clippy::too_many_lines)]
 
+pub mod convention_view;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod files;
 pub mod format;

@@ -392,6 +392,7 @@ impl Panel for RobotPanel {
             .default_open(false)
             .show(ui, |ui| dh_table(&mut self.editor, model, ui, points));
         points.insert("dh-header", header.header_response.rect.center());
+        super::convention_view::both_conventions_ui(model, ui);
         self.file_buttons(model, ui);
         self.receive_files(model, ui);
     }

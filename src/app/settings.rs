@@ -65,11 +65,13 @@ pub enum Overlay {
     WorkspaceSlice,
     /// Colour the cloud by σ_min (distance to a singularity) instead of manipulability.
     WorkspaceSigma,
+    /// The other DH convention's frames, dashed.
+    OtherConvention,
 }
 
 impl Overlay {
     /// Every overlay, in the order of the switches.
-    pub const ALL: [Overlay; 10] = [
+    pub const ALL: [Overlay; 11] = [
         Overlay::JacobianColumns,
         Overlay::AngularColumns,
         Overlay::VelocityEllipsoid,
@@ -80,6 +82,7 @@ impl Overlay {
         Overlay::Workspace,
         Overlay::WorkspaceSlice,
         Overlay::WorkspaceSigma,
+        Overlay::OtherConvention,
     ];
 
     /// The id a link uses.
@@ -95,6 +98,7 @@ impl Overlay {
             Overlay::Workspace => "cloud",
             Overlay::WorkspaceSlice => "slice",
             Overlay::WorkspaceSigma => "sigma",
+            Overlay::OtherConvention => "both",
         }
     }
 }
@@ -272,7 +276,7 @@ pub struct DisplayPatch {
     pub panels: Option<PanelSet>,
     /// `ppanels=...`: presentation mode's panels.
     pub presentation_panels: Option<PanelSet>,
-    /// `show=jcols,jang,vel,force,null,twist,ghosts,cloud,slice,sigma` (or `none`): the 3D view's overlays.
+    /// `show=jcols,jang,vel,force,null,twist,ghosts,cloud,slice,sigma,both` (or `none`): the 3D view's overlays.
     pub overlays: Option<OverlaySet>,
 }
 

@@ -237,6 +237,12 @@ catalogue! {
     HeldAtLimit: "Joint {0} is held at its {1} limit: the target may be reached from another branch (Solutions) or by Solve from another start." / "Nivel {0} on kiinni {1}rajassaan: kohteeseen voi ylettyä toisesta haarasta (Ratkaisut) tai ratkaisemalla toisesta alkuasennosta.",
     LimitMin: "lower" / "ala",
     LimitMax: "upper" / "ylä",
+    BothConventions: "Both conventions side by side" / "Molemmat käytännöt rinnakkain",
+    OverlayOther: "draw the other convention's frames (dashed)" / "piirrä toisen käytännön koordinaatistot (katkoviivoin)",
+    OverlayOtherHint: "Standard DH puts frame i on joint i + 1's axis, modified DH on joint i's own: the same arm, frames in other places" / "Standardi-DH sijoittaa koordinaatiston i nivelen i + 1 akselille, modifioitu DH nivelen i omalle: sama varsi, koordinaatistot eri paikoissa",
+    ConventionsAgree: "The two tables' T_0n agree to {0} {1} here." / "Taulukoiden T_0n täsmäävät tässä {0} {1}:n tarkkuudella.",
+    StandardTable: "standard (Spong)" / "standardi (Spong)",
+    ModifiedTable: "modified (Craig)" / "modifioitu (Craig)",
     Solutions: "Solutions of this target" / "Tämän kohteen ratkaisut",
     SolutionsHint: "Every IK solution of the target: click one (or its ghost in the 3D view) to move the arm there" / "Kohteen kaikki IK-ratkaisut: napsauta ratkaisua (tai sen haamua 3D-näkymässä) siirtääksesi varren siihen",
     ShowGhosts: "show as ghosts" / "näytä haamuina",
@@ -295,7 +301,7 @@ catalogue! {
     AllowedDecimals: "a whole number from 0 to 8" / "kokonaisluku väliltä 0–8",
     AllowedLang: "en or fi" / "en tai fi",
     AllowedPanels: "joints, ik, matrices, robot (joined by commas) or none" / "joints, ik, matrices, robot (pilkuin erotettuina) tai none",
-    AllowedShow: "jcols, jang, vel, force, null, twist, ghosts, cloud, slice, sigma (joined by commas) or none" / "jcols, jang, vel, force, null, twist, ghosts, cloud, slice, sigma (pilkuin erotettuina) tai none",
+    AllowedShow: "jcols, jang, vel, force, null, twist, ghosts, cloud, slice, sigma, both (joined by commas) or none" / "jcols, jang, vel, force, null, twist, ghosts, cloud, slice, sigma, both (pilkuin erotettuina) tai none",
 
     // --- The core's errors: robot descriptions -----------------------------------------------
     // A place opens the Finnish sentence, inflected ("Nivelessä 2 …"); English keeps "In".

@@ -20,6 +20,7 @@ use crate::render::SceneRenderer;
 use crate::render::camera::OrbitCamera;
 
 use super::FrameTime;
+use super::convention_view;
 use super::hook::{self, ScreenPoints};
 use super::jacobian_view::{self, JacobianScene};
 use super::model::{HoverSource, Model};
@@ -386,6 +387,7 @@ impl Viewport {
         });
         jacobian_view::instances(&jacobian_scene(model), &mut scene.instances);
         workspace_view::instances(model, &mut scene.instances);
+        convention_view::instances(model, model.robot().reach(), &mut scene.instances);
         ghosts::instances(model, &mut scene.instances);
         self.grid_step = step;
         let t1 = hook::now_ms();
