@@ -5,6 +5,7 @@
 //! [`geometric_jacobian`] → measures and IK.
 
 pub mod angles;
+pub mod collision;
 pub mod error;
 pub mod file;
 pub mod fk;
@@ -12,6 +13,7 @@ pub mod ik;
 pub mod jacobian;
 pub mod motion;
 pub mod orientation;
+pub mod parts;
 pub mod path;
 pub mod presets;
 pub mod profile;

@@ -70,6 +70,8 @@ pub enum Setting {
     PathSteps,
     /// The record's length or decimation.
     RecordLength,
+    /// Keep-out box N (1-based).
+    KeepOut(usize),
 }
 
 impl Setting {
@@ -93,6 +95,7 @@ impl Setting {
             Setting::Waypoint(n) => return fill(lang, Key::SettingWaypoint, &[&n]),
             Setting::PathSteps => Key::SettingPathSteps,
             Setting::RecordLength => Key::SettingRecordLength,
+            Setting::KeepOut(n) => return fill(lang, Key::PartKeepOut, &[&n]),
         };
         text(lang, key).to_string()
     }
