@@ -164,6 +164,7 @@ impl DhEditor {
                 },
                 limits,
                 max_speed: old.and_then(|o| o.max_speed),
+                max_acceleration: old.and_then(|o| o.max_acceleration),
                 home,
                 parts: old.map(|o| o.parts).unwrap_or_default(),
             });

@@ -1,11 +1,14 @@
-//! Builds the 3D scene from the core's frames: a base, a cylinder at each joint along its
-//! axis (a box for prismatic joints), links along the DH offsets (d along z, then a along
-//! x), a gripper at the tool, the DH frames, the ground grid and the target marker with
-//! its handles. Pure geometry: no kinematics is computed here.
+//! Builds the 3D scene from the core's frames: the arm's parts as the core derives them
+//! (`kinematics::parts`: a base, a cylinder at each joint along its axis, a box for
+//! prismatic joints, links along the DH offsets, a gripper at the tool), the DH frames,
+//! the ground grid and the target marker with its handles. Pure geometry: no kinematics
+//! is computed here.
 
 use nalgebra::{Matrix4, Point3, Rotation3, Unit, Vector3};
 
-use crate::kinematics::{Convention, ForwardKinematics, JointKind, Robot};
+pub(crate) use crate::kinematics::parts::rotation_to;
+use crate::kinematics::parts::{Part, PartKind, PartShape, Proportions, robot_parts};
+use crate::kinematics::{ForwardKinematics, Robot};
 use crate::render::camera::OrbitCamera;
 use crate::render::{Instance, Line, Scene, Shape};
 
@@ -62,43 +65,6 @@ pub(crate) fn segment(
         Vector3::new(width, width, len),
         color,
     ))
-}
-
-/// An arrow from `start` to `tip`: a cylinder shaft of width `shaft` and a cone head of
-/// `head` = [width, length] (shortened to half the arrow when the arrow is short).
-pub(crate) fn arrow(
-    start: &Point3<f64>,
-    tip: &Point3<f64>,
-    shaft: f64,
-    head: [f64; 2],
-    color: [u8; 4],
-) -> impl Iterator<Item = Instance> {
-    let v = tip - start;
-    let len = v.norm();
-    let parts = (len > 1e-12).then(|| {
-        let dir = v / len;
-        let head_len = head[1].min(len * 0.5);
-        let neck = tip - dir * head_len;
-        let cone = instance(
-            Shape::Cone,
-            &neck,
-            &rotation_to(&dir),
-            Vector3::new(head[0], head[0], head_len),
-            color,
-        );
-        segment(Shape::Cylinder, start, &neck, shaft, color)
-            .into_iter()
-            .chain(std::iter::once(cone))
-    });
-    parts.into_iter().flatten()
-}
-
-/// The rotation taking z to `dir`.
-pub(crate) fn rotation_to(dir: &Vector3<f64>) -> Rotation3<f64> {
-    Rotation3::rotation_between(&Vector3::z(), dir).unwrap_or_else(|| {
-        // dir = −z: any half turn about a horizontal axis.
-        Rotation3::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI)
-    })
 }
 
 /// A unit shape placed at `centre`, turned by `rot` and scaled along its own axes.
@@ -159,37 +125,13 @@ pub struct SceneInput<'a> {
     pub background: [u8; 3],
 }
 
-/// Sizes of the drawn parts that have no size in the robot file, from the arm's reach.
-struct Proportions {
-    reach: f64,
-    link_w: f64,
-    joint_d: f64,
-    joint_len: f64,
-}
-
-impl Proportions {
-    fn of(robot: &Robot) -> Self {
-        let reach = robot.reach();
-        Proportions {
-            reach,
-            link_w: reach * 0.035,
-            joint_d: reach * 0.07,
-            joint_len: reach * 0.09,
-        }
-    }
-}
-
 /// The robot, frames and grid, plus the target marker; also returns the grid spacing.
 pub fn build(input: &SceneInput<'_>) -> (Scene, f64) {
     let sizes = Proportions::of(input.robot);
     let mut instances = Vec::with_capacity(64);
-    instances.push(base_block(input.robot, &sizes));
-    let arm = Arm {
-        robot: input.robot,
-        fk: input.fk,
-        highlighted_link: input.highlighted_link,
-    };
-    arm_parts(&arm, &sizes, &mut instances);
+    for part in robot_parts(input.robot, input.fk) {
+        instances.push(part_instance(&part, input.highlighted_link));
+    }
     if input.show_frames {
         dh_frames(input, &sizes, &mut instances);
     }
@@ -215,186 +157,67 @@ pub fn build(input: &SceneInput<'_>) -> (Scene, f64) {
     )
 }
 
-/// One arm's moving parts: the robot at the frames `fk`, a link to highlight.
-struct Arm<'a> {
-    robot: &'a Robot,
-    fk: &'a ForwardKinematics,
-    highlighted_link: Option<usize>,
+/// A part of the arm (from the core's [`robot_parts`]) as a drawn instance, coloured by
+/// its kind; the highlighted link's link parts and housing in the highlight colour.
+/// An arrow from `start` to `tip`: a cylinder shaft of width `shaft` and a cone head of
+/// `head` = [width, length] (shortened to half the arrow when the arrow is short).
+pub(crate) fn arrow(
+    start: &Point3<f64>,
+    tip: &Point3<f64>,
+    shaft: f64,
+    head: [f64; 2],
+    color: [u8; 4],
+) -> impl Iterator<Item = Instance> {
+    let v = tip - start;
+    let len = v.norm();
+    let parts = (len > 1e-12).then(|| {
+        let dir = v / len;
+        let head_len = head[1].min(len * 0.5);
+        let neck = tip - dir * head_len;
+        let cone = instance(
+            Shape::Cone,
+            &neck,
+            &rotation_to(&dir),
+            Vector3::new(head[0], head[0], head_len),
+            color,
+        );
+        segment(Shape::Cylinder, start, &neck, shaft, color)
+            .into_iter()
+            .chain(std::iter::once(cone))
+    });
+    parts.into_iter().flatten()
 }
 
-/// Every link with its joint housing, and the gripper.
-fn arm_parts(arm: &Arm<'_>, sizes: &Proportions, out: &mut Vec<Instance>) {
-    for i in 0..arm.robot.dof() {
-        link_parts(arm, i, sizes, out);
-    }
-    gripper(arm, sizes, out);
-}
-
-/// A ghost arm: the moving parts of `robot` at the frames `fk`, every part in `color`
-/// (translucent: another IK solution of the same target, drawn beside the arm).
+/// A ghost arm: the moving parts of `robot` at the frames `fk` (not its base), every part
+/// in `color` (translucent: another IK solution of the same target, drawn beside the arm).
 pub fn ghost_instances(robot: &Robot, fk: &ForwardKinematics, color: [u8; 4]) -> Vec<Instance> {
-    let sizes = Proportions::of(robot);
-    let mut out = Vec::with_capacity(4 * robot.dof() + 6);
-    let arm = Arm {
-        robot,
-        fk,
-        highlighted_link: None,
-    };
-    arm_parts(&arm, &sizes, &mut out);
-    for part in &mut out {
-        part.color = color;
-    }
-    out
+    robot_parts(robot, fk)
+        .iter()
+        .filter(|p| p.kind != PartKind::Base)
+        .map(|p| Instance {
+            color,
+            ..part_instance(p, None)
+        })
+        .collect()
 }
 
-/// The base: a block under frame 0 with its top at z = 0 of the base frame.
-fn base_block(robot: &Robot, sizes: &Proportions) -> Instance {
-    let base = &robot.world_from_base;
-    let reach = sizes.reach;
-    let base_size = robot.parts.base.map_or(
-        Vector3::new(reach * 0.22, reach * 0.22, reach * 0.06),
-        Vector3::from,
-    );
-    let centre = base * Point3::new(0.0, 0.0, -base_size.z * 0.5);
-    instance(Shape::Box, &centre, &base.rotation, base_size, BASE)
-}
-
-/// Link `i`'s parts (0-based): the link along its DH offsets from the previous frame's
-/// origin, and its joint's housing along the joint axis.
-fn link_parts(input: &Arm<'_>, i: usize, sizes: &Proportions, out: &mut Vec<Instance>) {
-    let (robot, fk) = (input.robot, input.fk);
-    let joint = &robot.joints[i];
-    let highlighted = input.highlighted_link == Some(i + 1);
-    let color = if highlighted { HIGHLIGHT } else { LINK };
-    let prev = if i == 0 {
-        robot.world_from_base
-    } else {
-        fk.base_from_frames[i - 1]
+fn part_instance(part: &Part, highlighted_link: Option<usize>) -> Instance {
+    let highlighted = highlighted_link == Some(part.body);
+    let color = match part.kind {
+        PartKind::Base => BASE,
+        PartKind::Link | PartKind::Housing if highlighted => HIGHLIGHT,
+        PartKind::Link | PartKind::Flange => LINK,
+        PartKind::Housing => match part.shape {
+            PartShape::Cylinder => JOINT,
+            PartShape::Box => PRISMATIC,
+        },
+        PartKind::Palm | PartKind::Finger => GRIPPER,
     };
-    let frame = fk.base_from_frames[i];
-    let o_prev = Point3::from(prev.translation.vector);
-    let o = Point3::from(frame.translation.vector);
-    // The corner: standard DH goes d along z_{i−1} then a along x_i; modified DH goes a
-    // along x_{i−1} then d along z_i.
-    let column = match robot.convention {
-        Convention::Standard => 2,
-        Convention::Modified => 0,
+    let shape = match part.shape {
+        PartShape::Box => Shape::Box,
+        PartShape::Cylinder => Shape::Cylinder,
     };
-    let along = prev.rotation.matrix().column(column).into_owned();
-    let corner = o_prev + along * along.dot(&(o - o_prev));
-    let (first, second) = ((o_prev, corner), (corner, o));
-    match joint.parts.link {
-        // A link of given size: a box along the longer DH offset, centred on it.
-        Some([l, w, h]) => {
-            let (long, short) = if (first.1 - first.0).norm() >= (second.1 - second.0).norm() {
-                (first, second)
-            } else {
-                (second, first)
-            };
-            let dir = long.1 - long.0;
-            if dir.norm() > 1e-9 {
-                let mid = long.0 + dir * 0.5;
-                let rot = rotation_to(&dir.normalize());
-                out.push(instance(
-                    Shape::Box,
-                    &mid,
-                    &rot,
-                    Vector3::new(w, h, l),
-                    color,
-                ));
-            }
-            out.extend(segment(
-                Shape::Cylinder,
-                &short.0,
-                &short.1,
-                sizes.link_w,
-                color,
-            ));
-        }
-        None => {
-            out.extend(segment(
-                Shape::Cylinder,
-                &first.0,
-                &first.1,
-                sizes.link_w,
-                color,
-            ));
-            out.extend(segment(
-                Shape::Cylinder,
-                &second.0,
-                &second.1,
-                sizes.link_w,
-                color,
-            ));
-        }
-    }
-    out.push(joint_housing(input, i, sizes));
-}
-
-/// Joint `i`'s housing along its axis: a cylinder for revolute, a box for prismatic.
-fn joint_housing(input: &Arm<'_>, i: usize, sizes: &Proportions) -> Instance {
-    let fk = input.fk;
-    let at = Point3::from(fk.joint_origins[i]);
-    let rot = rotation_to(&fk.joint_axes[i]);
-    let (shape, width, own) = match input.robot.joints[i].kind {
-        JointKind::Revolute => (Shape::Cylinder, sizes.joint_d, JOINT),
-        JointKind::Prismatic => (Shape::Box, sizes.joint_d * 0.8, PRISMATIC),
-    };
-    let c = if input.highlighted_link == Some(i + 1) {
-        HIGHLIGHT
-    } else {
-        own
-    };
-    instance(
-        shape,
-        &at,
-        &rot,
-        Vector3::new(width, width, sizes.joint_len),
-        c,
-    )
-}
-
-/// The flange and a U-shaped gripper around the tool point: a palm behind it and two
-/// fingers reaching past it (outer size from the robot file when given).
-fn gripper(input: &Arm<'_>, sizes: &Proportions, out: &mut Vec<Instance>) {
-    let (robot, fk) = (input.robot, input.fk);
-    let tool = fk.base_from_tool;
-    let last = fk
-        .base_from_frames
-        .last()
-        .copied()
-        .unwrap_or(robot.world_from_base);
-    let o_last = Point3::from(last.translation.vector);
-    let o_tool = Point3::from(tool.translation.vector);
-    out.extend(segment(
-        Shape::Cylinder,
-        &o_last,
-        &o_tool,
-        sizes.link_w * 0.8,
-        LINK,
-    ));
-    let [hand_l, hand_w, hand_h] =
-        robot
-            .parts
-            .hand
-            .unwrap_or([sizes.link_w * 0.9, sizes.reach * 0.065, sizes.reach * 0.1]);
-    let finger = hand_h * 0.5;
-    let z = tool.rotation.matrix().column(2).into_owned();
-    let y = tool.rotation.matrix().column(1).into_owned();
-    let palm = o_tool - z * finger;
-    out.push(instance(
-        Shape::Box,
-        &palm,
-        &tool.rotation,
-        Vector3::new(hand_l, hand_w, hand_h * 0.2),
-        GRIPPER,
-    ));
-    let thickness = hand_w * 0.18;
-    for side in [-1.0, 1.0] {
-        let a = palm + y * (side * (hand_w - thickness) * 0.5);
-        let b = a + z * (finger * 1.4);
-        out.extend(segment(Shape::Box, &a, &b, thickness, GRIPPER));
-    }
+    instance(shape, &part.centre, &part.rotation, part.size, color)
 }
 
 /// Every DH frame (base, each joint's, tool) as three axis cylinders; the highlighted

@@ -133,6 +133,8 @@ pub enum Field {
     Home,
     /// `max_speed`: the speed limit.
     MaxSpeed,
+    /// `max_acceleration`: the acceleration limit.
+    MaxAcceleration,
     /// `housing_size`: the joint housing's size (file).
     HousingSize,
     /// `housing`: the joint housing's size.
@@ -185,6 +187,7 @@ impl Field {
             Field::Max => "max",
             Field::Home => "home",
             Field::MaxSpeed => "max_speed",
+            Field::MaxAcceleration => "max_acceleration",
             Field::HousingSize => "housing_size",
             Field::Housing => "housing",
             Field::LinkSize => "link_size",
@@ -335,6 +338,15 @@ pub enum RobotError {
         /// The value.
         value: f64,
     },
+    /// A limit that must be above zero (an acceleration limit) is zero or negative.
+    NotPositive {
+        /// Where.
+        place: Place,
+        /// Which field.
+        field: Field,
+        /// The value.
+        value: f64,
+    },
     /// A joint's lower limit is above its upper limit.
     LimitsReversed {
         /// 1-based joint number.
@@ -419,6 +431,11 @@ impl RobotError {
                 field,
                 value,
             } => fill(lang, Key::ErrNegativeSize, &[&at(place), field, value]),
+            RobotError::NotPositive {
+                place,
+                field,
+                value,
+            } => fill(lang, Key::ErrNotPositive, &[&at(place), field, value]),
             RobotError::LimitsReversed { joint, min, max } => {
                 fill(lang, Key::ErrLimitsReversed, &[joint, min, max])
             }

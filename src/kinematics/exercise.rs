@@ -537,6 +537,7 @@ pub fn mystery_arm(seed: u64) -> Robot {
             },
             limits,
             max_speed: None,
+            max_acceleration: None,
             home,
             parts: PartSizes::default(),
         });

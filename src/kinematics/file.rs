@@ -48,6 +48,7 @@ const JOINT_FIELDS: &[&str] = &[
     "max",
     "home",
     "max_speed",
+    "max_acceleration",
     "housing_size",
     "link_size",
 ];
@@ -141,7 +142,7 @@ fn joint_from_value(n: usize, value: &Value) -> Result<Joint, RobotError> {
         a: required(Field::A)?,
         alpha: required(Field::AlphaDeg)?.to_radians(),
     };
-    let (limits, home, max_speed) = match kind {
+    let (limits, home, max_speed, max_acceleration) = match kind {
         JointKind::Revolute => {
             for field in ["min", "max"] {
                 if obj.contains_key(field) {
@@ -160,7 +161,8 @@ fn joint_from_value(n: usize, value: &Value) -> Result<Joint, RobotError> {
             };
             let home = number(obj, &place, Field::Home)?.map_or(0.0, f64::to_radians);
             let speed = number(obj, &place, Field::MaxSpeed)?.map(f64::to_radians);
-            (limits, home, speed)
+            let acc = number(obj, &place, Field::MaxAcceleration)?.map(f64::to_radians);
+            (limits, home, speed, acc)
         }
         JointKind::Prismatic => {
             for field in ["min_deg", "max_deg"] {
@@ -182,7 +184,8 @@ fn joint_from_value(n: usize, value: &Value) -> Result<Joint, RobotError> {
             };
             let home = number(obj, &place, Field::Home)?.unwrap_or(min);
             let speed = number(obj, &place, Field::MaxSpeed)?;
-            (JointLimits { min, max }, home, speed)
+            let acc = number(obj, &place, Field::MaxAcceleration)?;
+            (JointLimits { min, max }, home, speed, acc)
         }
     };
     let name = string(obj, &place, Field::Name)?.unwrap_or_else(|| format!("joint {n}"));
@@ -196,6 +199,7 @@ fn joint_from_value(n: usize, value: &Value) -> Result<Joint, RobotError> {
         dh,
         limits,
         max_speed,
+        max_acceleration,
         home,
         parts,
     })
@@ -244,6 +248,9 @@ pub fn robot_to_json(robot: &Robot) -> String {
                     if let Some(s) = j.max_speed {
                         obj.insert("max_speed".into(), json!(tidy(s.to_degrees())));
                     }
+                    if let Some(a) = j.max_acceleration {
+                        obj.insert("max_acceleration".into(), json!(tidy(a.to_degrees())));
+                    }
                 }
                 JointKind::Prismatic => {
                     obj.insert("min".into(), json!(j.limits.min));
@@ -251,6 +258,9 @@ pub fn robot_to_json(robot: &Robot) -> String {
                     obj.insert("home".into(), json!(j.home));
                     if let Some(s) = j.max_speed {
                         obj.insert("max_speed".into(), json!(s));
+                    }
+                    if let Some(a) = j.max_acceleration {
+                        obj.insert("max_acceleration".into(), json!(a));
                     }
                 }
             }

@@ -5,6 +5,7 @@
 //! [`geometric_jacobian`] → measures and IK.
 
 pub mod angles;
+pub mod collision;
 pub mod convention;
 pub mod edit;
 pub mod error;
@@ -13,8 +14,12 @@ pub mod file;
 pub mod fk;
 pub mod ik;
 pub mod jacobian;
+pub mod motion;
 pub mod orientation;
+pub mod parts;
+pub mod path;
 pub mod presets;
+pub mod profile;
 pub mod redundancy;
 pub mod rng;
 pub mod robot;
@@ -40,8 +45,13 @@ pub use jacobian::{
     Task, ToolAxis, geometric_jacobian, geometric_jacobian_into, jacobian_measures,
     numerical_jacobian, task_jacobian, tool_velocity,
 };
+pub use motion::{
+    Controller, JointMeasures, MotionError, MotionSettings, MotionSim, PidGains, Plant, Record,
+    Series, Setting,
+};
 pub use orientation::{AngleAxis, EulerParameters, Orientation, XyzFixed, ZyxEuler, rotation_log};
 pub use presets::{PRESETS, preset, preset_ids, preset_names};
+pub use profile::{JointProfile, MotionLimits, ProfileShape, Trajectory};
 pub use rng::SplitMix64;
 pub use robot::{
     Convention, DhRow, Joint, JointKind, JointLimits, LengthUnit, PartSizes, Robot, RobotParts,

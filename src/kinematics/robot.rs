@@ -162,6 +162,9 @@ pub struct Joint {
     pub limits: JointLimits,
     /// Speed limit of the joint variable per second (rad/s or units/s), if known.
     pub max_speed: Option<f64>,
+    /// Acceleration limit of the joint variable (rad/s² or units/s²), if known; the motion
+    /// lab's default is in [`crate::kinematics::profile::MotionLimits::of`].
+    pub max_acceleration: Option<f64>,
     /// The home value of the joint variable.
     pub home: f64,
     /// Sizes of its drawn parts, if given.
@@ -322,6 +325,16 @@ impl Robot {
             }
             if let Some(speed) = joint.max_speed {
                 check_value(&place, Field::MaxSpeed, speed * lim_scale, MAX_LENGTH)?;
+            }
+            if let Some(acc) = joint.max_acceleration {
+                check_value(&place, Field::MaxAcceleration, acc * lim_scale, 1e9)?;
+                if acc <= 0.0 {
+                    return Err(RobotError::NotPositive {
+                        place,
+                        field: Field::MaxAcceleration,
+                        value: acc * lim_scale,
+                    });
+                }
             }
             if joint.limits.min > joint.limits.max {
                 return Err(RobotError::LimitsReversed {

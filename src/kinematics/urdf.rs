@@ -396,6 +396,7 @@ pub fn robot_from_chain(chain: &UrdfChain) -> Result<Robot, UrdfError> {
             },
             limits: axis.limits,
             max_speed: axis.speed,
+            max_acceleration: None,
             home,
             parts: PartSizes::default(),
         });
