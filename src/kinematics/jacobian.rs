@@ -222,8 +222,30 @@ pub struct JacobianMeasures {
     pub near_singular: bool,
 }
 
+/// The most sweeps the singular-value decomposition of [`jacobian_measures`] may take (a
+/// 6×64 Jacobian converges in a few dozen).
+pub const MAX_SVD_ITERATIONS: usize = 1000;
+
+impl JacobianMeasures {
+    /// The measures of a Jacobian that holds a value that is not finite, or whose SVD did
+    /// not converge within [`MAX_SVD_ITERATIONS`]: no singular values, manipulability 0,
+    /// no determinant or condition number, flagged singular. `ForwardKinematics::new`
+    /// refuses a pose that is not finite, so the JSON API never shows these.
+    fn not_computed(reach: f64) -> Self {
+        JacobianMeasures {
+            length_scale: reach,
+            singular_values: Vec::new(),
+            manipulability: 0.0,
+            determinant: None,
+            condition_number: None,
+            near_singular: true,
+        }
+    }
+}
+
 /// Measures of the task rows of `j` at the given tool rotation, with the linear rows
-/// divided by `reach` so that mm and m give the same numbers.
+/// divided by `reach` so that mm and m give the same numbers. A matrix holding a value
+/// that is not finite never reaches the decomposition (see `JacobianMeasures::not_computed`).
 pub fn jacobian_measures(
     j: &Matrix6xX<f64>,
     task: Task,
@@ -232,13 +254,20 @@ pub fn jacobian_measures(
 ) -> JacobianMeasures {
     let scaled = task_jacobian(j, task, tool_rotation, 1.0 / reach);
     let (m, n) = scaled.shape();
-    let mut singular_values: Vec<f64> = scaled
-        .clone()
-        .svd(false, false)
-        .singular_values
-        .iter()
-        .copied()
-        .collect();
+    // Only a finite matrix goes into the SVD (nalgebra's default tolerance, 5ε), which
+    // has an iteration cap: NaN or
+    // infinity would keep it from converging for ever (a pose that overflowed).
+    let svd = if scaled.iter().all(|v| v.is_finite()) {
+        scaled
+            .clone()
+            .try_svd(false, false, 5.0 * f64::EPSILON, MAX_SVD_ITERATIONS)
+    } else {
+        None
+    };
+    let Some(svd) = svd else {
+        return JacobianMeasures::not_computed(reach);
+    };
+    let mut singular_values: Vec<f64> = svd.singular_values.iter().copied().collect();
     singular_values.sort_by(|a, b| b.total_cmp(a));
     let manipulability = singular_values.iter().product();
     let determinant = (m == n).then(|| scaled.determinant());

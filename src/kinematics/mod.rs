@@ -22,8 +22,8 @@ pub use fk::{
 };
 pub use ik::{
     BadTarget, ClosedFormFamily, ClosedFormSet, ClosedFormSolution, DEFAULT_MAX_JOINT_CHANGE,
-    IkError, IkMethod, IkResult, IkSettings, IkSolver, IkStep, JacobianSource, Reach,
-    closed_form_family, closed_form_solutions, drag_step, solve,
+    IkError, IkMethod, IkResult, IkSettings, IkSolver, IkStep, JacobianSource, MAX_TARGET_DISTANCE,
+    Reach, closed_form_family, closed_form_solutions, drag_step, solve,
 };
 pub use jacobian::{
     JACOBIAN_AGREEMENT, JacobianAnalysis, JacobianMeasures, NUMERIC_EPSILON, SINGULARITY_THRESHOLD,
