@@ -16,7 +16,8 @@
 
 #[cfg(not(target_arch = "wasm32"))]
 pub mod files;
-pub mod format;
+// The link format lives beside the core (no GUI): the app uses it under its old paths.
+pub use crate::link::{format, session, settings};
 pub mod hook;
 pub mod ik_panel;
 pub mod joints;
@@ -25,8 +26,6 @@ pub mod matrices;
 pub mod model;
 pub mod robot_panel;
 pub mod scene;
-pub mod session;
-pub mod settings;
 pub mod shell;
 pub mod style;
 pub mod top_bar;
