@@ -423,7 +423,9 @@ fn ik_settings(value: &Value, drag: bool) -> Result<crate::kinematics::IkSetting
 ///   `max_joint_change`, default 0.1 rad, per call).
 /// - `settings`: `position_tolerance` (metres), `orientation_tolerance` (rad),
 ///   `max_iterations` (per attempt), `budget` (iterations per call), `restarts`, `seed`,
-///   `max_joint_change` (rad, or null), `trace` (record every iteration).
+///   `max_joint_change` (rad, or null), `trace` (record every iteration). So that no call
+///   takes more than about a second, `max_iterations` and `budget` are lowered to
+///   [`iteration_cap`] and `restarts` to [`MAX_RESTARTS`].
 ///
 /// Response: `q`, `success`, `unreachable`, `singular`, `clipped`, `within_limits`,
 /// `position_error` (robot units), `orientation_error` (rad), `iterations`, `restarts`,

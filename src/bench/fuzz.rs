@@ -289,12 +289,14 @@ impl Generator {
 
     /// The next case: a target (IK a little rarer, it is the slowest) and its input.
     pub fn case(&mut self) -> Case {
-        let target = match self.below(20) {
-            0..=3 => Target::RobotFile,
-            4..=7 => Target::Link,
-            8..=11 => Target::Fk,
-            12..=15 => Target::Jacobian,
-            16..=17 => Target::Robot,
+        // IK (up to 100 000 iterations a call) is 1 case in 25, so that millions of cases
+        // fit in minutes.
+        let target = match self.below(100) {
+            0..=22 => Target::RobotFile,
+            23..=45 => Target::Link,
+            46..=64 => Target::Fk,
+            65..=83 => Target::Jacobian,
+            84..=95 => Target::Robot,
             _ => Target::Ik,
         };
         let input = match target {
@@ -331,7 +333,7 @@ impl Generator {
             3 => json!(*self.pick(STRINGS)),
             4 => json!(self.rng.next_u64()),
             5 => {
-                let len = *self.pick(&[100, 1000, 10_000, 100_000]);
+                let len = *self.pick(&[100, 1000, 1000, 10_000, 10_000, 100_000]);
                 json!(self.pick(&["x", "é", "\u{0}", "9", "{"]).repeat(len))
             }
             6 => {

@@ -51,11 +51,22 @@ fn main() {
     let mut generator = Generator::new(seed);
     let mut per_target: BTreeMap<&'static str, u64> = BTreeMap::new();
     let mut panics: Vec<Value> = Vec::new();
+    let (mut panic_count, mut unreadable_count) = (0u64, 0u64);
     let mut unreadable_messages: Vec<Value> = Vec::new();
     let mut kinds: BTreeMap<String, Case> = BTreeMap::new();
     let mut slowest: Option<(f64, Case)> = None;
     let start = Instant::now();
-    for _ in 0..executions {
+    for done in 0..executions {
+        if done > 0 && done % 500_000 == 0 {
+            // Progress on stderr, so a long run can be read before it ends.
+            eprintln!(
+                "{{\"executions\": {done}, \"panics\": {}, \"unreadable\": {}, \"seconds\": {:.1}, \"slowest_ms\": {:.3}}}",
+                panic_count,
+                unreadable_count,
+                start.elapsed().as_secs_f64(),
+                slowest.as_ref().map_or(0.0, |(s, _)| s * 1e3)
+            );
+        }
         let case = generator.case();
         let t0 = Instant::now();
         let outcome = catch_unwind(AssertUnwindSafe(|| case.run()));
@@ -66,11 +77,17 @@ fn main() {
         }
         match outcome {
             Err(_) => {
+                panic_count += 1;
                 if panics.len() < 20 {
                     panics.push(json!({"target": case.target.name(), "input": case.input}));
                 }
             }
             Ok(outcome) => {
+                if let Err(message) = &outcome
+                    && unreadable(message).is_some()
+                {
+                    unreadable_count += 1;
+                }
                 if let Err(message) = &outcome
                     && let Some(why) = unreadable(message)
                     && unreadable_messages.len() < 20
@@ -113,7 +130,8 @@ fn main() {
         "executions": executions,
         "seed": seed,
         "per_target": per_target,
-        "panics": panics.len(),
+        "panics": panic_count,
+        "unreadable_count": unreadable_count,
         "panic_inputs": panics,
         "unreadable_messages": unreadable_messages,
         "outcome_kinds": kinds.len(),

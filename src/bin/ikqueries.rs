@@ -172,7 +172,15 @@ fn main() {
     let mut examples: Vec<Value> = Vec::new();
     let mut slowest = (0.0f64, Value::Null);
     let start = Instant::now();
-    for _ in 0..queries {
+    for done in 0..queries {
+        if done > 0 && done % 50_000 == 0 {
+            // Progress on stderr, so a long run can be read before it ends.
+            eprintln!(
+                "{{\"queries\": {done}, \"panics\": {panics}, \"non_finite\": {non_finite}, \"seconds\": {:.1}, \"slowest_ms\": {:.3}}}",
+                start.elapsed().as_secs_f64(),
+                slowest.0 * 1e3
+            );
+        }
         let (id, robot) = &robots[(rng.next_u64() % robots.len() as u64) as usize];
         let method = IkMethod::ALL[(rng.next_u64() % 4) as usize];
         let task = Task::ALL[(rng.next_u64() % 5) as usize];
@@ -226,10 +234,19 @@ fn main() {
                 continue;
             }
             Ok(Err(e)) => {
-                let sentence = e.to_string();
-                let head: String = sentence
+                // The sentence without its numbers and quoted names: one key per kind.
+                let mut quoted = false;
+                let head: String = e
+                    .to_string()
                     .chars()
-                    .take_while(|c| *c != '"' && !c.is_ascii_digit())
+                    .filter(|c| {
+                        if *c == '"' {
+                            quoted = !quoted;
+                            return false;
+                        }
+                        !quoted && !c.is_ascii_digit()
+                    })
+                    .take(70)
                     .collect();
                 *errors.entry(head).or_default() += 1;
                 continue;
