@@ -343,7 +343,7 @@ fn a_thousand_character_name_comes_back_cut_to_forty() {
 fn control_characters_and_long_numbers_do_not_reach_a_message() {
     let message = error_of(api::fk(r#"{"robot": "ur\u0007\u001b[2J10\n"}"#));
     assert!(
-        message.starts_with("There is no robot called \"ur\u{FFFD}\u{FFFD}[2J10\u{FFFD}\""),
+        message.starts_with("There is no robot called \"ur\u{25A1}\u{25A1}[2J10\u{25A1}\""),
         "{message}"
     );
     assert_readable(&message, '\u{7}', 0);

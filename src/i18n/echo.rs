@@ -4,7 +4,7 @@
 //! and [`Number`], for [`fill`](super::fill)).
 //!
 //! - Text: at most [`MAX_ECHO_CHARS`] characters, cut with `…`; control characters (and
-//!   the invisible bidirectional overrides that could reorder the sentence) become `�`.
+//!   the invisible bidirectional overrides that could reorder the sentence) become `□` (a glyph the app's font has).
 //! - Numbers: at most 12 significant digits, plain between 10⁻⁴ and 10¹⁵ (`-1.5`,
 //!   `2500000000`), scientific beyond (`1e300`, `1.7e308`, `2.5e-7`), `inf`, `-inf`,
 //!   `NaN`. Never the 301 digits of `format!("{}", 1e300)`.
@@ -29,13 +29,13 @@ fn is_hidden(c: char) -> bool {
 }
 
 /// `s` as a sentence may repeat it: control and bidirectional formatting characters
-/// replaced by `�`, and cut to [`MAX_ECHO_CHARS`] characters (the last one `…`) when
+/// replaced by `□`, and cut to [`MAX_ECHO_CHARS`] characters (the last one `…`) when
 /// longer.
 ///
 /// ```
 /// use armlab::i18n::echo;
 /// assert_eq!(echo::text("ur10"), "ur10");
-/// assert_eq!(echo::text("a\nb"), "a�b");
+/// assert_eq!(echo::text("a\nb"), "a□b");
 /// assert_eq!(echo::text(&"x".repeat(1000)).chars().count(), 40);
 /// ```
 pub fn text(s: &str) -> String {
@@ -51,7 +51,7 @@ pub fn text_within(s: &str, max_chars: usize) -> String {
             out.push('…');
             break;
         }
-        out.push(if is_hidden(c) { '\u{FFFD}' } else { c });
+        out.push(if is_hidden(c) { '\u{25A1}' } else { c });
     }
     out
 }
@@ -143,9 +143,9 @@ mod tests {
 
     #[test]
     fn control_and_bidi_characters_do_not_reach_the_sentence() {
-        assert_eq!(text("a\u{0}b\tc\u{1b}[31m"), "a�b�c�[31m");
-        assert_eq!(text("x\u{202E}gnp.exe"), "x�gnp.exe");
-        assert_eq!(text("\r\n"), "��");
+        assert_eq!(text("a\u{0}b\tc\u{1b}[31m"), "a□b□c□[31m");
+        assert_eq!(text("x\u{202E}gnp.exe"), "x□gnp.exe");
+        assert_eq!(text("\r\n"), "□□");
     }
 
     #[test]

@@ -487,7 +487,7 @@ mod tests {
         let e = Session::from_hash("#robot=ur10&method=\u{7}x\ry").expect_err("a bad link");
         assert_eq!(
             e.to_string(),
-            "the link's method \"\u{FFFD}x\u{FFFD}y\" is not known"
+            "the link's method \"\u{25A1}x\u{25A1}y\" is not known"
         );
         let e = Session::from_hash(&format!("#robot=ur10&q=1,{long}")).expect_err("a bad link");
         assert_eq!(
