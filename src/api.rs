@@ -300,17 +300,19 @@ fn ik_method(value: &Value) -> Result<IkMethod, ApiError> {
 /// The most iterations an `ik` request may ask for, per attempt (`max_iterations`) and per
 /// call (`budget`); larger values are lowered to it (or to [`iteration_cap`]'s smaller
 /// figure for a large arm).
-pub const MAX_ITERATIONS: usize = 100_000;
+pub const MAX_ITERATIONS: usize = 50_000;
 /// The most random restarts an `ik` request may ask for; larger values are lowered to it.
 pub const MAX_RESTARTS: usize = 1_000;
 /// The work one `ik` call may do, counted in joint transforms (one joint of one forward
 /// kinematics): 50 million take about a second natively for the slowest arm and method
-/// measured (64 joints, the central-difference Jacobian), and are well under it for a
-/// six-joint arm at [`MAX_ITERATIONS`].
+/// measured (64 joints, the central-difference Jacobian). [`MAX_ITERATIONS`] bounds the
+/// small arms, whose iteration costs more than its joint transforms (the pseudo-inverse's
+/// eigen-decomposition: 100 000 iterations took 1.6 s on the RRR arm, on a loaded machine).
 pub const MAX_JOINT_TRANSFORMS: usize = 50_000_000;
 /// The most numbers a recorded trace may hold (each entry holds 2n + 7): it bounds the
-/// response's size (about 20 MB of JSON).
-pub const MAX_TRACE_NUMBERS: usize = 1_000_000;
+/// response's size (about 5 MB of JSON) and the time its recording takes (the fuzzer's
+/// slowest inputs were traced runs: 2.5 s with a million numbers).
+pub const MAX_TRACE_NUMBERS: usize = 250_000;
 
 /// The iteration cap of one `ik` call for `robot`: [`MAX_ITERATIONS`], lowered so that the
 /// call stays within [`MAX_JOINT_TRANSFORMS`] (an iteration costs about 2n joint

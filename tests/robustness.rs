@@ -264,11 +264,11 @@ fn an_ik_budget_of_ten_million_is_capped() {
     );
     assert_eq!(
         api::iteration_cap(&long, JacobianSource::Geometric, false),
-        100_000
+        50_000
     );
     assert_eq!(
         api::iteration_cap(&long, JacobianSource::Geometric, true),
-        7407
+        1851
     );
 }
 
