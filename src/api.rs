@@ -9,6 +9,7 @@ use nalgebra::{IsometryMatrix3, Matrix3};
 use serde_json::{Value, json};
 use thiserror::Error;
 
+use crate::i18n::echo;
 use crate::kinematics::fk::homogeneous;
 use crate::kinematics::{
     ForwardKinematics, IkError, IkMethod, JacobianAnalysis, Orientation, Robot, RobotError, Task,
@@ -48,8 +49,12 @@ struct Request {
 }
 
 fn parse_request(text: &str) -> Result<Request, ApiError> {
-    let value: Value =
-        serde_json::from_str(text).map_err(|e| ApiError::Request(format!("not JSON ({e})")))?;
+    let value: Value = serde_json::from_str(text).map_err(|e| {
+        ApiError::Request(format!(
+            "not JSON ({})",
+            echo::text_within(&e.to_string(), 80)
+        ))
+    })?;
     let robot = match value.get("robot") {
         Some(Value::String(id)) => preset(id)?,
         Some(obj @ Value::Object(_)) => robot_from_value(obj)?,
@@ -142,7 +147,8 @@ fn task_of(value: &Value) -> Result<Task, ApiError> {
         None => Ok(Task::FullPose),
         Some(Value::String(name)) => Task::from_id(name).ok_or_else(|| {
             ApiError::Request(format!(
-                "unknown task \"{name}\": use one of {}",
+                "unknown task \"{}\": use one of {}",
+                echo::text(name),
                 Task::id_list()
             ))
         }),
@@ -286,7 +292,8 @@ fn ik_method(value: &Value) -> Result<IkMethod, ApiError> {
             Some(IkMethod::JacobianTranspose { .. }) => Ok(IkMethod::JacobianTranspose { alpha }),
             Some(method) => Ok(method),
             None => Err(ApiError::Request(format!(
-                "unknown method \"{id}\": use one of {} (or closed-form)",
+                "unknown method \"{}\": use one of {} (or closed-form)",
+                echo::text(id),
                 IkMethod::id_list()
             ))),
         },
@@ -304,6 +311,44 @@ fn setting_choice(name: &'static str, value: &Value, allowed: String) -> ApiErro
         value: value.to_string(),
         allowed,
     })
+}
+
+/// The most iterations an `ik` request may ask for, per attempt (`max_iterations`) and per
+/// call (`budget`); larger values are lowered to it (or to [`iteration_cap`]'s smaller
+/// figure for a large arm).
+pub const MAX_ITERATIONS: usize = 50_000;
+/// The most random restarts an `ik` request may ask for; larger values are lowered to it.
+pub const MAX_RESTARTS: usize = 1_000;
+/// The work one `ik` call may do, counted in joint transforms (one joint of one forward
+/// kinematics): 50 million take about a second natively for the slowest arm and method
+/// measured (64 joints, the central-difference Jacobian). [`MAX_ITERATIONS`] bounds the
+/// small arms, whose iteration costs more than its joint transforms (the pseudo-inverse's
+/// eigen-decomposition: 100 000 iterations took 1.6 s on the RRR arm, on a loaded machine).
+pub const MAX_JOINT_TRANSFORMS: usize = 50_000_000;
+/// The most numbers a recorded trace may hold (each entry holds 2n + 7): it bounds the
+/// response's size (about 5 MB of JSON) and the time its recording takes (the fuzzer's
+/// slowest inputs were traced runs: 2.5 s with a million numbers).
+pub const MAX_TRACE_NUMBERS: usize = 250_000;
+
+/// The iteration cap of one `ik` call for `robot`: [`MAX_ITERATIONS`], lowered so that the
+/// call stays within [`MAX_JOINT_TRANSFORMS`] (an iteration costs about 2n joint
+/// transforms with the geometric Jacobian, 2n² + 2n with central differences) and, with a
+/// trace, within [`MAX_TRACE_NUMBERS`]. At least 1000.
+pub fn iteration_cap(
+    robot: &Robot,
+    jacobian: crate::kinematics::JacobianSource,
+    trace: bool,
+) -> usize {
+    let n = robot.dof().max(1);
+    let per_iteration = match jacobian {
+        crate::kinematics::JacobianSource::Geometric => 2 * n,
+        crate::kinematics::JacobianSource::CentralDifference => 2 * n * n + 2 * n,
+    };
+    let mut cap = MAX_ITERATIONS.min(MAX_JOINT_TRANSFORMS / per_iteration);
+    if trace {
+        cap = cap.min(MAX_TRACE_NUMBERS / (2 * n + 7));
+    }
+    cap.max(1000)
 }
 
 fn ik_settings(value: &Value, drag: bool) -> Result<crate::kinematics::IkSettings, ApiError> {
@@ -330,14 +375,18 @@ fn ik_settings(value: &Value, drag: bool) -> Result<crate::kinematics::IkSetting
         .ok_or_else(|| ApiError::Request("\"settings\" must be an object".into()))?;
     for (key, v) in obj {
         let number = || {
-            v.as_f64()
-                .ok_or_else(|| ApiError::Request(format!("\"settings.{key}\" must be a number")))
+            v.as_f64().ok_or_else(|| {
+                ApiError::Request(format!("\"settings.{}\" must be a number", echo::text(key)))
+            })
         };
         let count = || {
             v.as_u64()
-                .map(|n| n.min(10_000_000) as usize)
+                .map(|n| usize::try_from(n).unwrap_or(usize::MAX))
                 .ok_or_else(|| {
-                    ApiError::Request(format!("\"settings.{key}\" must be a whole number ≥ 0"))
+                    ApiError::Request(format!(
+                        "\"settings.{}\" must be a whole number ≥ 0",
+                        echo::text(key)
+                    ))
                 })
         };
         match key.as_str() {
@@ -345,8 +394,12 @@ fn ik_settings(value: &Value, drag: bool) -> Result<crate::kinematics::IkSetting
             "orientation_tolerance" => s.orientation_tolerance = number()?,
             "max_iterations" => s.max_iterations = count()?,
             "budget" => s.budget = count()?,
-            "restarts" => s.restarts = count()?,
-            "seed" => s.seed = count()? as u64,
+            "restarts" => s.restarts = count()?.min(MAX_RESTARTS),
+            "seed" => {
+                s.seed = v.as_u64().ok_or_else(|| {
+                    ApiError::Request("\"settings.seed\" must be a whole number ≥ 0".into())
+                })?
+            }
             "max_joint_change" => {
                 s.max_joint_change = if v.is_null() { None } else { Some(number()?) }
             }
@@ -370,7 +423,8 @@ fn ik_settings(value: &Value, drag: bool) -> Result<crate::kinematics::IkSetting
             }
             other => {
                 return Err(ApiError::Request(format!(
-                    "\"settings.{other}\" is not known; the known settings are: position_tolerance, orientation_tolerance, max_iterations, budget, restarts, seed, max_joint_change, trace, wrap, objective"
+                    "\"settings.{}\" is not known; the known settings are: position_tolerance, orientation_tolerance, max_iterations, budget, restarts, seed, max_joint_change, trace, wrap, objective",
+                    echo::text(other)
                 )));
             }
         }
@@ -403,7 +457,9 @@ fn ik_settings(value: &Value, drag: bool) -> Result<crate::kinematics::IkSetting
 ///   `max_joint_change` (rad, or null), `trace` (record every iteration), `wrap`
 ///   (true by default; false leaves the angles as the steps accumulate them),
 ///   `objective` (`"half-squared"` by default, or `"squared"`: the fixed-step gradient
-///   descends ‖e‖², a step of 2α·Jᵀe).
+///   descends ‖e‖², a step of 2α·Jᵀe). So that no call takes more than about a second,
+///   `max_iterations` and `budget` are lowered to [`iteration_cap`] and `restarts` to
+///   [`MAX_RESTARTS`].
 ///
 /// Response: `q`, `success`, `unreachable`, `singular`, `clipped`, `within_limits`,
 /// `position_error` (robot units), `orientation_error` (rad), `iterations`, `restarts`,
@@ -424,7 +480,10 @@ pub fn ik(request: &str) -> Result<String, ApiError> {
             .as_bool()
             .ok_or_else(|| ApiError::Request("\"drag\" must be true or false".into()))?,
     };
-    let settings = ik_settings(&req.value, drag)?;
+    let mut settings = ik_settings(&req.value, drag)?;
+    let cap = iteration_cap(&req.robot, settings.jacobian, settings.record_trace);
+    settings.max_iterations = settings.max_iterations.min(cap);
+    settings.budget = settings.budget.min(cap);
     let mut solver = IkSolver::new();
     let r = if drag {
         solver.drag_step(&req.robot, &req.q, &target, task, method, &settings)

@@ -17,7 +17,8 @@
 pub mod convention_view;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod files;
-pub mod format;
+// The link format lives beside the core (no GUI): the app uses it under its old paths.
+pub use crate::link::{format, session, settings};
 pub mod hook;
 pub mod ik_panel;
 pub mod jacobian_view;
@@ -28,8 +29,6 @@ pub mod model;
 pub mod notebook;
 pub mod robot_panel;
 pub mod scene;
-pub mod session;
-pub mod settings;
 pub mod shell;
 pub mod solutions;
 pub mod style;

@@ -1,12 +1,13 @@
 //! Benchmarks, outside the clock-free core: the IK benchmark protocol and its JSON report
-//! ([`ik`]), the workspace sampling and branch-count reports ([`workspace`]), and the one
-//! statistics helper every benchmark uses ([`stats`]). The clock is
+//! ([`ik`]), the workspace sampling and branch-count reports ([`workspace`]), the fuzzing
+//! generator ([`fuzz`]), and the one statistics helper every benchmark uses ([`stats`]). The clock is
 //! the caller's (`Instant` in the native binaries, `performance.now()` through the JS
 //! API), passed in as `now`.
 //!
 //! The module has no GUI or web dependency and builds with `--no-default-features`; the
 //! page (feature `app`) never calls it, so it is not in the page's wasm.
 
+pub mod fuzz;
 pub mod ik;
 pub mod stats;
 pub mod workspace;

@@ -333,6 +333,8 @@ catalogue! {
     ErrUnknownPreset: "There is no robot called \"{0}\"; the presets are: {1}." / "Robottia nimeltä \"{0}\" ei ole; valmisrobotit ovat: {1}.",
     ErrWrongJointCount: "The robot has {0} joints but {1} joint values were given." / "Robotilla on {0} niveltä, mutta nivelarvoja annettiin {1}.",
     ErrJointValueNotFinite: "The value of joint {0} is not a finite number ({1})." / "Nivelen {0} arvo ei ole äärellinen luku ({1}).",
+    ErrJointOutsideStroke: "The value {1} of joint {0} lies outside its stroke {2} … {3}." / "Nivelen {0} arvo {1} on liikealueen {2} … {3} ulkopuolella.",
+    ErrPoseNotFinite: "At these joint values the tool pose is not a finite number (a value overflows): nothing can be computed from it." / "Näillä nivelarvoilla työkalun asema ei ole äärellinen luku (jokin arvo ylivuotaa): siitä ei voi laskea mitään.",
 
     // --- The core's errors: inverse kinematics ---------------------------------------------
     IkBadTarget: "The target pose is not a valid pose: {0}." / "Kohteen paikka ja asento eivät kelpaa: {0}.",
@@ -408,4 +410,5 @@ catalogue! {
     SettingWaypoint: "waypoint {0}" / "välipiste {0}",
     SettingPathSteps: "the number of path steps" / "polun askelten määrä",
     SettingRecordLength: "the record's length" / "tallenteen pituus",
+    IkTargetTooFar: "The target is {0} from the base, farther than {1}, the most ArmLab accepts (in the robot's length unit)." / "Kohde on {0} päässä kannasta, kauempana kuin {1}, suurin ArmLabin hyväksymä etäisyys (robotin pituusyksikössä).",
 }

@@ -7,6 +7,7 @@
 //! English.
 
 mod catalogue;
+pub mod echo;
 
 pub use catalogue::Key;
 

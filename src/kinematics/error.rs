@@ -1,8 +1,11 @@
 //! Typed errors of the core. Each message is a whole sentence a student can act on: it
 //! names the joint (counted from 1, as in the DH table) and the field. The sentences come
 //! from the catalogue ([`crate::i18n`]): [`RobotError::sentence`] in any language, and
-//! `Display` in English (the JSON API and the logs keep to English).
+//! `Display` in English (the JSON API and the logs keep to English). Whatever a sentence
+//! repeats of the person's text or numbers goes through [`crate::i18n::echo`]: at most 40
+//! characters, no control characters, numbers short.
 
+use crate::i18n::echo::{Number, Text};
 use crate::i18n::{Key, Lang, fill, text};
 
 /// Where in a robot description a value sits, for messages.
@@ -377,6 +380,21 @@ pub enum RobotError {
         /// The value.
         value: f64,
     },
+    /// A prismatic joint's value outside its stroke (more than [`crate::kinematics::robot::STROKE_SLACK`]).
+    JointOutsideStroke {
+        /// 1-based joint number.
+        joint: usize,
+        /// The value.
+        value: f64,
+        /// The stroke's lower end.
+        min: f64,
+        /// The stroke's upper end.
+        max: f64,
+    },
+    /// Forward kinematics gave a pose that is not finite (a length overflowed to
+    /// infinity, or NaN): nothing computed from it (a Jacobian, its singular values, an
+    /// IK step) would mean anything, so the request stops here.
+    PoseNotFinite,
 }
 
 impl RobotError {
@@ -388,7 +406,11 @@ impl RobotError {
                 line,
                 column,
                 reason,
-            } => fill(lang, Key::ErrSyntax, &[line, column, reason]),
+            } => fill(
+                lang,
+                Key::ErrSyntax,
+                &[line, column, &crate::i18n::echo::text_within(reason, 80)],
+            ),
             RobotError::MissingField { place, field } => {
                 fill(lang, Key::ErrMissingField, &[&at(place), field])
             }
@@ -396,7 +418,11 @@ impl RobotError {
                 place,
                 field,
                 known,
-            } => fill(lang, Key::ErrUnknownField, &[&at(place), field, known]),
+            } => fill(
+                lang,
+                Key::ErrUnknownField,
+                &[&at(place), &Text(field), known],
+            ),
             RobotError::WrongType {
                 place,
                 field,
@@ -406,16 +432,24 @@ impl RobotError {
                 Key::ErrWrongType,
                 &[&at(place), field, &expected.text(lang)],
             ),
-            RobotError::UnknownConvention(found) => fill(lang, Key::ErrUnknownConvention, &[found]),
-            RobotError::UnknownJointType { joint, found } => {
-                fill(lang, Key::ErrUnknownJointType, &[joint, found])
+            RobotError::UnknownConvention(found) => {
+                fill(lang, Key::ErrUnknownConvention, &[&Text(found)])
             }
-            RobotError::UnknownLengthUnit(found) => fill(lang, Key::ErrUnknownLengthUnit, &[found]),
+            RobotError::UnknownJointType { joint, found } => {
+                fill(lang, Key::ErrUnknownJointType, &[joint, &Text(found)])
+            }
+            RobotError::UnknownLengthUnit(found) => {
+                fill(lang, Key::ErrUnknownLengthUnit, &[&Text(found)])
+            }
             RobotError::NotFinite {
                 place,
                 field,
                 value,
-            } => fill(lang, Key::ErrNotFinite, &[&at(place), field, value]),
+            } => fill(
+                lang,
+                Key::ErrNotFinite,
+                &[&at(place), field, &Number(*value)],
+            ),
             RobotError::EmptyChain => text(lang, Key::ErrEmptyChain).to_string(),
             RobotError::TooManyJoints { count, max } => {
                 fill(lang, Key::ErrTooManyJoints, &[count, max])
@@ -425,32 +459,57 @@ impl RobotError {
                 field,
                 value,
                 limit,
-            } => fill(lang, Key::ErrTooLarge, &[&at(place), field, value, limit]),
+            } => fill(
+                lang,
+                Key::ErrTooLarge,
+                &[&at(place), field, &Number(*value), &Number(*limit)],
+            ),
             RobotError::NegativeSize {
                 place,
                 field,
                 value,
-            } => fill(lang, Key::ErrNegativeSize, &[&at(place), field, value]),
+            } => fill(
+                lang,
+                Key::ErrNegativeSize,
+                &[&at(place), field, &Number(*value)],
+            ),
             RobotError::NotPositive {
                 place,
                 field,
                 value,
-            } => fill(lang, Key::ErrNotPositive, &[&at(place), field, value]),
-            RobotError::LimitsReversed { joint, min, max } => {
-                fill(lang, Key::ErrLimitsReversed, &[joint, min, max])
-            }
+            } => fill(
+                lang,
+                Key::ErrNotPositive,
+                &[&at(place), field, &Number(*value)],
+            ),
+            RobotError::LimitsReversed { joint, min, max } => fill(
+                lang,
+                Key::ErrLimitsReversed,
+                &[joint, &Number(*min), &Number(*max)],
+            ),
             RobotError::PrismaticWithoutLimits { joint } => {
                 fill(lang, Key::ErrPrismaticWithoutLimits, &[joint])
             }
             RobotError::UnknownPreset(name, presets) => {
-                fill(lang, Key::ErrUnknownPreset, &[name, presets])
+                fill(lang, Key::ErrUnknownPreset, &[&Text(name), presets])
             }
             RobotError::WrongJointCount { expected, found } => {
                 fill(lang, Key::ErrWrongJointCount, &[expected, found])
             }
             RobotError::JointValueNotFinite { joint, value } => {
-                fill(lang, Key::ErrJointValueNotFinite, &[joint, value])
+                fill(lang, Key::ErrJointValueNotFinite, &[joint, &Number(*value)])
             }
+            RobotError::JointOutsideStroke {
+                joint,
+                value,
+                min,
+                max,
+            } => fill(
+                lang,
+                Key::ErrJointOutsideStroke,
+                &[joint, &Number(*value), &Number(*min), &Number(*max)],
+            ),
+            RobotError::PoseNotFinite => text(lang, Key::ErrPoseNotFinite).to_string(),
         }
     }
 

@@ -173,12 +173,33 @@ pub struct ForwardKinematics {
 }
 
 impl ForwardKinematics {
-    /// Forward kinematics of `robot` at `q`, allocating a new result. Checks `q`.
+    /// Forward kinematics of `robot` at `q`, allocating a new result. Checks `q`, and
+    /// that every frame came out finite ([`RobotError::PoseNotFinite`] otherwise: a pose
+    /// that overflowed must never reach a Jacobian or its singular values).
     pub fn new(robot: &Robot, q: &[f64]) -> Result<Self, RobotError> {
         robot.check_q(q)?;
         let mut fk = ForwardKinematics::default();
         fk.update(robot, q);
+        if !fk.is_finite() {
+            return Err(RobotError::PoseNotFinite);
+        }
         Ok(fk)
+    }
+
+    /// Whether every frame, axis and origin holds finite numbers only.
+    pub fn is_finite(&self) -> bool {
+        let pose_finite = |p: &IsometryMatrix3<f64>| {
+            p.translation.vector.iter().all(|v| v.is_finite())
+                && p.rotation.matrix().iter().all(|v| v.is_finite())
+        };
+        pose_finite(&self.base_from_tool)
+            && self.base_from_frames.iter().all(pose_finite)
+            && self.link_transforms.iter().all(pose_finite)
+            && self
+                .joint_axes
+                .iter()
+                .chain(&self.joint_origins)
+                .all(|v| v.iter().all(|x| x.is_finite()))
     }
 
     /// Recomputes everything for `robot` at `q` in place (no allocation after the first

@@ -241,23 +241,54 @@ pub struct JacobianMeasures {
     pub displayed: DisplayedMeasures,
 }
 
-/// Singular values (largest first), their product, det J when square, and σ_max/σ_min.
-fn singular_measures(rows: &DMatrix<f64>) -> (Vec<f64>, f64, Option<f64>, Option<f64>) {
+/// The most sweeps the singular-value decomposition of [`jacobian_measures`] may take (a
+/// 6×64 Jacobian converges in a few dozen).
+pub const MAX_SVD_ITERATIONS: usize = 1000;
+
+impl JacobianMeasures {
+    /// The measures of a Jacobian that holds a value that is not finite, or whose SVD did
+    /// not converge within [`MAX_SVD_ITERATIONS`]: no singular values, manipulability 0,
+    /// no determinant or condition number, flagged singular. `ForwardKinematics::new`
+    /// refuses a pose that is not finite, so the JSON API never shows these.
+    fn not_computed(length_scale: f64) -> Self {
+        JacobianMeasures {
+            length_scale,
+            singular_values: Vec::new(),
+            manipulability: 0.0,
+            determinant: None,
+            condition_number: None,
+            near_singular: true,
+            displayed: DisplayedMeasures {
+                manipulability: 0.0,
+                determinant: None,
+                condition_number: None,
+            },
+        }
+    }
+}
+
+/// The measures of one matrix: singular values (largest first), their product, det when
+/// square, and σ_max/σ_min. `None` when a value is not finite (it never reaches the
+/// decomposition: NaN or infinity would keep it from converging) or the SVD does not
+/// converge within [`MAX_SVD_ITERATIONS`] (nalgebra's default tolerance, 5ε).
+type Singular = (Vec<f64>, f64, Option<f64>, Option<f64>);
+
+fn singular_measures(rows: &DMatrix<f64>) -> Option<Singular> {
+    if !rows.iter().all(|v| v.is_finite()) {
+        return None;
+    }
     let (m, n) = rows.shape();
-    let mut singular_values: Vec<f64> = rows
+    let svd = rows
         .clone()
-        .svd(false, false)
-        .singular_values
-        .iter()
-        .copied()
-        .collect();
+        .try_svd(false, false, 5.0 * f64::EPSILON, MAX_SVD_ITERATIONS)?;
+    let mut singular_values: Vec<f64> = svd.singular_values.iter().copied().collect();
     singular_values.sort_by(|a, b| b.total_cmp(a));
     let product = singular_values.iter().product();
     let determinant = (m == n).then(|| rows.determinant());
     let smallest = singular_values.last().copied().unwrap_or(0.0);
     let largest = singular_values.first().copied().unwrap_or(0.0);
     let condition_number = (smallest > 0.0).then(|| largest / smallest);
-    (singular_values, product, determinant, condition_number)
+    Some((singular_values, product, determinant, condition_number))
 }
 
 /// Measures of the task rows of `j` at the given tool rotation, with the linear rows
@@ -270,11 +301,15 @@ pub fn jacobian_measures(
     length_scale: f64,
 ) -> JacobianMeasures {
     let scaled = task_jacobian(j, task, tool_rotation, 1.0 / length_scale);
-    let (singular_values, manipulability, determinant, condition_number) =
-        singular_measures(&scaled);
+    let Some((singular_values, manipulability, determinant, condition_number)) =
+        singular_measures(&scaled)
+    else {
+        return JacobianMeasures::not_computed(length_scale);
+    };
     let smallest = singular_values.last().copied().unwrap_or(0.0);
     let raw = task_jacobian(j, task, tool_rotation, 1.0);
-    let (_, raw_manipulability, raw_determinant, raw_condition) = singular_measures(&raw);
+    let (raw_manipulability, raw_determinant, raw_condition) =
+        singular_measures(&raw).map_or((0.0, None, None), |(_, w, d, c)| (w, d, c));
     JacobianMeasures {
         length_scale,
         singular_values,

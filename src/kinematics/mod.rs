@@ -37,8 +37,9 @@ pub use ik::{
     BadTarget, Branch, BranchChoice, BranchStep, ClosedFormFamily, ClosedFormSet,
     ClosedFormSolution, DEFAULT_MAX_JOINT_CHANGE, DistinctSolutions, Elbow, FoundSolution, IkError,
     IkMethod, IkResult, IkSettings, IkSolver, IkStep, JacobianSource, MAX_CONTINUUM_SAMPLES,
-    Objective, Reach, Shoulder, Wrist, branch_of, branch_step, closed_form_family,
-    closed_form_solutions, distinct_solutions, drag_step, follow_branch, solve, wrapped_equivalent,
+    MAX_TARGET_DISTANCE, Objective, Reach, Shoulder, Wrist, branch_of, branch_step,
+    closed_form_family, closed_form_solutions, distinct_solutions, drag_step, follow_branch, solve,
+    wrapped_equivalent,
 };
 pub use jacobian::{
     JACOBIAN_AGREEMENT, JacobianAnalysis, JacobianMeasures, NUMERIC_EPSILON, SINGULARITY_THRESHOLD,

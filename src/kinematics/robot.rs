@@ -13,6 +13,9 @@ pub const MAX_JOINTS: usize = 64;
 pub const MAX_LENGTH: f64 = 1e6;
 /// The largest magnitude of an angle accepted, in degrees (ten turns).
 pub const MAX_ANGLE_DEG: f64 = 3600.0;
+/// How far (in length units) a prismatic joint's value may lie outside its stroke and
+/// still be accepted: the rounding of a link's six decimals, not a real overshoot.
+pub const STROKE_SLACK: f64 = 1e-6;
 
 /// Which Denavit–Hartenberg convention a table is written in.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -336,6 +339,17 @@ impl Robot {
                     });
                 }
             }
+            if joint.kind == JointKind::Prismatic
+                && joint.limits.min <= joint.limits.max
+                && !joint.limits.contains(joint.home, STROKE_SLACK)
+            {
+                return Err(RobotError::JointOutsideStroke {
+                    joint: i + 1,
+                    value: joint.home,
+                    min: joint.limits.min,
+                    max: joint.limits.max,
+                });
+            }
             if joint.limits.min > joint.limits.max {
                 return Err(RobotError::LimitsReversed {
                     joint: i + 1,
@@ -366,7 +380,11 @@ impl Robot {
         Ok(self)
     }
 
-    /// Checks a joint vector against this robot: right length, all finite.
+    /// Checks a joint vector against this robot: right length, all finite, and every
+    /// prismatic joint inside its stroke (within [`STROKE_SLACK`]): a slide cannot extend
+    /// beyond its travel, and a value far outside it would overflow the pose. Revolute
+    /// values may lie outside their limits (forward kinematics answers for any angle; IK
+    /// keeps its seed inside the limits, docs/kinematics.md §3).
     pub fn check_q(&self, q: &[f64]) -> Result<(), RobotError> {
         if q.len() != self.dof() {
             return Err(RobotError::WrongJointCount {
@@ -374,13 +392,23 @@ impl Robot {
                 found: q.len(),
             });
         }
-        match q.iter().position(|v| !v.is_finite()) {
-            Some(i) => Err(RobotError::JointValueNotFinite {
-                joint: i + 1,
-                value: q[i],
-            }),
-            None => Ok(()),
+        for (i, (value, joint)) in q.iter().zip(&self.joints).enumerate() {
+            if !value.is_finite() {
+                return Err(RobotError::JointValueNotFinite {
+                    joint: i + 1,
+                    value: *value,
+                });
+            }
+            if joint.kind == JointKind::Prismatic && !joint.limits.contains(*value, STROKE_SLACK) {
+                return Err(RobotError::JointOutsideStroke {
+                    joint: i + 1,
+                    value: *value,
+                    min: joint.limits.min,
+                    max: joint.limits.max,
+                });
+            }
         }
+        Ok(())
     }
 
     /// Every joint's value kept as docs/kinematics.md §3 says, relative to the current pose `current`.

@@ -33,6 +33,7 @@ use super::error::RobotError;
 use super::fk::tool_pose;
 use super::jacobian::Task;
 use super::robot::{JointKind, Robot};
+use crate::i18n::echo::{Number, Text};
 use crate::i18n::{Key, Lang, fill, text};
 
 pub use branches::{
@@ -393,7 +394,21 @@ pub enum IkError {
         /// The values it takes, comma-separated (`half-squared, squared`).
         allowed: String,
     },
+    /// The target lies farther from the base frame's origin than
+    /// [`MAX_TARGET_DISTANCE`]: no arm reaches it, and its error would overflow.
+    TargetTooFar {
+        /// The target's distance from the base frame's origin (robot units).
+        distance: f64,
+        /// [`MAX_TARGET_DISTANCE`].
+        limit: f64,
+    },
 }
+
+/// The farthest a target may lie from the base frame's origin, in the robot's length unit:
+/// a thousand times the longest length a robot file may hold
+/// ([`crate::kinematics::robot::MAX_LENGTH`]), so every arm's reach is far inside it and
+/// the squared error of a target at this distance stays finite.
+pub const MAX_TARGET_DISTANCE: f64 = 1e9;
 
 /// What is wrong with a target pose.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -419,13 +434,20 @@ impl IkError {
                 );
                 fill(lang, Key::IkBadTarget, &[&why])
             }
-            IkError::Settings { name, value } => fill(lang, Key::IkBadSettings, &[name, value]),
-            IkError::NoClosedForm(robot) => fill(lang, Key::IkNoClosedForm, &[robot]),
+            IkError::Settings { name, value } => {
+                fill(lang, Key::IkBadSettings, &[name, &Number(*value)])
+            }
+            IkError::NoClosedForm(robot) => fill(lang, Key::IkNoClosedForm, &[&Text(robot)]),
             IkError::SettingChoice {
                 name,
                 value,
                 allowed,
-            } => fill(lang, Key::IkBadChoice, &[name, value, allowed]),
+            } => fill(lang, Key::IkBadChoice, &[name, &Text(value), allowed]),
+            IkError::TargetTooFar { distance, limit } => fill(
+                lang,
+                Key::IkTargetTooFar,
+                &[&Number(*distance), &Number(*limit)],
+            ),
         }
     }
 }
@@ -509,7 +531,33 @@ pub(crate) fn check_target(target: &IsometryMatrix3<f64>) -> Result<(), IkError>
     if err > 1e-6 || r.determinant() < 0.0 {
         return Err(IkError::Target(BadTarget::NotRotation));
     }
+    // Scaled by the largest coordinate: the plain norm of (1e308, 0, 0) overflows.
+    let largest = t.abs().max();
+    let distance = if largest > 0.0 {
+        largest * (t / largest).norm()
+    } else {
+        0.0
+    };
+    if distance > MAX_TARGET_DISTANCE {
+        return Err(IkError::TargetTooFar {
+            distance,
+            limit: MAX_TARGET_DISTANCE,
+        });
+    }
     Ok(())
+}
+
+/// A result whose joint values or errors are not finite (a robot built in code, without
+/// [`Robot::validated`], whose pose overflows) is an error, never an answer.
+fn check_result(result: IkResult) -> Result<IkResult, IkError> {
+    let finite = result.q.iter().all(|v| v.is_finite())
+        && result.position_error.is_finite()
+        && result.orientation_error.is_finite();
+    if finite {
+        Ok(result)
+    } else {
+        Err(IkError::Robot(RobotError::PoseNotFinite))
+    }
 }
 
 /// The reusable IK solver: its workspaces grow to the robot once and are reused, so
@@ -553,7 +601,7 @@ impl IkSolver {
         if let Some(limit) = settings.max_joint_change {
             self.clip(robot, target, task, seed, limit, settings, &mut result);
         }
-        Ok(result)
+        check_result(result)
     }
 
     /// One frame of dragging: moves from `q_current` toward `target` and never moves a
@@ -585,7 +633,7 @@ impl IkSolver {
                 .run(robot, target, task, q_current, method, settings),
         };
         self.clip(robot, target, task, q_current, limit, settings, &mut result);
-        Ok(result)
+        check_result(result)
     }
 
     /// The closed form, the branch nearest `seed`, with the damped fallback.

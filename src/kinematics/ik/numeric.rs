@@ -587,9 +587,18 @@ fn keep_or_raw(wrap: bool, joint: &Joint, raw: f64, current: f64) -> f64 {
 
 /// `y = (J·Jᵀ)⁺·e` from the symmetric eigen-decomposition `J·Jᵀ = U·Σ²·Uᵀ` (the left
 /// singular vectors and squared singular values of J), so that `Jᵀ·y = J⁺·e`. Singular
-/// values below 10⁻⁶·σ_max count as zero.
+/// values below 10⁻⁶·σ_max count as zero. A matrix that is not finite never reaches the
+/// decomposition, which has an iteration cap: both give `y = 0` (no step, so the attempt
+/// ends at a minimum).
 fn pinv_times(m: &Matrix6<f64>, e: &Vector6<f64>) -> Vector6<f64> {
-    let eig = m.symmetric_eigen();
+    /// The most sweeps of the eigen-decomposition (a 6×6 matrix takes a few).
+    const MAX_EIGEN_ITERATIONS: usize = 1000;
+    if !m.iter().all(|v| v.is_finite()) {
+        return Vector6::zeros();
+    }
+    let Some(eig) = m.try_symmetric_eigen(f64::EPSILON, MAX_EIGEN_ITERATIONS) else {
+        return Vector6::zeros();
+    };
     let largest = eig.eigenvalues.iter().fold(0.0_f64, |a, &b| a.max(b));
     let cut = largest * 1e-12;
     let mut y = Vector6::zeros();

@@ -22,6 +22,7 @@ use crate::kinematics::{
     IkMethod, Robot, RobotError, Task, ZyxEuler, preset, robot_from_json, robot_to_json,
 };
 
+use crate::i18n::echo::Text;
 use crate::i18n::{Key, Lang, fill, text};
 
 use super::format::number_list;
@@ -31,7 +32,9 @@ use super::settings::{CameraPose, DisplayPatch};
 const LINK_DECIMALS: usize = 6;
 
 /// What is wrong with a link; each reads as the middle of the sentence "This link could
-/// not be opened (…)". `Display` is English; the app shows [`LinkError::sentence`].
+/// not be opened (…)". `Display` is English; the app shows [`LinkError::sentence`]. The
+/// link's own text is repeated through [`crate::i18n::echo`] (40 characters at most, no
+/// control characters).
 #[derive(Debug, Clone, PartialEq)]
 pub enum LinkError {
     /// A `key=value` part without `=`.
@@ -79,15 +82,15 @@ impl LinkError {
     pub fn sentence(&self, lang: Lang) -> String {
         let plain = |key| text(lang, key).to_string();
         match self {
-            LinkError::NoEquals(part) => fill(lang, Key::LinkNoEquals, &[part]),
-            LinkError::UnknownPart(part) => fill(lang, Key::LinkUnknownPart, &[part]),
+            LinkError::NoEquals(part) => fill(lang, Key::LinkNoEquals, &[&Text(part)]),
+            LinkError::UnknownPart(part) => fill(lang, Key::LinkUnknownPart, &[&Text(part)]),
             LinkError::BrokenEscape => plain(Key::LinkBrokenEscape),
             LinkError::NotUtf8 => plain(Key::LinkNotUtf8),
             LinkError::NotANumber { field, text } => {
-                fill(lang, Key::LinkNotANumber, &[field, text])
+                fill(lang, Key::LinkNotANumber, &[field, &Text(text)])
             }
             LinkError::TargetLength => plain(Key::LinkTargetLength),
-            LinkError::UnknownTask(task) => fill(lang, Key::LinkUnknownTask, &[task]),
+            LinkError::UnknownTask(task) => fill(lang, Key::LinkUnknownTask, &[&Text(task)]),
             LinkError::BadValue {
                 field,
                 text,
@@ -95,10 +98,16 @@ impl LinkError {
             } => fill(
                 lang,
                 Key::LinkBadValue,
-                &[field, text, &crate::i18n::text(lang, *allowed)],
+                &[
+                    &Text(field),
+                    &Text(text),
+                    &crate::i18n::text(lang, *allowed),
+                ],
             ),
             LinkError::BadCamera => plain(Key::LinkBadCamera),
-            LinkError::UnknownMethod(method) => fill(lang, Key::LinkUnknownMethod, &[method]),
+            LinkError::UnknownMethod(method) => {
+                fill(lang, Key::LinkUnknownMethod, &[&Text(method)])
+            }
             LinkError::NoRobot => plain(Key::LinkNoRobot),
             LinkError::CustomWithoutTable => plain(Key::LinkCustomWithoutTable),
             LinkError::Robot(e) => e.sentence(lang),
@@ -418,8 +427,15 @@ pub fn native_session_file() -> Option<std::path::PathBuf> {
 }
 
 #[cfg(test)]
+// On wasm the tests are wasm_bindgen_tests (run in Node like the other core tests).
+#[cfg_attr(
+    target_arch = "wasm32",
+    allow(clippy::unwrap_used, clippy::expect_used)
+)]
 mod tests {
     use super::*;
+    #[cfg(target_arch = "wasm32")]
+    use wasm_bindgen_test::wasm_bindgen_test as test;
 
     #[test]
     fn every_allowed_value_list_of_the_display_fields_is_in_the_catalogue() {
@@ -456,5 +472,36 @@ mod tests {
             "The robot has 6 joints but 2 joint values were given."
         );
         assert!(e.sentence(Lang::Fi).starts_with("Robotilla on 6 niveltä"));
+    }
+
+    #[test]
+    fn a_link_error_repeats_at_most_forty_characters_and_no_control_character() {
+        let long = "z".repeat(1000);
+        let e = Session::from_hash(&format!("#robot=ur10&{long}=1")).expect_err("a bad link");
+        assert_eq!(
+            e.to_string(),
+            format!("the link has an unknown part \"{}…\"", "z".repeat(39))
+        );
+        let e = Session::from_hash("#robot=ur10&task=a%0Ab%1B").expect_err("a bad link");
+        assert_eq!(e.to_string(), "the link's task \"a%0Ab%1B\" is not known");
+        let e = Session::from_hash("#robot=ur10&method=\u{7}x\ry").expect_err("a bad link");
+        assert_eq!(
+            e.to_string(),
+            "the link's method \"\u{25A1}x\u{25A1}y\" is not known"
+        );
+        let e = Session::from_hash(&format!("#robot=ur10&q=1,{long}")).expect_err("a bad link");
+        assert_eq!(
+            e.sentence(Lang::Fi),
+            format!(
+                "linkin kentässä q on \"{}…\", joka ei ole luku",
+                "z".repeat(39)
+            )
+        );
+        // A custom robot's prismatic joint outside its stroke gets the core's sentence.
+        let e = Session::from_hash("#robot=scara&q=0,0,5,0").expect_err("a bad link");
+        assert_eq!(
+            e.to_string(),
+            "The value 5 of joint 3 lies outside its stroke 0 … 0.21."
+        );
     }
 }

@@ -429,8 +429,15 @@ impl CameraPose {
 }
 
 #[cfg(test)]
+// On wasm the tests are wasm_bindgen_tests (run in Node like the other core tests).
+#[cfg_attr(
+    target_arch = "wasm32",
+    allow(clippy::unwrap_used, clippy::expect_used)
+)]
 mod tests {
     use super::*;
+    #[cfg(target_arch = "wasm32")]
+    use wasm_bindgen_test::wasm_bindgen_test as test;
 
     #[test]
     fn panel_sets_round_trip_through_the_link_form() {

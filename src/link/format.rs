@@ -55,8 +55,15 @@ pub fn number_list(values: &[f64], decimals: usize) -> String {
 }
 
 #[cfg(test)]
+// On wasm the tests are wasm_bindgen_tests (run in Node like the other core tests).
+#[cfg_attr(
+    target_arch = "wasm32",
+    allow(clippy::unwrap_used, clippy::expect_used)
+)]
 mod tests {
     use super::number;
+    #[cfg(target_arch = "wasm32")]
+    use wasm_bindgen_test::wasm_bindgen_test as test;
 
     #[test]
     fn plain_numbers_lose_trailing_zeros_only() {
