@@ -684,6 +684,7 @@ fn the_jacobian_columns_and_the_velocity_ellipsoid_are_drawn_at_the_tool() {
 #[test]
 fn every_ur10_branch_is_listed_and_a_click_on_its_ghost_moves_the_arm_there() {
     let mut h = harness("#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2&show=ghosts&panels=ik");
+    h.get_by_label("Solutions of this target").click();
     h.run_steps(2);
     let rows = h
         .state()
