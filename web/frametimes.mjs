@@ -10,10 +10,8 @@
 // has drawn at least `frames` frames, then prints the median, p95 and max of the app's
 // own main-thread milliseconds (`app`, `render` and their sum) from
 // window.armlab.frameTimes(), one JSON line per run and one for all runs together.
-import http from 'node:http';
-import fs from 'node:fs';
 import path from 'node:path';
-import { chromium } from 'playwright-core';
+import { serveDist, launchChromium } from './static-server.mjs';
 
 const [distArg, runsArg, framesArg] = process.argv.slice(2);
 if (!distArg) {
@@ -24,26 +22,8 @@ const dist = path.resolve(distArg);
 const runs = Number(runsArg ?? 3);
 const wanted = Number(framesArg ?? 300);
 const VIEW = { width: 1400, height: 860 };
-const types = { '.html': 'text/html', '.js': 'text/javascript', '.wasm': 'application/wasm', '.json': 'application/json', '.png': 'image/png' };
-
-const server = http.createServer((req, res) => {
-  const url = new URL(req.url, 'http://localhost');
-  let file = path.join(dist, decodeURIComponent(url.pathname));
-  if (!file.startsWith(dist)) { res.writeHead(403); res.end(); return; }
-  if (file.endsWith('/')) file = path.join(file, 'index.html');
-  fs.readFile(file, (err, data) => {
-    if (err) { res.writeHead(404); res.end(); return; }
-    res.writeHead(200, { 'content-type': types[path.extname(file)] ?? 'application/octet-stream' });
-    res.end(data);
-  });
-});
-await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
-const base = `http://127.0.0.1:${server.address().port}/`;
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking',
-    '--disable-component-update', '--disable-sync', '--no-first-run', '--disable-quic'],
-});
+const { server, base } = await serveDist(dist);
+const browser = await launchChromium();
 
 const state = async (page) => JSON.parse(await page.evaluate(() => window.armlab.state()));
 

@@ -9,39 +9,22 @@
 // same minutes in per cent, the slowest frame after the first two minutes, and the counts
 // of each action. Exits non-zero when the wasm memory grew after minute 2, the JS heap
 // moved by more than 5 %, or the page logged an error.
-import http from 'node:http';
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { serveDist, launchChromium } from './static-server.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', 'dist');
 const minutes = Number(process.env.ARMLAB_SOAK_MINUTES ?? 10);
-const types = { '.html': 'text/html', '.js': 'text/javascript', '.wasm': 'application/wasm', '.json': 'application/json', '.svg': 'image/svg+xml' };
 const ROBOTS = ['ur10', 'puma560', 'panda', 'rrr', 'scara', 'metrover', 'ur10-standard', 'stanford'];
 
 if (!fs.existsSync(path.join(dist, 'index.html'))) {
   console.error(`No built page in ${dist}: run bash tools/test.sh (or trunk build --release) first.`);
   process.exit(2);
 }
-const server = http.createServer((req, res) => {
-  const url = new URL(req.url, 'http://localhost');
-  let file = path.join(dist, decodeURIComponent(url.pathname));
-  if (!file.startsWith(dist)) { res.writeHead(403); res.end(); return; }
-  if (file.endsWith('/')) file = path.join(file, 'index.html');
-  fs.readFile(file, (err, data) => {
-    if (err) { res.writeHead(404); res.end(); return; }
-    res.writeHead(200, { 'content-type': types[path.extname(file)] ?? 'application/octet-stream' });
-    res.end(data);
-  });
-});
-await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
-const base = `http://127.0.0.1:${server.address().port}/`;
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--no-first-run', '--enable-precise-memory-info'],
-});
+const { server, base } = await serveDist(dist);
+const browser = await launchChromium(['--enable-precise-memory-info']);
 const ctx = await browser.newContext({ viewport: { width: 1366, height: 768 } });
 const page = await ctx.newPage();
 const errors = [];

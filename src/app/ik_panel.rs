@@ -229,31 +229,59 @@ fn replay_ui(replay: &mut Replay, model: &mut Model, ui: &mut egui::Ui) {
 }
 
 /// The error per iteration on a log scale.
-/// The error per iteration on a log scale (egui_plot), the replayed iteration marked.
+/// The error per iteration on a log scale (log10 ‖e‖ from the top to the bottom of the
+/// box), the replayed iteration marked.
 fn error_plot(model: &Model, ui: &mut egui::Ui, run: &IkResult, current: usize) {
-    use egui_plot::{Line, Plot, PlotPoints, Points, VLine};
-    let errs: Vec<[f64; 2]> = run
+    let (rect, _) = ui.allocate_exact_size(
+        egui::vec2(ui.available_width().min(300.0), 90.0),
+        egui::Sense::hover(),
+    );
+    let painter = ui.painter_at(rect);
+    painter.rect_stroke(
+        rect,
+        2.0,
+        ui.visuals().widgets.noninteractive.bg_stroke,
+        egui::StrokeKind::Inside,
+    );
+    let errs: Vec<f64> = run
         .trace
         .iter()
-        .enumerate()
-        .map(|(i, s)| [i as f64, s.error.max(1e-16).log10()])
+        .map(|s| s.error.max(1e-16).log10())
         .collect();
-    let marked = errs.get(current).copied();
-    let label = tr(model, Key::ErrorPlotAxis);
-    Plot::new("ik_error_plot")
-        .height(120.0)
-        .allow_drag(false)
-        .allow_zoom(false)
-        .allow_scroll(false)
-        .allow_boxed_zoom(false)
-        .x_axis_label(tr(model, Key::Iteration))
-        .y_axis_label(label)
-        .y_axis_formatter(|mark, _| format!("1e{}", mark.value.round()))
-        .show(ui, |plot| {
-            plot.line(Line::new(label, PlotPoints::from(errs)).color(style::PENDING));
-            if let Some(p) = marked {
-                plot.vline(VLine::new("", p[0]).color(style::HIGHLIGHT));
-                plot.points(Points::new("", vec![p]).radius(3.5).color(style::HIGHLIGHT));
-            }
+    let (lo, hi) = errs
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(*v), b.max(*v))
         });
+    let span = (hi - lo).max(1e-9);
+    let n = errs.len().max(2) - 1;
+    let to_screen = |i: usize, v: f64| {
+        egui::pos2(
+            rect.left() + rect.width() * i as f32 / n as f32,
+            rect.bottom() - rect.height() * ((v - lo) / span) as f32,
+        )
+    };
+    let points: Vec<egui::Pos2> = errs
+        .iter()
+        .enumerate()
+        .map(|(i, v)| to_screen(i, *v))
+        .collect();
+    painter.add(egui::Shape::line(
+        points,
+        egui::Stroke::new(1.5, style::PENDING),
+    ));
+    if let Some(v) = errs.get(current) {
+        painter.circle_filled(to_screen(current, *v), 3.5, style::HIGHLIGHT);
+    }
+    painter.text(
+        rect.left_top() + egui::vec2(4.0, 2.0),
+        egui::Align2::LEFT_TOP,
+        trf(
+            model,
+            Key::ErrorPlotRange,
+            &[&format!("{hi:.1}"), &format!("{lo:.1}")],
+        ),
+        egui::FontId::proportional(11.0),
+        ui.visuals().text_color(),
+    );
 }

@@ -41,6 +41,7 @@ pub(super) const SAME_IN_BOTH: &[Key] = &[
     Key::TabIk,
     Key::CopyLatex,
     Key::CopyNumpy,
+    Key::ErrorPlotRange,
     Key::ToolTwist,
     Key::NotebookNewton,
 ];
@@ -118,7 +119,7 @@ catalogue! {
     StepLine: "‖e‖ = {0}   step = {1}   λ = {2}" / "‖e‖ = {0}   askel = {1}   λ = {2}",
     RawQ: "raw q: {0}" / "rajaamaton q: {0}",
     KeptQ: "kept q: {0}" / "rajattu q: {0}",
-    ErrorPlotAxis: "error ‖e‖" / "virhe ‖e‖",
+    ErrorPlotRange: "log10 ‖e‖: {0} … {1}" / "log10 ‖e‖: {0} … {1}",
 
     // --- The robot panel and its DH editor -------------------------------------------------
     Preset: "Preset" / "Valmisrobotti",
