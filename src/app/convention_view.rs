@@ -11,12 +11,10 @@ use crate::kinematics::{Convention, Robot};
 use super::format::number;
 use super::matrices::overlay_checkbox;
 use super::model::Model;
-use super::scene::segment;
+use super::scene::{AXIS, segment};
 use super::settings::Overlay;
 use super::{tr, trf};
 use crate::render::{Instance, Shape};
-
-const AXIS: [[u8; 4]; 3] = [[230, 60, 50, 255], [60, 190, 70, 255], [60, 110, 240, 255]];
 
 /// The Robot panel's section: both tables and the agreement of their T_0n.
 pub fn both_conventions_ui(model: &mut Model, ui: &mut egui::Ui) {

@@ -18,7 +18,8 @@ const PRISMATIC: [u8; 4] = [220, 140, 40, 255];
 const BASE: [u8; 4] = [88, 92, 100, 255];
 const GRIPPER: [u8; 4] = [70, 74, 80, 255];
 const HIGHLIGHT: [u8; 4] = [255, 210, 60, 255];
-const AXIS: [[u8; 4]; 3] = [[230, 60, 50, 255], [60, 190, 70, 255], [60, 110, 240, 255]];
+/// The x, y and z axis colours of every drawn frame.
+pub(crate) const AXIS: [[u8; 4]; 3] = [[230, 60, 50, 255], [60, 190, 70, 255], [60, 110, 240, 255]];
 
 /// The screen-size parameters of the target marker, in pixels.
 pub mod handle_px {

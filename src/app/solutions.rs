@@ -42,13 +42,15 @@ pub fn branch_words(model: &Model, branch: &Branch) -> String {
 
 /// The solutions section of the IK panel.
 pub fn solutions_ui(model: &mut Model, ui: &mut egui::Ui) {
-    // The closed form's rows every frame (microseconds), folded or not: the 3D view's
-    // ghosts come from them.
-    let unreachable = model.has_closed_form() && closed_form_rows(model);
+    // The closed form's rows (microseconds) only while someone looks at them: the list
+    // open, or the ghosts drawn in the 3D view (folded list).
+    let mut listed = false;
     egui::CollapsingHeader::new(tr(model, Key::Solutions))
         .id_salt("ik_solutions")
         .default_open(false)
         .show(ui, |ui| {
+            listed = true;
+            let unreachable = model.has_closed_form() && closed_form_rows(model);
             ui.label(egui::RichText::new(tr(model, Key::SolutionsHint)).small());
             if !model.has_closed_form()
                 && ui
@@ -70,6 +72,9 @@ pub fn solutions_ui(model: &mut Model, ui: &mut egui::Ui) {
             }
             rows_ui(model, ui);
         });
+    if !listed && model.has_closed_form() && model.settings().overlays.contains(Overlay::Ghosts) {
+        closed_form_rows(model);
+    }
 }
 
 /// The closed form's solutions for the target (every frame: microseconds); true when

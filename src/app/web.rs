@@ -103,10 +103,7 @@ fn install_crash_screen() {
             .map(|s| s.to_string())
             .or_else(|| info.payload().downcast_ref::<String>().cloned())
             .unwrap_or_else(|| "panic".to_string());
-        let what = match what.char_indices().nth(80) {
-            Some((cut, _)) => format!("{}…", &what[..cut]),
-            None => what,
-        };
+        let what = crate::i18n::echo::text_within(&what, 80);
         show_crash(
             &crate::i18n::fill(lang, crate::i18n::Key::CrashSentence, &[&what]),
             crate::i18n::text(lang, crate::i18n::Key::CrashReload),

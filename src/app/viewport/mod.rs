@@ -25,7 +25,7 @@ use super::hook::{self, ScreenPoints};
 use super::jacobian_view::{self, JacobianScene};
 use super::model::{HoverSource, Model};
 use super::scene::{self, MarkerLook, handle_px};
-use super::settings::{CameraPose, Overlay};
+use super::settings::{CameraPose, Overlay, OverlaySet};
 use super::style;
 use super::top_bar::ViewAction;
 use super::workspace_view;
@@ -385,7 +385,9 @@ impl Viewport {
             marker: &look,
             background: [bg.r(), bg.g(), bg.b()],
         });
-        jacobian_view::instances(&jacobian_scene(model), &mut scene.instances);
+        if model.settings().overlays != OverlaySet::NONE {
+            jacobian_view::instances(&jacobian_scene(model), &mut scene.instances);
+        }
         workspace_view::instances(model, &mut scene.instances);
         convention_view::instances(model, model.robot().reach(), &mut scene.instances);
         ghosts::instances(model, &mut scene.instances);
@@ -474,10 +476,10 @@ fn marker_axes(model: &Model) -> [Vector3<f64>; 3] {
 /// The Jacobian column whose arrow passes within 8 points of `at`, when the arrows are
 /// drawn.
 fn hovered_column(model: &Model, view: &ViewGeometry<'_>, at: [f64; 2]) -> Option<usize> {
-    let scene = jacobian_scene(model);
-    if !scene.overlays.contains(Overlay::JacobianColumns) {
+    if !model.settings().overlays.contains(Overlay::JacobianColumns) {
         return None;
     }
+    let scene = jacobian_scene(model);
     let tool = view.project(&scene.tool)?;
     let mut best: Option<(f64, usize)> = None;
     for (i, tip) in jacobian_view::column_tips(&scene).iter().enumerate() {
