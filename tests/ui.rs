@@ -484,6 +484,76 @@ fn at_every_screen_size_the_view_keeps_its_share_and_shows_the_arm() {
     );
 }
 
+/// The controls of a column (buttons, menus, check boxes, fold headers) that end past its
+/// visible edge: clipped, so a person reads "Solutions of th" or misses a button.
+fn clipped_controls(h: &Harness<'_, ArmLabApp>, column: egui::Rect) -> Vec<String> {
+    let mut clipped = Vec::new();
+    for role in [
+        Role::Button,
+        Role::ComboBox,
+        Role::CheckBox,
+        Role::DisclosureTriangle,
+    ] {
+        for node in h.query_all_by_role(role) {
+            let rect = node.rect();
+            // Below the screen's foot the column scrolls: what shows there is not judged.
+            let inside = rect.left() > column.left()
+                && rect.left() < column.right()
+                && rect.top() > column.top()
+                && rect.bottom() < column.bottom();
+            if inside && rect.right() > column.right() + 0.5 {
+                let label = node.accesskit_node().label().unwrap_or_default();
+                clipped.push(format!(
+                    "{label:?} ends at {:.0} > {:.0}",
+                    rect.right(),
+                    column.right()
+                ));
+            }
+        }
+    }
+    clipped
+}
+
+#[test]
+fn on_a_projector_every_control_of_the_columns_shows_whole() {
+    for size in [[1024.0, 768.0], [1280.0, 720.0], [1366.0, 768.0]] {
+        let h = harness_at("#robot=ur10", size);
+        let view = h.state().viewport().rect().expect("the view was laid out");
+        // The left column ends where the view starts, the right one at its edge tabs.
+        let column = |x0: f32, x1: f32| {
+            egui::Rect::from_x_y_ranges(x0..=x1, view.top()..=h.ctx.content_rect().bottom())
+        };
+        let left = clipped_controls(&h, column(30.0, view.left()));
+        let right = clipped_controls(&h, column(view.right(), size[0] - 30.0));
+        assert!(left.is_empty(), "{size:?}, left column: {left:#?}");
+        assert!(right.is_empty(), "{size:?}, right column: {right:#?}");
+    }
+    // Each fold of the projector's columns opened on its own: what it shows fits too.
+    let mut h = harness_at("#robot=ur10", [1024.0, 768.0]);
+    let view = h.state().viewport().rect().expect("the view was laid out");
+    let bottom = h.ctx.content_rect().bottom();
+    let columns = [
+        egui::Rect::from_x_y_ranges(30.0..=view.left(), view.top()..=bottom),
+        egui::Rect::from_x_y_ranges(view.right()..=994.0, view.top()..=bottom),
+    ];
+    let folds: Vec<String> = h
+        .query_all_by_role(Role::DisclosureTriangle)
+        .filter(|n| n.rect().bottom() < bottom)
+        .filter_map(|n| n.accesskit_node().label())
+        .collect();
+    assert!(folds.len() >= 6, "the columns' folds: {folds:?}");
+    for fold in folds {
+        h.get_by_label(&fold).click();
+        h.run_steps(3);
+        for column in columns {
+            let clipped = clipped_controls(&h, column);
+            assert!(clipped.is_empty(), "with {fold:?} open: {clipped:#?}");
+        }
+        h.get_by_label(&fold).click();
+        h.run_steps(3);
+    }
+}
+
 #[test]
 fn narrow_layout_snapshot_with_the_joints_sheet() {
     let mut h = harness_at("#robot=ur10", [390.0, 844.0]);
@@ -734,6 +804,11 @@ fn every_ur10_branch_is_listed_and_a_click_on_its_ghost_moves_the_arm_there() {
 #[test]
 fn the_rrr_symbolic_t03_reads_like_the_lecture_and_highlights_the_hovered_joint() {
     let mut h = harness("#robot=rrr&panels=joints,matrices");
+    // The orientation and the Jacobian folded: the symbolic matrices come into sight.
+    for fold in ["Tool orientation", "Jacobian"] {
+        h.get_by_label(fold).click();
+        h.run_steps(2);
+    }
     h.get_by_label("symbolic").click();
     h.run_steps(2);
     // SPEC §1.4: x = c1(222.1 c2 + 136.2 c23).

@@ -18,41 +18,44 @@ use crate::render::{Instance, Shape};
 
 /// The Robot panel's section: both tables and the agreement of their T_0n.
 pub fn both_conventions_ui(model: &mut Model, ui: &mut egui::Ui) {
-    egui::CollapsingHeader::new(tr(model, Key::BothConventions))
-        .id_salt("both_conventions")
-        .default_open(false)
-        .show(ui, |ui| {
-            overlay_checkbox(
-                model,
-                ui,
-                Overlay::OtherConvention,
-                Key::OverlayOther,
-                Key::OverlayOtherHint,
-            );
-            let Ok(both) = frames_in_both_conventions(model.robot(), model.q()) else {
-                return;
-            };
-            let unit = model.robot().length_unit.symbol();
-            let agreement = format!("{:.1e}", both.disagreement);
-            ui.label(trf(model, Key::ConventionsAgree, &[&agreement, &unit]));
-            // Side by side where the column has room for both, else one under the other.
-            let tables = |ui: &mut egui::Ui| {
-                for (robot, title) in [
-                    (&both.standard, Key::StandardTable),
-                    (&both.modified, Key::ModifiedTable),
-                ] {
-                    ui.vertical(|ui| {
-                        ui.strong(tr(model, title));
-                        table(ui, robot, model.settings().degrees);
-                    });
-                }
-            };
-            if ui.available_width() >= 520.0 {
-                ui.horizontal_top(tables);
-            } else {
-                tables(ui);
+    egui::CollapsingHeader::new(super::style::fold_title(
+        ui,
+        tr(model, Key::BothConventions),
+    ))
+    .id_salt("both_conventions")
+    .default_open(false)
+    .show(ui, |ui| {
+        overlay_checkbox(
+            model,
+            ui,
+            Overlay::OtherConvention,
+            Key::OverlayOther,
+            Key::OverlayOtherHint,
+        );
+        let Ok(both) = frames_in_both_conventions(model.robot(), model.q()) else {
+            return;
+        };
+        let unit = model.robot().length_unit.symbol();
+        let agreement = format!("{:.1e}", both.disagreement);
+        ui.label(trf(model, Key::ConventionsAgree, &[&agreement, &unit]));
+        // Side by side where the column has room for both, else one under the other.
+        let tables = |ui: &mut egui::Ui| {
+            for (robot, title) in [
+                (&both.standard, Key::StandardTable),
+                (&both.modified, Key::ModifiedTable),
+            ] {
+                ui.vertical(|ui| {
+                    ui.strong(tr(model, title));
+                    table(ui, robot, model.settings().degrees);
+                });
             }
-        });
+        };
+        if ui.available_width() >= 520.0 {
+            ui.horizontal_top(tables);
+        } else {
+            tables(ui);
+        }
+    });
 }
 
 /// A read-only DH table: θ offset, d, a, α per row.

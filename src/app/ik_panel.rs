@@ -51,12 +51,12 @@ impl IkPanel {
     /// The notebook's two runs, one click each; after a run, its answer as the notebook
     /// printed it (never wrapped) beside the wrapped equivalent.
     fn notebook_ui(&mut self, model: &mut Model, ui: &mut egui::Ui) {
-        egui::CollapsingHeader::new(tr(model, Key::NotebookRuns))
+        egui::CollapsingHeader::new(super::style::fold_title(ui, tr(model, Key::NotebookRuns)))
             .id_salt("notebook_runs")
             .default_open(false)
             .show(ui, |ui| {
                 ui.label(egui::RichText::new(tr(model, Key::NotebookHint)).small());
-                ui.horizontal_wrapped(|ui| {
+                super::style::wrapped(ui, |ui| {
                     for (demo, key) in [
                         (NotebookDemo::Newton, Key::NotebookNewton),
                         (NotebookDemo::Gradient, Key::NotebookGradient),
@@ -100,7 +100,7 @@ impl Panel for IkPanel {
                 method_menu(model, ui);
                 ui.end_row();
             });
-        ui.horizontal_wrapped(|ui| {
+        super::style::wrapped(ui, |ui| {
             if ui.button(tr(model, Key::SnapTarget)).clicked() {
                 model.snap_target();
             }
@@ -125,7 +125,8 @@ fn task_menu(model: &mut Model, ui: &mut egui::Ui) {
     let mut task = model.task();
     egui::ComboBox::from_id_salt("ik_task")
         .selected_text(tr(model, task.label_key()))
-        .width((ui.available_width() - 8.0).clamp(100.0, 200.0))
+        .width((ui.available_width() - 8.0).clamp(60.0, 200.0))
+        .truncate()
         .show_ui(ui, |ui| {
             for t in Task::ALL {
                 ui.selectable_value(&mut task, t, tr(model, t.label_key()));
@@ -142,7 +143,8 @@ fn method_menu(model: &mut Model, ui: &mut egui::Ui) {
     let mut method = model.method();
     egui::ComboBox::from_id_salt("ik_method")
         .selected_text(tr(model, method.label_key()))
-        .width((ui.available_width() - 8.0).clamp(100.0, 200.0))
+        .width((ui.available_width() - 8.0).clamp(60.0, 200.0))
+        .truncate()
         .show_ui(ui, |ui| {
             for m in IkMethod::ALL {
                 let enabled = m != IkMethod::ClosedForm || has_closed_form;

@@ -186,75 +186,76 @@ impl JointsPanel {
 
     /// Velocity kinematics: a q̇ slider per joint, v and ω at the tool, play.
     fn speeds_ui(&mut self, model: &mut Model, ui: &mut egui::Ui) {
-        let header = egui::CollapsingHeader::new(tr(model, Key::JointSpeeds))
-            .id_salt("joint_speeds")
-            .default_open(false)
-            .show(ui, |ui| {
-                ui.label(egui::RichText::new(tr(model, Key::JointSpeedsHint)).small());
-                let mut speeds = model.joint_speeds();
-                let reach = model.robot().reach();
-                let mut changed = false;
-                egui::Grid::new("joint_speed_rows")
-                    .num_columns(2)
-                    .show(ui, |ui| {
-                        for (i, joint) in model.robot().joints.iter().enumerate() {
-                            let (range, unit) = match joint.kind {
-                                JointKind::Revolute => (1.0, "rad/s".to_string()),
-                                JointKind::Prismatic => (
-                                    0.25 * reach,
-                                    format!("{}/s", model.robot().length_unit.symbol()),
-                                ),
-                            };
-                            ui.label(format!("q̇{}", i + 1));
-                            changed |= ui
-                                .add(
-                                    egui::Slider::new(&mut speeds[i], -range..=range)
-                                        .suffix(format!(" {unit}")),
-                                )
-                                .changed();
-                            ui.end_row();
-                        }
-                    });
-                if changed {
-                    model.set_joint_speeds(&speeds);
-                }
-                let twist = tool_velocity(model.jacobian(), &speeds);
-                let v = format!(
-                    "{}, {}, {}",
-                    number(twist[0], 2),
-                    number(twist[1], 2),
-                    number(twist[2], 2)
-                );
-                let w = format!(
-                    "{}, {}, {}",
-                    number(twist[3], 3),
-                    number(twist[4], 3),
-                    number(twist[5], 3)
-                );
-                let unit = model.robot().length_unit.symbol();
-                ui.monospace(trf(model, Key::ToolTwist, &[&v, &unit, &w]));
-                ui.horizontal_wrapped(|ui| {
-                    let label = if self.playing { Key::Pause } else { Key::Play };
-                    if ui
-                        .button(tr(model, label))
-                        .on_hover_text(tr(model, Key::PlayHint))
-                        .clicked()
-                    {
-                        self.playing = !self.playing;
+        let header =
+            egui::CollapsingHeader::new(super::style::fold_title(ui, tr(model, Key::JointSpeeds)))
+                .id_salt("joint_speeds")
+                .default_open(false)
+                .show(ui, |ui| {
+                    ui.label(egui::RichText::new(tr(model, Key::JointSpeedsHint)).small());
+                    let mut speeds = model.joint_speeds();
+                    let reach = model.robot().reach();
+                    let mut changed = false;
+                    egui::Grid::new("joint_speed_rows")
+                        .num_columns(2)
+                        .show(ui, |ui| {
+                            for (i, joint) in model.robot().joints.iter().enumerate() {
+                                let (range, unit) = match joint.kind {
+                                    JointKind::Revolute => (1.0, "rad/s".to_string()),
+                                    JointKind::Prismatic => (
+                                        0.25 * reach,
+                                        format!("{}/s", model.robot().length_unit.symbol()),
+                                    ),
+                                };
+                                ui.label(format!("q̇{}", i + 1));
+                                changed |= ui
+                                    .add(
+                                        egui::Slider::new(&mut speeds[i], -range..=range)
+                                            .suffix(format!(" {unit}")),
+                                    )
+                                    .changed();
+                                ui.end_row();
+                            }
+                        });
+                    if changed {
+                        model.set_joint_speeds(&speeds);
                     }
-                    if ui.button(tr(model, Key::Stop)).clicked() {
-                        model.set_joint_speeds(&[]);
-                        self.playing = false;
-                    }
-                    overlay_checkbox(
-                        model,
-                        ui,
-                        Overlay::Twist,
-                        Key::DrawTwist,
-                        Key::JointSpeedsHint,
+                    let twist = tool_velocity(model.jacobian(), &speeds);
+                    let v = format!(
+                        "{}, {}, {}",
+                        number(twist[0], 2),
+                        number(twist[1], 2),
+                        number(twist[2], 2)
                     );
+                    let w = format!(
+                        "{}, {}, {}",
+                        number(twist[3], 3),
+                        number(twist[4], 3),
+                        number(twist[5], 3)
+                    );
+                    let unit = model.robot().length_unit.symbol();
+                    ui.monospace(trf(model, Key::ToolTwist, &[&v, &unit, &w]));
+                    super::style::wrapped(ui, |ui| {
+                        let label = if self.playing { Key::Pause } else { Key::Play };
+                        if ui
+                            .button(tr(model, label))
+                            .on_hover_text(tr(model, Key::PlayHint))
+                            .clicked()
+                        {
+                            self.playing = !self.playing;
+                        }
+                        if ui.button(tr(model, Key::Stop)).clicked() {
+                            model.set_joint_speeds(&[]);
+                            self.playing = false;
+                        }
+                        overlay_checkbox(
+                            model,
+                            ui,
+                            Overlay::Twist,
+                            Key::DrawTwist,
+                            Key::JointSpeedsHint,
+                        );
+                    });
                 });
-            });
         if header.body_returned.is_none() {
             self.playing = false;
         }

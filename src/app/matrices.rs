@@ -15,6 +15,7 @@ use super::hook::ScreenPoints;
 use super::jacobian_view::{self, LinearSvd};
 use super::model::{HoverSource, Model};
 use super::settings::Overlay;
+use super::style::NameRow;
 use super::symbolic_view::{SymbolicCache, symbolic_block};
 use super::{Panel, style, tr, trf};
 use crate::kinematics::symbolic::SymbolicChain;
@@ -95,7 +96,7 @@ fn matrix_block(
     frame.show(ui, |ui| {
         // Left to right and wrapping: a narrow column puts the copy buttons under the
         // title instead of over it.
-        let header = ui.horizontal_wrapped(|ui| {
+        let header = super::style::wrapped(ui, |ui| {
             let title = ui.strong(title).on_hover_text(hover);
             ui.label(egui::RichText::new(text(lang, Key::Copy)).weak());
             type Format = fn(&DMatrix<f64>, usize) -> String;
@@ -120,12 +121,22 @@ fn matrix_block(
         let known: Option<egui::Vec2> = ui.data(|d| d.get_temp(id));
         let out_of_sight = known
             .filter(|size| !ui.is_rect_visible(egui::Rect::from_min_size(ui.cursor().min, *size)));
-        let body = match out_of_sight {
-            Some(size) => ui.allocate_exact_size(size, egui::Sense::hover()).1,
-            None => number_table(ui, m, decimals),
+        // A matrix wider than the column scrolls sideways on its own: were the column to
+        // grow to its width, every text after it would run out of sight.
+        let (size, over) = match out_of_sight {
+            Some(size) => {
+                let body = ui.allocate_exact_size(size, egui::Sense::hover()).1;
+                (size, body.hovered())
+            }
+            None => {
+                let out = egui::ScrollArea::horizontal()
+                    .id_salt(("matrix scroll", title))
+                    .show(ui, |ui| number_table(ui, m, decimals));
+                (out.inner_rect.size(), out.inner.hovered())
+            }
         };
-        ui.data_mut(|d| d.insert_temp(id, body.rect.size()));
-        hovered |= body.hovered();
+        ui.data_mut(|d| d.insert_temp(id, size));
+        hovered |= over;
     });
     hovered
 }
@@ -391,7 +402,7 @@ impl Panel for MatricesPanel {
             model.settings().degrees,
             decimals,
         );
-        egui::CollapsingHeader::new(tr(model, Key::Jacobian))
+        egui::CollapsingHeader::new(super::style::fold_title(ui, tr(model, Key::Jacobian)))
             .id_salt("jacobian")
             .default_open(true)
             .show(ui, |ui| {
@@ -401,16 +412,19 @@ impl Panel for MatricesPanel {
         let symbolic = self
             .symbolic
             .then(|| self.chain.chain(model.robot(), model.robot_changes()));
-        let hovered = egui::CollapsingHeader::new(tr(model, Key::LinkTransforms))
-            .id_salt("link_transforms")
-            .default_open(true)
-            .show(ui, |ui| {
-                ui.checkbox(&mut self.symbolic, tr(model, Key::ShowSymbolic))
-                    .on_hover_text(tr(model, Key::ShowSymbolicHint));
-                link_blocks(model, ui, decimals, symbolic)
-            })
-            .body_returned
-            .flatten();
+        let hovered = egui::CollapsingHeader::new(super::style::fold_title(
+            ui,
+            tr(model, Key::LinkTransforms),
+        ))
+        .id_salt("link_transforms")
+        .default_open(true)
+        .show(ui, |ui| {
+            ui.checkbox(&mut self.symbolic, tr(model, Key::ShowSymbolic))
+                .on_hover_text(tr(model, Key::ShowSymbolicHint));
+            link_blocks(model, ui, decimals, symbolic)
+        })
+        .body_returned
+        .flatten();
         model.set_hovered_link(hovered, HoverSource::Matrices);
     }
 }
@@ -537,7 +551,7 @@ fn jacobian_block(
 
 /// The switches of the Jacobian's drawings in the 3D view.
 fn overlay_switches(model: &mut Model, ui: &mut egui::Ui) {
-    ui.horizontal_wrapped(|ui| {
+    super::style::wrapped(ui, |ui| {
         ui.label(tr(model, Key::DrawIn3d));
         let switches = [
             (
@@ -591,7 +605,7 @@ pub fn overlay_checkbox(
 /// arrow (and hovering an arrow highlights its entry).
 fn column_legend(model: &mut Model, ui: &mut egui::Ui) {
     let mut hovered = None;
-    ui.horizontal_wrapped(|ui| {
+    super::style::wrapped(ui, |ui| {
         ui.label(tr(model, Key::ColumnLegend));
         for i in 0..model.robot().dof() {
             let [r, g, b] = jacobian_view::column_color(i);
@@ -628,41 +642,54 @@ fn measures_grid(model: &Model, m: &JacobianMeasures, ui: &mut egui::Ui) {
         ""
     };
     let infinite = |c: Option<f64>, d| c.map_or("∞".to_string(), |c| number(c, d));
-    egui::Grid::new("measures").num_columns(3).show(ui, |ui| {
-        ui.label(tr(model, Key::TaskRows))
-            .on_hover_text(tr(model, Key::TaskRowsHint));
-        ui.label(format!("{rows}"));
-        ui.end_row();
-        ui.label("");
-        ui.label(tr(model, Key::MeasuresDisplayed))
-            .on_hover_text(trf(model, Key::MeasuresDisplayedHint, &[&unit]));
-        ui.label(tr(model, Key::MeasuresUnitFree))
-            .on_hover_text(trf(model, Key::MeasuresUnitFreeHint, &[&scale, &unit]));
-        ui.end_row();
-        ui.label(tr(model, Key::SingularValues)).on_hover_text(trf(
-            model,
-            Key::SingularValuesHint,
-            &[&scale, &unit],
+    ui.label(format!("{}  {rows}", tr(model, Key::TaskRows)))
+        .on_hover_text(tr(model, Key::TaskRowsHint));
+    let headers = [
+        (
+            tr(model, Key::MeasuresDisplayed).to_owned(),
+            trf(model, Key::MeasuresDisplayedHint, &[&unit]),
+        ),
+        (
+            tr(model, Key::MeasuresUnitFree).to_owned(),
+            trf(model, Key::MeasuresUnitFreeHint, &[&scale, &unit]),
+        ),
+    ];
+    let row = |name: &str, hint: Option<String>, values: [String; 2]| NameRow {
+        name: name.to_owned(),
+        hint,
+        values: values.to_vec(),
+    };
+    let mut table = vec![
+        row(
+            tr(model, Key::SingularValues),
+            Some(trf(model, Key::SingularValuesHint, &[&scale, &unit])),
+            [String::new(), sv.join("  ")],
+        ),
+        row(
+            tr(model, Key::Manipulability),
+            Some(tr(model, Key::ManipulabilityHint).to_owned()),
+            [
+                format!("{}{w_unit}", number(m.displayed.manipulability, 5)),
+                number(m.manipulability, 5),
+            ],
+        ),
+    ];
+    if let (Some(shown), Some(det)) = (m.displayed.determinant, m.determinant) {
+        table.push(row(
+            "det J",
+            None,
+            [format!("{}{cubed}", number(shown, 5)), number(det, 5)],
         ));
-        ui.label("");
-        ui.monospace(sv.join("  "));
-        ui.end_row();
-        ui.label(tr(model, Key::Manipulability))
-            .on_hover_text(tr(model, Key::ManipulabilityHint));
-        ui.monospace(format!("{}{w_unit}", number(m.displayed.manipulability, 5)));
-        ui.monospace(number(m.manipulability, 5));
-        ui.end_row();
-        if let (Some(shown), Some(det)) = (m.displayed.determinant, m.determinant) {
-            ui.label("det J");
-            ui.monospace(format!("{}{cubed}", number(shown, 5)));
-            ui.monospace(number(det, 5));
-            ui.end_row();
-        }
-        ui.label(tr(model, Key::ConditionNumber));
-        ui.monospace(infinite(m.displayed.condition_number, 2));
-        ui.monospace(infinite(m.condition_number, 2));
-        ui.end_row();
-    });
+    }
+    table.push(row(
+        tr(model, Key::ConditionNumber),
+        None,
+        [
+            infinite(m.displayed.condition_number, 2),
+            infinite(m.condition_number, 2),
+        ],
+    ));
+    style::fold_rows(ui, "measures", &headers, &table);
     if m.near_singular {
         ui.colored_label(style::UNREACHABLE, tr(model, Key::NearSingular));
     }
@@ -690,50 +717,50 @@ fn orientation_block(
             format!("{:.p$}", v, p = decimals.max(3))
         }
     };
-    egui::CollapsingHeader::new(t(Key::ToolOrientation))
+    egui::CollapsingHeader::new(super::style::fold_title(ui, t(Key::ToolOrientation)))
         .id_salt("tool_orientation")
         .default_open(true)
         .show(ui, |ui| {
-            egui::Grid::new("orientation")
-                .num_columns(2)
-                .show(ui, |ui| {
-                    let e = o.zyx_euler;
-                    ui.label(t(Key::ZyxEuler));
-                    ui.monospace(format!(
+            let e = o.zyx_euler;
+            let f = o.xyz_fixed;
+            let a = o.angle_axis;
+            let q = o.euler_parameters;
+            let row = |key: Key, value: String| NameRow {
+                name: t(key).to_owned(),
+                hint: None,
+                values: vec![value],
+            };
+            let rows = [
+                row(
+                    Key::ZyxEuler,
+                    format!(
                         "{}  {}  {}{}",
                         ang(e.alpha),
                         ang(e.beta),
                         ang(e.gamma),
                         note(e.degenerate, Key::ZyxDegenerate)
-                    ));
-                    ui.end_row();
-                    let f = o.xyz_fixed;
-                    ui.label(t(Key::XyzFixed));
-                    ui.monospace(format!(
-                        "{}  {}  {}",
-                        ang(f.gamma),
-                        ang(f.beta),
-                        ang(f.alpha)
-                    ));
-                    ui.end_row();
-                    let a = o.angle_axis;
-                    ui.label(t(Key::AngleAxis));
-                    ui.monospace(format!(
+                    ),
+                ),
+                row(
+                    Key::XyzFixed,
+                    format!("{}  {}  {}", ang(f.gamma), ang(f.beta), ang(f.alpha)),
+                ),
+                row(
+                    Key::AngleAxis,
+                    format!(
                         "{}  ({:.4}, {:.4}, {:.4}){}",
                         ang(a.angle),
                         a.axis.x,
                         a.axis.y,
                         a.axis.z,
                         note(a.degenerate, Key::AngleAxisDegenerate)
-                    ));
-                    ui.end_row();
-                    let q = o.euler_parameters;
-                    ui.label(t(Key::EulerParameters));
-                    ui.monospace(format!(
-                        "{:.5}  {:.5}  {:.5}  {:.5}",
-                        q.e1, q.e2, q.e3, q.e4
-                    ));
-                    ui.end_row();
-                });
+                    ),
+                ),
+                row(
+                    Key::EulerParameters,
+                    format!("{:.5}  {:.5}  {:.5}  {:.5}", q.e1, q.e2, q.e3, q.e4),
+                ),
+            ];
+            style::fold_rows(ui, "orientation", &[], &rows);
         });
 }

@@ -290,7 +290,7 @@ impl RobotPanel {
     }
 
     fn file_buttons(&mut self, model: &mut Model, ui: &mut egui::Ui) {
-        ui.horizontal_wrapped(|ui| {
+        super::style::wrapped(ui, |ui| {
             #[cfg(target_arch = "wasm32")]
             {
                 if ui.button(tr(model, Key::SaveRobotDownload)).clicked() {
@@ -388,10 +388,11 @@ impl Panel for RobotPanel {
         if !description.is_empty() {
             ui.label(egui::RichText::new(description).small());
         }
-        let header = egui::CollapsingHeader::new(tr(model, Key::DhTable))
-            .id_salt("dh_editor")
-            .default_open(false)
-            .show(ui, |ui| dh_table(&mut self.editor, model, ui, points));
+        let header =
+            egui::CollapsingHeader::new(super::style::fold_title(ui, tr(model, Key::DhTable)))
+                .id_salt("dh_editor")
+                .default_open(false)
+                .show(ui, |ui| dh_table(&mut self.editor, model, ui, points));
         points.insert("dh-header", header.header_response.rect.center());
         super::convention_view::both_conventions_ui(model, ui);
         self.file_buttons(model, ui);
@@ -466,7 +467,7 @@ fn dh_table(
 /// The convention's radio buttons; returns whether it changed.
 fn convention_row(editor: &mut DhEditor, model: &Model, ui: &mut egui::Ui) -> bool {
     let mut changed = false;
-    ui.horizontal_wrapped(|ui| {
+    super::style::wrapped(ui, |ui| {
         ui.label(tr(model, Key::Convention));
         let mut conv = editor.convention.unwrap_or(model.robot().convention);
         changed |= ui

@@ -45,7 +45,7 @@ pub fn solutions_ui(model: &mut Model, ui: &mut egui::Ui) {
     // The closed form's rows (microseconds) only while someone looks at them: the list
     // open, or the ghosts drawn in the 3D view (folded list).
     let mut listed = false;
-    egui::CollapsingHeader::new(tr(model, Key::Solutions))
+    egui::CollapsingHeader::new(super::style::fold_title(ui, tr(model, Key::Solutions)))
         .id_salt("ik_solutions")
         .default_open(false)
         .show(ui, |ui| {
@@ -149,9 +149,9 @@ fn rows_ui(model: &mut Model, ui: &mut egui::Ui) {
             .zip(&model.robot().joints)
             .map(|(v, j)| match j.kind {
                 crate::kinematics::JointKind::Revolute if degrees => {
-                    format!("{}°", number(v.to_degrees(), 1))
+                    format!("{}°", rounded(v.to_degrees(), 1))
                 }
-                _ => number(*v, 3),
+                _ => rounded(*v, 3),
             })
             .collect();
         let mut text = format!("{}. {}", i + 1, row.label);
@@ -175,4 +175,11 @@ fn rows_ui(model: &mut Model, ui: &mut egui::Ui) {
     if let Some(q) = chosen {
         model.set_q_exact(q);
     }
+}
+
+/// A joint value rounded to the decimals shown first: a closed form's 3e-15 rad is 0 to
+/// the eye, and the list shows "0°", not "3.2e-15°".
+fn rounded(v: f64, decimals: usize) -> String {
+    let scale = 10f64.powi(decimals as i32);
+    number((v * scale).round() / scale, decimals)
 }

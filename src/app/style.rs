@@ -134,3 +134,119 @@ pub fn install(ctx: &egui::Context, presentation: bool, touch: bool, screen: Scr
     });
     ctx.set_zoom_factor(zoom);
 }
+
+/// A fold header's title, wrapped to the room the header has: egui lays a
+/// [`egui::CollapsingHeader`]'s title out on one line however long it is, which widens
+/// the whole column past the screen on a projector ("Both conventions side by…" cut off).
+/// The galley keeps the placeholder colour, so the header still paints it in its own
+/// (hovered, open) text colour.
+pub fn fold_title(ui: &egui::Ui, text: impl ToString) -> egui::WidgetText {
+    let font = egui::TextStyle::Button.resolve(ui.style());
+    let padding = ui.spacing().indent + 2.0 * ui.spacing().button_padding.x;
+    let width = (room(ui) - padding).max(60.0);
+    ui.painter()
+        .layout(text.to_string(), font, Color32::PLACEHOLDER, width)
+        .into()
+}
+
+/// The width left on this row that a person can see: the room to the layout's right edge,
+/// but no further than the visible (clipped) part of a column that scrolls sideways. A
+/// matrix wider than its column widens the column's layout for everything after it, so
+/// `available_width` alone would let text and buttons run out of sight.
+pub fn room(ui: &egui::Ui) -> f32 {
+    let visible = ui.clip_rect().right() - ui.cursor().left() - ui.spacing().scroll.bar_width;
+    ui.available_width().min(visible).max(0.0)
+}
+
+/// [`egui::Ui::horizontal_wrapped`] that wraps at the visible [`room`] instead of the
+/// layout's (possibly widened) right edge.
+pub fn wrapped<R>(
+    ui: &mut egui::Ui,
+    add: impl FnOnce(&mut egui::Ui) -> R,
+) -> egui::InnerResponse<R> {
+    let size = egui::vec2(room(ui).max(60.0), ui.spacing().interact_size.y);
+    let layout = egui::Layout::left_to_right(egui::Align::Center).with_main_wrap(true);
+    ui.allocate_ui_with_layout(size, layout, add)
+}
+
+/// One row of [`fold_rows`]: a name (with an optional hover text) and its values.
+#[derive(Debug, Clone, Default)]
+pub struct NameRow {
+    /// The quantity's name.
+    pub name: String,
+    /// Shown when the name is hovered.
+    pub hint: Option<String>,
+    /// One value per value column (an empty string leaves its cell empty).
+    pub values: Vec<String>,
+}
+
+/// Names and their values as a grid (a header row over the value columns when `headers`
+/// is not empty) where the grid fits the visible [`room`]; on a narrow column (a projector's
+/// side column, a phone) each name stands over its values instead, indented and labelled
+/// with their column's header, so no number runs out of sight.
+pub fn fold_rows(ui: &mut egui::Ui, id: &str, headers: &[(String, String)], rows: &[NameRow]) {
+    let body = egui::TextStyle::Body.resolve(ui.style());
+    let mono = egui::TextStyle::Monospace.resolve(ui.style());
+    let width = |text: &str, font: &egui::FontId| {
+        ui.painter()
+            .layout_no_wrap(text.to_owned(), font.clone(), Color32::PLACEHOLDER)
+            .size()
+            .x
+    };
+    let columns = rows.iter().map(|r| r.values.len()).max().unwrap_or(0);
+    let mut widths = vec![0.0_f32; columns + 1];
+    for row in rows {
+        widths[0] = widths[0].max(width(&row.name, &body));
+        for (c, value) in row.values.iter().enumerate() {
+            widths[c + 1] = widths[c + 1].max(width(value, &mono));
+        }
+    }
+    for (c, (header, _)) in headers.iter().enumerate().take(columns) {
+        widths[c + 1] = widths[c + 1].max(width(header, &body));
+    }
+    let spacing = ui.spacing().item_spacing.x;
+    let needed: f32 = widths.iter().sum::<f32>() + spacing * columns as f32;
+    if needed <= room(ui) {
+        egui::Grid::new(id).num_columns(columns + 1).show(ui, |ui| {
+            if !headers.is_empty() {
+                ui.label("");
+                for (header, hint) in headers {
+                    ui.label(header).on_hover_text(hint);
+                }
+                ui.end_row();
+            }
+            for row in rows {
+                let name = ui.label(&row.name);
+                if let Some(hint) = &row.hint {
+                    name.on_hover_text(hint);
+                }
+                for value in &row.values {
+                    ui.monospace(value);
+                }
+                ui.end_row();
+            }
+        });
+        return;
+    }
+    for row in rows {
+        let name = ui.label(&row.name);
+        if let Some(hint) = &row.hint {
+            name.on_hover_text(hint);
+        }
+        ui.indent((id, &row.name), |ui| {
+            let filled = row.values.iter().filter(|v| !v.is_empty()).count();
+            for (c, value) in row.values.iter().enumerate() {
+                if value.is_empty() {
+                    continue;
+                }
+                let text = match headers.get(c) {
+                    Some((header, _)) if filled > 1 || headers.len() > 1 => {
+                        format!("{value}  ({header})")
+                    }
+                    _ => value.clone(),
+                };
+                ui.add(egui::Label::new(egui::RichText::new(text).monospace()).wrap());
+            }
+        });
+    }
+}

@@ -49,7 +49,7 @@ pub fn symbolic_block(
     };
     let frame = egui::Frame::group(ui.style()).stroke(stroke);
     let response = frame.show(ui, |ui| {
-        ui.horizontal_wrapped(|ui| {
+        super::style::wrapped(ui, |ui| {
             ui.strong(title);
             if ui
                 .small_button(text(lang, Key::CopyLatex))
@@ -59,31 +59,48 @@ pub fn symbolic_block(
                 ui.ctx().copy_text(m.latex());
             }
         });
-        egui::Grid::new(("symbolic", title))
-            .num_columns(4)
-            .spacing([14.0, 2.0])
+        // Sideways in its own scroll area, as the numeric matrices: entries never wrap,
+        // and the column does not grow to the widest T_0i.
+        egui::ScrollArea::horizontal()
+            .id_salt(("symbolic scroll", title))
             .show(ui, |ui| {
-                for row in &m.entries {
-                    for entry in row {
-                        let shown = match entry.text() {
-                            EntryText::Shown { plain, .. } => {
-                                egui::RichText::new(plain).monospace()
-                            }
-                            EntryText::TooLong { terms } => {
-                                egui::RichText::new(fill(lang, Key::SymbolicTooLong, &[&terms]))
-                                    .weak()
-                            }
-                        };
-                        let hot = joint.is_some_and(|j| entry.depends_on(j));
-                        ui.label(if hot {
-                            shown.color(style::HIGHLIGHT).strong()
-                        } else {
-                            shown
-                        });
-                    }
-                    ui.end_row();
-                }
+                symbolic_grid(ui, lang, title, m, joint);
             });
     });
     response.response.hovered() || ui.rect_contains_pointer(response.response.rect)
+}
+
+/// The 4 × 4 entries of [`symbolic_block`], each on one line.
+fn symbolic_grid(
+    ui: &mut egui::Ui,
+    lang: Lang,
+    title: &str,
+    m: &SymbolicMatrix,
+    joint: Option<usize>,
+) {
+    egui::Grid::new(("symbolic", title))
+        .num_columns(4)
+        .spacing([14.0, 2.0])
+        .show(ui, |ui| {
+            for row in &m.entries {
+                for entry in row {
+                    let shown = match entry.text() {
+                        EntryText::Shown { plain, .. } => egui::RichText::new(plain).monospace(),
+                        EntryText::TooLong { terms } => {
+                            egui::RichText::new(fill(lang, Key::SymbolicTooLong, &[&terms])).weak()
+                        }
+                    };
+                    let hot = joint.is_some_and(|j| entry.depends_on(j));
+                    ui.add(
+                        egui::Label::new(if hot {
+                            shown.color(style::HIGHLIGHT).strong()
+                        } else {
+                            shown
+                        })
+                        .extend(),
+                    );
+                }
+                ui.end_row();
+            }
+        });
 }

@@ -21,7 +21,7 @@ pub enum ViewAction {
 /// Draws the top bar; returns what it asks of the 3D view.
 pub fn ui(model: &mut Model, ui: &mut egui::Ui, narrow: bool) -> Option<ViewAction> {
     let mut action = None;
-    ui.horizontal_wrapped(|ui| {
+    super::style::wrapped(ui, |ui| {
         if !narrow {
             ui.heading(tr(model, Key::AppName));
         }
@@ -106,7 +106,7 @@ fn message_line(model: &mut Model, ui: &mut egui::Ui, message: &Message) {
         MessageKind::Warning => ("⚠", style::WARNING),
         MessageKind::Error => ("⚠", style::ERROR),
     };
-    ui.horizontal_wrapped(|ui| {
+    super::style::wrapped(ui, |ui| {
         ui.colored_label(color, format!("{sign} {}", message.text));
         if ui.small_button(tr(model, Key::Dismiss)).clicked() {
             model.dismiss_message();

@@ -71,7 +71,7 @@ pub fn instances(model: &Model, out: &mut Vec<Instance>) {
 /// lies, and which joint holds a stalled drag at its limit.
 pub fn workspace_ui(model: &mut Model, ui: &mut egui::Ui) {
     held_at_limit(model, ui);
-    egui::CollapsingHeader::new(tr(model, Key::Workspace))
+    egui::CollapsingHeader::new(super::style::fold_title(ui, tr(model, Key::Workspace)))
         .id_salt("workspace")
         .default_open(false)
         .show(ui, |ui| {
