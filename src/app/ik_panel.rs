@@ -164,12 +164,20 @@ fn method_menu(model: &mut Model, ui: &mut egui::Ui) {
 /// The target's status in its colour, and the errors.
 fn status(model: &Model, ui: &mut egui::Ui) {
     let ik = model.ik();
-    let text = match ik.reach {
+    let reach = model.shown_reach();
+    let text = match reach {
         Reach::Reached => Key::TargetReached,
         Reach::OutOfReach => Key::TargetOutOfReach,
         Reach::Pending => Key::TargetPending,
     };
-    ui.colored_label(style::reach_color(ik.reach), tr(model, text));
+    ui.colored_label(style::reach_color(reach), tr(model, text));
+    if let Some((asked, taken)) = model.branch_switch() {
+        let words = |b| super::solutions::branch_words(model, &b);
+        ui.colored_label(
+            style::WARNING,
+            trf(model, Key::BranchVanished, &[&words(asked), &words(taken)]),
+        );
+    }
     ui.label(trf(
         model,
         Key::IkErrors,

@@ -8,10 +8,11 @@
 use nalgebra::{IsometryMatrix3, Matrix6xX};
 
 use crate::kinematics::ik::{
-    IkError, IkResult, IkSettings, IkSolver, REACHED_ORIENTATION_TOLERANCE,
-    REACHED_POSITION_TOLERANCE_M, Reach, closed_form_family, pose_error,
+    Branch, IkError, IkResult, IkSettings, IkSolver, REACHED_ORIENTATION_TOLERANCE,
+    REACHED_POSITION_TOLERANCE_M, Reach, branch_of, closed_form_family, closed_form_solutions,
+    distinct_solutions, joint_distance, pose_error,
 };
-use crate::kinematics::workspace::{WorkspaceCloud, WorkspaceMeasure};
+use crate::kinematics::workspace::{WorkspaceCloud, WorkspaceMeasure, joints_held_at_limits};
 use crate::kinematics::{ForwardKinematics, IkMethod, Robot, Task, geometric_jacobian_into};
 
 use super::session::{RobotSource, Session};
@@ -123,6 +124,29 @@ pub struct Branches {
     pub continuum: bool,
 }
 
+/// A drag stalled with a joint at its limit, and what other starts make of its target.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rescue {
+    target: IsometryMatrix3<f64>,
+    robot_changes: u64,
+    task: Task,
+    /// The joint (from 0) that holds the arm, pulled past its limit by the error.
+    pub joint: usize,
+    /// Held at its upper limit (else its lower one).
+    pub at_max: bool,
+    /// A solution within the limits that reaches the target (the closed form's branches
+    /// or seeded restarts), nearest the arm; `None` when none was found.
+    pub reach: Option<Vec<f64>>,
+    /// Starts tried: closed-form branches plus restarts.
+    pub tried: usize,
+}
+
+/// Random restarts tried for a target held at a limit: few and short, since the search
+/// runs once per target while a drag stalls (about 0.3 ms natively).
+const RESCUE_RESTARTS: usize = 4;
+/// The iteration budget of each of those restarts.
+const RESCUE_BUDGET: usize = 200;
+
 /// The session, the settings and everything derived from them.
 #[derive(Debug, Clone)]
 pub struct Model {
@@ -148,6 +172,13 @@ pub struct Model {
     reframes: u64,
     camera: Option<CameraPose>,
     camera_loads: u64,
+    /// The closed-form branch the drag keeps (by its label), with the q it was last true
+    /// at: a q moved by anything else (a slider, a solve) starts from the arm's own branch.
+    kept_branch: Option<(Branch, Vec<f64>)>,
+    /// The branch the drag asked for when it vanished, and the one the arm took instead.
+    branch_switch: Option<(Branch, Branch)>,
+    /// The last stall at a joint limit and what other starts found.
+    rescue: Option<Rescue>,
 }
 
 impl Model {
@@ -176,6 +207,9 @@ impl Model {
             reframes: 0,
             camera: None,
             camera_loads: 0,
+            kept_branch: None,
+            branch_switch: None,
+            rescue: None,
         };
         model.open(session);
         model
@@ -295,6 +329,49 @@ impl Model {
     /// keep the camera where the user put it.
     pub fn reframes(&self) -> u64 {
         self.reframes
+    }
+
+    /// The branch a closed-form drag asked for when it vanished (the target crossed a
+    /// singularity), and the nearest one the arm took instead; cleared when the arm is
+    /// moved by anything but the drag.
+    pub fn branch_switch(&self) -> Option<(Branch, Branch)> {
+        self.branch_switch
+    }
+
+    /// The stall at a joint limit of the current target (only while it is out of reach
+    /// from where the arm is): which joint holds it, and a start that reaches it if any.
+    pub fn rescue(&self) -> Option<&Rescue> {
+        self.rescue.as_ref().filter(|r| {
+            self.ik.reach == Reach::OutOfReach
+                && r.target == self.target
+                && r.robot_changes == self.robot_changes
+                && r.task == self.task
+        })
+    }
+
+    /// The verdict as a person is told it: "out of reach" only when no branch or restart
+    /// reaches the target; a target held by a joint limit that another start reaches is
+    /// "not yet there" ([`Model::rescue`] says how).
+    pub fn shown_reach(&self) -> Reach {
+        match (self.ik.reach, self.rescue()) {
+            (Reach::OutOfReach, Some(r)) if r.reach.is_some() => Reach::Pending,
+            (reach, _) => reach,
+        }
+    }
+
+    /// Moves the arm to the start that reaches a target held at a limit.
+    pub fn take_rescue(&mut self) {
+        if let Some(q) = self.rescue().and_then(|r| r.reach.clone()) {
+            self.set_q(q);
+        }
+    }
+
+    /// The branch the closed-form drag keeps, while the arm is where the drag left it.
+    pub fn kept_branch(&self) -> Option<Branch> {
+        self.kept_branch
+            .as_ref()
+            .filter(|(_, q)| *q == self.q)
+            .map(|(b, _)| *b)
     }
 
     /// Whether the robot has a closed-form IK solver.
@@ -560,6 +637,9 @@ impl Model {
         if self.ik.reach == Reach::Reached {
             return false;
         }
+        if self.method == IkMethod::ClosedForm && self.drag_step_on_branch() {
+            return true;
+        }
         let settings = IkSettings::drag();
         let result = self.solver.drag_step(
             &self.robot,
@@ -570,6 +650,43 @@ impl Model {
             &settings,
         );
         self.apply_result(result);
+        true
+    }
+
+    /// A closed-form drag frame that keeps the branch by its label
+    /// ([`IkSolver::drag_step_on_branch`]); false when the arm's branch cannot be named
+    /// (the plain closed-form step runs instead).
+    fn drag_step_on_branch(&mut self) -> bool {
+        let previous = match self.kept_branch() {
+            Some(branch) => branch,
+            None => {
+                self.branch_switch = None;
+                match branch_of(&self.robot, &self.q) {
+                    Ok(Some(branch)) => branch,
+                    _ => return false,
+                }
+            }
+        };
+        let result = self.solver.drag_step_on_branch(
+            &self.robot,
+            &self.q,
+            &self.target,
+            self.task,
+            &previous,
+            &IkSettings::drag(),
+        );
+        match result {
+            Ok((result, step)) => {
+                if step.vanished {
+                    self.branch_switch = Some((previous, step.branch));
+                }
+                self.apply_result(Ok(result));
+                self.kept_branch = Some((step.branch, self.q.clone()));
+            }
+            Err(e) => {
+                self.apply_result(Err(e));
+            }
+        }
         true
     }
 
@@ -611,6 +728,9 @@ impl Model {
                         Reach::Pending
                     };
                 }
+                if self.ik.reach == Reach::OutOfReach && self.rescue().is_none() {
+                    self.rescue = self.find_rescue();
+                }
                 Some(result)
             }
             Err(e) => {
@@ -621,6 +741,68 @@ impl Model {
     }
 
     // --- Derived values ------------------------------------------------------------------
+
+    /// When the arm stalls with a joint held at its limit: every closed-form branch of
+    /// the target and a few seeded restarts, and the one within the limits that reaches
+    /// it nearest the arm.
+    fn find_rescue(&self) -> Option<Rescue> {
+        let held = joints_held_at_limits(&self.robot, &self.q, &self.target, self.task, 1e-6);
+        let first = held.first()?;
+        let tolerance = REACHED_POSITION_TOLERANCE_M / self.robot.length_unit.in_metres();
+        let reaches = |q: &[f64]| {
+            let (p, o) = pose_error(&self.robot, q, &self.target, self.task);
+            p <= tolerance && o <= REACHED_ORIENTATION_TOLERANCE
+        };
+        let mut candidates: Vec<Vec<f64>> = Vec::new();
+        if closed_form_family(&self.robot).is_some()
+            && let Ok(set) = closed_form_solutions(&self.robot, &self.target, &self.q)
+        {
+            candidates.extend(
+                set.solutions
+                    .into_iter()
+                    .filter(|s| s.exact && s.within_limits)
+                    .map(|s| s.q),
+            );
+        }
+        let branches = candidates.len();
+        let settings = IkSettings {
+            budget: RESCUE_BUDGET,
+            max_iterations: RESCUE_BUDGET,
+            ..IkSettings::default()
+        };
+        if let Ok(found) = distinct_solutions(
+            &self.robot,
+            &self.target,
+            self.task,
+            &settings,
+            RESCUE_RESTARTS,
+        ) {
+            candidates.extend(
+                found
+                    .solutions
+                    .into_iter()
+                    .filter(|s| s.within_limits)
+                    .map(|s| s.q),
+            );
+        }
+        let reach = candidates
+            .into_iter()
+            .filter(|q| reaches(q))
+            .min_by(|a, b| {
+                joint_distance(&self.robot, &self.q, a)
+                    .partial_cmp(&joint_distance(&self.robot, &self.q, b))
+                    .unwrap_or(std::cmp::Ordering::Equal)
+            });
+        Some(Rescue {
+            target: self.target,
+            robot_changes: self.robot_changes,
+            task: self.task,
+            joint: first.joint,
+            at_max: first.at_max,
+            reach,
+            tried: branches + RESCUE_RESTARTS,
+        })
+    }
 
     fn keep_method_available(&mut self) {
         if self.method == IkMethod::ClosedForm && !self.has_closed_form() {
@@ -655,7 +837,8 @@ impl Model {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::kinematics::{SplitMix64, geometric_jacobian, preset, preset_ids};
+    use crate::kinematics::ik::{Elbow, Shoulder, Wrist};
+    use crate::kinematics::{SplitMix64, geometric_jacobian, preset, preset_ids, tool_pose};
 
     /// One call of the model's writing API, drawn at random.
     fn random_call(model: &mut Model, rng: &mut SplitMix64) {
@@ -831,5 +1014,166 @@ mod tests {
         assert_eq!(model.method(), IkMethod::DampedLeastSquares);
         model.set_method(IkMethod::ClosedForm);
         assert_eq!(model.method(), IkMethod::DampedLeastSquares);
+    }
+
+    /// A random q of `robot` (within its limits) whose closed-form branch is `branch`.
+    fn q_on_branch(robot: &Robot, branch: Branch, rng: &mut SplitMix64) -> Vec<f64> {
+        loop {
+            let q = rng.joint_vector(robot);
+            if branch_of(robot, &q).ok().flatten() == Some(branch) {
+                return q;
+            }
+        }
+    }
+
+    #[test]
+    fn a_closed_form_drag_keeps_its_branch_by_label_and_says_when_it_vanishes() {
+        let mut rng = SplitMix64::new(12);
+        let mut model = Model::new(Session::for_preset("ur10").expect("preset"));
+        model.set_method(IkMethod::ClosedForm);
+        model.set_task(Task::FullPose);
+        let robot = model.robot().clone();
+        // Kept: targets of the arm's own branch, reached on that branch.
+        for _ in 0..20 {
+            let start = rng.joint_vector(&robot);
+            let Some(branch) = branch_of(&robot, &start).expect("a valid q") else {
+                panic!("the UR10 has a closed form");
+            };
+            model.set_q(start);
+            let goal = q_on_branch(&robot, branch, &mut rng);
+            model.set_target(tool_pose(&robot, &goal));
+            for _ in 0..200 {
+                if !model.drag_step() {
+                    break;
+                }
+                assert_eq!(model.kept_branch(), Some(branch), "the label is kept");
+            }
+            assert_eq!(model.ik().reach, Reach::Reached);
+            assert_eq!(branch_of(&robot, model.q()).ok().flatten(), Some(branch));
+            assert_eq!(model.branch_switch(), None);
+        }
+        // Vanished: a target with only some branches, the arm on a missing one.
+        let mut switched = 0;
+        for _ in 0..2000 {
+            let goal = rng.joint_vector(&robot);
+            let target = tool_pose(&robot, &goal);
+            let set = closed_form_solutions(&robot, &target, &goal).expect("a valid target");
+            let present: Vec<Branch> = set
+                .solutions
+                .iter()
+                .filter(|s| s.exact)
+                .map(|s| s.branch)
+                .collect();
+            let Some(missing) = [false, true]
+                .iter()
+                .flat_map(|&left| [false, true].map(|up| (left, up)))
+                .flat_map(|(left, up)| {
+                    [false, true].map(|flip| Branch {
+                        shoulder: Some(if left {
+                            Shoulder::Left
+                        } else {
+                            Shoulder::Right
+                        }),
+                        elbow: Some(if up { Elbow::Up } else { Elbow::Down }),
+                        wrist: Some(if flip {
+                            Wrist::Flipped
+                        } else {
+                            Wrist::NotFlipped
+                        }),
+                    })
+                })
+                .find(|b| !present.contains(b))
+            else {
+                continue;
+            };
+            model.set_q(q_on_branch(&robot, missing, &mut rng));
+            model.set_target(target);
+            model.drag_step();
+            let Some((asked, taken)) = model.branch_switch() else {
+                panic!("the branch {} vanished", missing.id());
+            };
+            assert_eq!(asked, missing);
+            assert!(present.contains(&taken), "{} is a branch here", taken.id());
+            assert_eq!(model.kept_branch(), Some(taken));
+            switched += 1;
+            if switched == 5 {
+                break;
+            }
+        }
+        assert_eq!(
+            switched, 5,
+            "targets with fewer than eight branches were found"
+        );
+    }
+
+    #[test]
+    fn a_drag_held_at_a_limit_offers_the_start_that_reaches_and_says_out_of_reach_only_when_none_does()
+     {
+        let mut rng = SplitMix64::new(5);
+        let mut model = Model::new(Session::for_preset("puma560").expect("preset"));
+        model.set_method(IkMethod::DampedLeastSquares);
+        let robot = model.robot().clone();
+        let mut rescued = 0;
+        for _ in 0..400 {
+            model.set_q(rng.joint_vector(&robot));
+            let goal = rng.joint_vector(&robot);
+            model.set_target(tool_pose(&robot, &goal));
+            for _ in 0..300 {
+                if !model.drag_step() || model.ik().reach == Reach::OutOfReach {
+                    break;
+                }
+            }
+            if model.ik().reach != Reach::OutOfReach {
+                continue;
+            }
+            let Some(rescue) = model.rescue().cloned() else {
+                assert_eq!(model.shown_reach(), Reach::OutOfReach);
+                continue;
+            };
+            // The target is FK of a q within the limits: some start reaches it.
+            let Some(q) = rescue.reach.clone() else {
+                continue;
+            };
+            assert_eq!(
+                model.shown_reach(),
+                Reach::Pending,
+                "not called out of reach"
+            );
+            let joint = &robot.joints[rescue.joint];
+            let limit = if rescue.at_max {
+                joint.limits.max
+            } else {
+                joint.limits.min
+            };
+            assert!(
+                (model.q()[rescue.joint] - limit).abs() < 1e-5,
+                "held at the limit"
+            );
+            model.take_rescue();
+            assert!(joint_distance(&robot, model.q(), &q) < 1e-12, "the arm took it");
+            assert_eq!(
+                model.ik().reach,
+                Reach::Reached,
+                "the other start reaches it"
+            );
+            rescued += 1;
+            if rescued == 3 {
+                break;
+            }
+        }
+        assert!(rescued >= 3, "{rescued} stalls at a limit were rescued");
+        // Far away: out of reach from every start, and said so.
+        let mut far = *model.target();
+        far.translation.vector *= 50.0;
+        model.set_target(far);
+        for _ in 0..300 {
+            if !model.drag_step() || model.ik().reach == Reach::OutOfReach {
+                break;
+            }
+        }
+        assert_eq!(model.shown_reach(), Reach::OutOfReach);
+        if let Some(rescue) = model.rescue() {
+            assert_eq!(rescue.reach, None);
+        }
     }
 }

@@ -6,8 +6,7 @@
 use nalgebra::{Point3, Rotation3, Vector3};
 
 use crate::i18n::Key;
-use crate::kinematics::ik::Reach;
-use crate::kinematics::workspace::{WorkspaceMeasure, joints_held_at_limits};
+use crate::kinematics::workspace::WorkspaceMeasure;
 
 use super::format::number;
 use super::matrices::overlay_checkbox;
@@ -112,24 +111,37 @@ pub fn workspace_ui(model: &mut Model, ui: &mut egui::Ui) {
         });
 }
 
-/// When the target is out of reach with a joint at its limit, which joint holds it.
-fn held_at_limit(model: &Model, ui: &mut egui::Ui) {
-    if model.ik().reach != Reach::OutOfReach {
+/// When the drag stalls with a joint at its limit: which joint holds it, and either a
+/// button to the start that reaches the target or the verdict that none does.
+fn held_at_limit(model: &mut Model, ui: &mut egui::Ui) {
+    let Some(rescue) = model.rescue().cloned() else {
         return;
-    }
-    let held = joints_held_at_limits(model.robot(), model.q(), model.target(), model.task(), 1e-6);
-    if let Some(h) = held.first() {
-        let side = tr(
-            model,
-            if h.at_max {
-                Key::LimitMax
-            } else {
-                Key::LimitMin
-            },
+    };
+    let side = tr(
+        model,
+        if rescue.at_max {
+            Key::LimitMax
+        } else {
+            Key::LimitMin
+        },
+    );
+    let joint = rescue.joint + 1;
+    if rescue.reach.is_some() {
+        ui.colored_label(
+            style::PENDING,
+            trf(model, Key::HeldAtLimit, &[&joint, &side]),
         );
+        if ui
+            .button(tr(model, Key::HeldAtLimitGo))
+            .on_hover_text(tr(model, Key::HeldAtLimitGoHint))
+            .clicked()
+        {
+            model.take_rescue();
+        }
+    } else {
         ui.colored_label(
             style::UNREACHABLE,
-            trf(model, Key::HeldAtLimit, &[&(h.joint + 1), &side]),
+            trf(model, Key::HeldAtLimitNone, &[&joint, &side, &rescue.tried]),
         );
     }
 }

@@ -363,7 +363,7 @@ impl Viewport {
             return;
         };
         let look = MarkerLook {
-            color: style::reach_color(model.ik().reach).to_array(),
+            color: style::reach_color(model.shown_reach()).to_array(),
             axes: *axes,
             rings: model.task() != Task::Position,
             active: self.hover,

@@ -43,7 +43,7 @@ pub fn draw(model: &Model, painter: &egui::Painter, rect: Rect, grid_step: f64, 
         galley,
         text_color,
     );
-    let reach = model.ik().reach;
+    let reach = model.shown_reach();
     let status = match reach {
         Reach::Reached => Key::StatusReached,
         Reach::OutOfReach => Key::StatusOutOfReach,

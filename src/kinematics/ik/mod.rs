@@ -636,6 +636,65 @@ impl IkSolver {
         check_result(result)
     }
 
+    /// One drag frame with the closed form that keeps the arm on the branch `previous`
+    /// (by its label: the elbow stays up) as long as the target has an exact solution on
+    /// it, and otherwise takes the exact solution nearest the arm ([`branch_step`]). The
+    /// arm moves toward that solution by at most the per-frame joint change, as
+    /// [`IkSolver::drag_step`] does. Without any exact solution (the target out of reach)
+    /// it is [`IkSolver::drag_step`]'s closed-form step, and the branch asked for stays.
+    pub fn drag_step_on_branch(
+        &mut self,
+        robot: &Robot,
+        q_current: &[f64],
+        target: &IsometryMatrix3<f64>,
+        task: Task,
+        previous: &Branch,
+        settings: &IkSettings,
+    ) -> Result<(IkResult, BranchStep), IkError> {
+        settings.check()?;
+        let step = branch_step(robot, q_current, previous, target, task)?;
+        let solution = &step.set.solutions[step.index];
+        let tt = TaskTarget::new(target, task);
+        let ev = evaluate(&tt, &tool_pose(robot, &solution.q), 1.0);
+        let tol_p = settings.position_tolerance / robot.length_unit.in_metres();
+        let meets =
+            ev.position_error <= tol_p && ev.orientation_error <= settings.orientation_tolerance;
+        if !solution.exact || !meets {
+            let result = self.drag_step(
+                robot,
+                q_current,
+                target,
+                task,
+                IkMethod::ClosedForm,
+                settings,
+            )?;
+            let kept = BranchStep {
+                branch: *previous,
+                vanished: false,
+                ..step
+            };
+            return Ok((result, kept));
+        }
+        let mut result = IkResult {
+            within_limits: solution.within_limits,
+            q: solution.q.clone(),
+            success: true,
+            unreachable: false,
+            singular: solution.singular,
+            clipped: false,
+            position_error: ev.position_error,
+            orientation_error: ev.orientation_error,
+            iterations: 0,
+            restarts: 0,
+            trace: Vec::new(),
+        };
+        let limit = settings
+            .max_joint_change
+            .unwrap_or(DEFAULT_MAX_JOINT_CHANGE);
+        self.clip(robot, target, task, q_current, limit, settings, &mut result);
+        Ok((check_result(result)?, step))
+    }
+
     /// The closed form, the branch nearest `seed`, with the damped fallback.
     fn closed_form(
         &mut self,
