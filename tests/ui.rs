@@ -907,3 +907,34 @@ fn both_conventions_are_shown_side_by_side_and_agree() {
     assert!(number < 1e-9, "{text}");
     h.snapshot("both_conventions");
 }
+
+#[test]
+fn the_metrover_reaches_only_some_tool_directions_at_its_target_and_the_ur10_all() {
+    let reached = |hash: &str| {
+        let mut h = harness(hash);
+        h.get_by_label("Reachable workspace").click();
+        h.run_steps(3);
+        let model = h.state().model();
+        let sphere = model.directions().expect("the sphere was filled");
+        let n = sphere.near.iter().filter(|n| **n).count();
+        assert!(
+            h.query_by_label(&format!(
+                "{n} of 64 tool directions reachable here (to 13°)"
+            ))
+            .is_some(),
+            "{hash}: the panel says {n} of 64"
+        );
+        (n, sphere.directions.len())
+    };
+    // Five joints: the tool's y axis (joint 5's) points along a curve of directions.
+    let (metrover, total) = reached("#robot=metrover&show=dirs&panels=ik");
+    assert_eq!(total, 64);
+    assert!(
+        metrover > 0 && metrover < total / 2,
+        "the Metrover reaches {metrover} of {total}"
+    );
+    // Six joints reach them all.
+    let (ur10, total) = reached("#robot=ur10&show=dirs&panels=ik&task=position");
+    println!("ur10 {ur10} of {total}, metrover {metrover}");
+    assert!(ur10 >= total * 9 / 10, "the UR10 reaches {ur10} of {total}");
+}

@@ -66,6 +66,41 @@ pub fn instances(model: &Model, out: &mut Vec<Instance>) {
     }
 }
 
+/// At the target's position, a small sphere of the tool directions tested: green where
+/// the arm reaches the position with its tool axis along that direction (to half the
+/// lattice's spacing), grey where not.
+pub fn direction_instances(model: &Model, out: &mut Vec<Instance>) {
+    let Some(sphere) = model
+        .directions()
+        .filter(|_| model.settings().overlays.contains(Overlay::Directions))
+    else {
+        return;
+    };
+    let radius = 0.12 * model.robot().length_scale();
+    let size = Vector3::repeat(radius * 0.09);
+    let rot = Rotation3::identity();
+    for (d, near) in sphere.directions.iter().zip(&sphere.near) {
+        let p = Point3::from(sphere.position + d.direction * radius);
+        let color = if *near {
+            [60, 200, 90, 255]
+        } else {
+            [110, 110, 120, 255]
+        };
+        out.push(instance(Shape::Box, &p, &rot, size, color));
+    }
+    // The sampled directions themselves, smaller: on a 5-axis arm they trace the curve.
+    for s in &sphere.samples {
+        let p = Point3::from(sphere.position + s * radius);
+        out.push(instance(
+            Shape::Box,
+            &p,
+            &rot,
+            size * 0.6,
+            [150, 240, 120, 255],
+        ));
+    }
+}
+
 /// The workspace section of the IK panel: the switches, the filling, where the target
 /// lies, and which joint holds a stalled drag at its limit.
 pub fn workspace_ui(model: &mut Model, ui: &mut egui::Ui) {
@@ -93,6 +128,25 @@ pub fn workspace_ui(model: &mut Model, ui: &mut egui::Ui) {
             ];
             for (overlay, label, hint) in switches {
                 overlay_checkbox(model, ui, overlay, label, hint);
+            }
+            overlay_checkbox(
+                model,
+                ui,
+                Overlay::Directions,
+                Key::ToolDirections,
+                Key::ToolDirectionsHint,
+            );
+            if let Some(sphere) = model
+                .directions()
+                .filter(|_| model.settings().overlays.contains(Overlay::Directions))
+            {
+                let reached = sphere.near.iter().filter(|n| **n).count();
+                let degrees = number(sphere.tolerance.to_degrees(), 0);
+                ui.label(trf(
+                    model,
+                    Key::ToolDirectionsCount,
+                    &[&reached, &sphere.directions.len(), &degrees],
+                ));
             }
             let Some(cloud) = model.workspace() else {
                 return;

@@ -67,11 +67,14 @@ pub enum Overlay {
     WorkspaceSigma,
     /// The other DH convention's frames, dashed.
     OtherConvention,
+    /// At the target's position, the tool directions the arm can reach (a 5-axis arm
+    /// reaches only some: why five joints cannot set a full pose).
+    Directions,
 }
 
 impl Overlay {
     /// Every overlay, in the order of the switches.
-    pub const ALL: [Overlay; 11] = [
+    pub const ALL: [Overlay; 12] = [
         Overlay::JacobianColumns,
         Overlay::AngularColumns,
         Overlay::VelocityEllipsoid,
@@ -83,6 +86,7 @@ impl Overlay {
         Overlay::WorkspaceSlice,
         Overlay::WorkspaceSigma,
         Overlay::OtherConvention,
+        Overlay::Directions,
     ];
 
     /// The id a link uses.
@@ -99,6 +103,7 @@ impl Overlay {
             Overlay::WorkspaceSlice => "slice",
             Overlay::WorkspaceSigma => "sigma",
             Overlay::OtherConvention => "both",
+            Overlay::Directions => "dirs",
         }
     }
 }

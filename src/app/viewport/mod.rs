@@ -178,6 +178,9 @@ impl Viewport {
                 ui.ctx().request_repaint();
             }
         }
+        if model.settings().overlays.contains(Overlay::Directions) {
+            timing.workspace_ms += model.fill_directions(hook::now_ms);
+        }
         self.draw_scene(model, ui, rect, render_state, &axes, timing);
         let touch = ui.spacing().interact_size.y >= style::TOUCH_TARGET;
         overlay::draw(model, &ui.painter_at(rect), rect, self.grid_step, touch);
@@ -389,6 +392,7 @@ impl Viewport {
             jacobian_view::instances(&jacobian_scene(model), &mut scene.instances);
         }
         workspace_view::instances(model, &mut scene.instances);
+        workspace_view::direction_instances(model, &mut scene.instances);
         convention_view::instances(model, model.robot().reach(), &mut scene.instances);
         ghosts::instances(model, &mut scene.instances);
         self.grid_step = step;
