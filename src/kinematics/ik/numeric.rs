@@ -52,8 +52,13 @@ pub(crate) fn rotation_vector(r: &Matrix3<f64>) -> Vector3<f64> {
             r[(1, 0)] - r[(0, 1)],
         );
     let c = 0.5 * (r.trace() - 1.0);
+    let s2 = v.norm_squared();
+    if c > 0.0 && s2 < SMALL_SIN2 {
+        // The late iterations: θ/sin θ from sin² θ alone, no square root or division.
+        return v * asin_over_sin(s2);
+    }
     if c > -0.98 {
-        let s = v.norm();
+        let s = s2.sqrt();
         if s < 1e-300 {
             return Vector3::zeros();
         }
@@ -61,6 +66,19 @@ pub(crate) fn rotation_vector(r: &Matrix3<f64>) -> Vector3<f64> {
     } else {
         rotation_log(r)
     }
+}
+
+/// Below this sin² θ (θ < 0.05 rad, θ < π/2) [`rotation_vector`] uses [`asin_over_sin`].
+const SMALL_SIN2: f64 = 0.0025;
+
+/// `asin(s) / s` from `s2 = s²` for `s² <` [`SMALL_SIN2`] (θ/sin θ for θ < π/2):
+/// `1 + s²/6 + 3s⁴/40 + 5s⁶/112 + 35s⁸/1152 + 63s¹⁰/2816 + …`; the first omitted term,
+/// `231s¹²/13312`, is below 5·10⁻¹⁸ there.
+#[inline]
+fn asin_over_sin(s2: f64) -> f64 {
+    1.0 + s2
+        * (1.0 / 6.0
+            + s2 * (3.0 / 40.0 + s2 * (5.0 / 112.0 + s2 * (35.0 / 1152.0 + s2 * (63.0 / 2816.0)))))
 }
 
 /// `atan2(s, c) / s` for `s > 0`: below 0.05 rad a polynomial (the late iterations of a
@@ -676,7 +694,9 @@ fn start_step(q: &[f64], raw_q: &[f64], ev: &Eval, restart: bool) -> IkStep {
 #[cfg(test)]
 // On wasm the tests are wasm_bindgen_tests (run in Node like the other core tests).
 mod tests {
-    use super::angle_over_sin;
+    use super::{SMALL_SIN2, angle_over_sin, asin_over_sin, rotation_vector};
+    use crate::kinematics::orientation::rotation_log;
+    use nalgebra::{Rotation3, Vector3};
     #[cfg(target_arch = "wasm32")]
     use wasm_bindgen_test::wasm_bindgen_test as test;
 
@@ -690,6 +710,43 @@ mod tests {
             assert!(
                 (got - want).abs() <= 1e-14 * want,
                 "θ = {theta}: {got} vs {want}"
+            );
+        }
+    }
+
+    #[test]
+    fn asin_over_sin_is_the_angle_over_its_sine_below_the_switch() {
+        // θ from 10⁻⁸ up to the switch (sin θ = 0.05): within 2 ulp of θ / sin θ.
+        let top = SMALL_SIN2.sqrt().asin();
+        for k in 0..=2000 {
+            let theta = 1e-8 + (top - 1e-8) * k as f64 / 2000.0;
+            let s = theta.sin();
+            if s * s >= SMALL_SIN2 {
+                continue;
+            }
+            let want = theta / s;
+            let got = asin_over_sin(s * s);
+            assert!(
+                (got - want).abs() <= 4.5e-16 * want,
+                "θ = {theta}: {got} vs {want}"
+            );
+        }
+    }
+
+    #[test]
+    fn rotation_vector_matches_the_rotation_log_on_both_sides_of_the_switch() {
+        let axis = Vector3::new(0.3, -0.5, 0.8).normalize();
+        for theta in [1e-9, 1e-5, 0.01, 0.049, 0.0501, 0.051, 0.3, 1.5, 2.9, 3.1] {
+            let r = *Rotation3::from_scaled_axis(axis * theta).matrix();
+            let got = rotation_vector(&r);
+            let want = rotation_log(&r);
+            assert!(
+                (got - want).norm() <= 1e-15 * theta.max(1.0),
+                "θ = {theta}: {got} vs {want}"
+            );
+            assert!(
+                (got.norm() - theta).abs() <= 1e-15 * theta.max(1.0),
+                "θ = {theta}"
             );
         }
     }
