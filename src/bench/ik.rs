@@ -15,7 +15,7 @@ use thiserror::Error;
 use super::stats::{mean, percentile};
 use crate::kinematics::fk::tool_pose;
 use crate::kinematics::ik::{
-    IkMethod, IkSettings, IkSolver, closed_form_solutions, pose_error, target_pose,
+    IkMethod, IkSettings, IkSolver, SeedTable, closed_form_solutions, pose_error, target_pose,
 };
 use crate::kinematics::jacobian::Task;
 use crate::kinematics::presets::preset;
@@ -70,6 +70,24 @@ pub struct BenchConfig {
     pub budget: usize,
     /// The solver's own tolerance (metres and radians), below the success threshold.
     pub solver_tolerance: f64,
+    /// Entries of the seed table of the seed-table rows ([`SeedTable`]).
+    pub seed_table: usize,
+}
+
+/// The default number of entries of the seed-table rows' tables.
+pub const SEED_TABLE_SIZE: usize = 64;
+
+/// The seed of the seed table's random joint vectors (another seed than the targets').
+pub const SEED_TABLE_RNG_SEED: u64 = 0x5EED_7AB1_E000_0015;
+
+/// The seed-table seed for `config`: [`SEED_TABLE_RNG_SEED`], or the next number when the
+/// targets happen to use that one, so that the table never holds the targets' own q.
+pub fn seed_table_rng_seed(config: &BenchConfig) -> u64 {
+    if config.seed == SEED_TABLE_RNG_SEED {
+        SEED_TABLE_RNG_SEED.wrapping_add(1)
+    } else {
+        SEED_TABLE_RNG_SEED
+    }
 }
 
 impl Default for BenchConfig {
@@ -79,6 +97,7 @@ impl Default for BenchConfig {
             seed: 20_240_601,
             budget: 1000,
             solver_tolerance: 5e-6,
+            seed_table: SEED_TABLE_SIZE,
         }
     }
 }
@@ -151,23 +170,29 @@ fn targets(robot: &Robot, config: &BenchConfig) -> Vec<IsometryMatrix3<f64>> {
         .collect()
 }
 
-/// Solves every protocol target from the midpoint of the limits with `method`, timing each
-/// call and verifying each answer with a separate FK; also returns the restarts used.
+/// Solves every protocol target with `method`, from the midpoint of the limits or, given a
+/// table, from its entry nearest the target (the look-up timed with the solve), timing
+/// each call and verifying each answer with a separate FK; also returns the restarts used.
 fn solve_stats(
     robot_id: &str,
     method: IkMethod,
+    table: Option<&SeedTable>,
     config: &BenchConfig,
     now: &dyn Fn() -> f64,
 ) -> Option<(Stats, usize)> {
     let robot = preset(robot_id).ok()?;
-    let seed = robot.mid_limits();
+    let mid = robot.mid_limits();
     let settings = settings(config);
     let mut solver = IkSolver::new();
     let mut stats = Stats::default();
     let mut restarts = 0usize;
     for target in targets(&robot, config) {
         let t0 = now();
-        let r = solver.solve(&robot, &target, Task::FullPose, &seed, method, &settings);
+        let seed = match table {
+            Some(table) => table.nearest(&target).unwrap_or(&mid),
+            None => &mid,
+        };
+        let r = solver.solve(&robot, &target, Task::FullPose, seed, method, &settings);
         let t1 = now();
         let r = r.ok()?;
         stats.times.push(t1 - t0);
@@ -182,7 +207,8 @@ fn solve_stats(
 
 /// Cold numeric solves from the midpoint of the limits.
 fn cold_row(robot_id: &str, config: &BenchConfig, now: &dyn Fn() -> f64) -> Option<Value> {
-    let (mut stats, restarts) = solve_stats(robot_id, IkMethod::DampedLeastSquares, config, now)?;
+    let (mut stats, restarts) =
+        solve_stats(robot_id, IkMethod::DampedLeastSquares, None, config, now)?;
     stats.extra.push((
         "restarts_mean",
         json!(restarts as f64 / config.samples.max(1) as f64),
@@ -195,6 +221,38 @@ fn cold_row(robot_id: &str, config: &BenchConfig, now: &dyn Fn() -> f64) -> Opti
         robot_id,
         "dls",
         "seed at the midpoint of the limits, random restarts within the budget",
+    ))
+}
+
+/// Cold numeric solves from the seed table's entry nearest each target (a table of
+/// [`BenchConfig::seed_table`] joint vectors drawn with [`seed_table_rng_seed`], not the
+/// targets' seed; built once, untimed).
+fn seed_table_row(robot_id: &str, config: &BenchConfig, now: &dyn Fn() -> f64) -> Option<Value> {
+    let robot = preset(robot_id).ok()?;
+    let table = SeedTable::sample(&robot, config.seed_table, seed_table_rng_seed(config));
+    let (mut stats, restarts) = solve_stats(
+        robot_id,
+        IkMethod::DampedLeastSquares,
+        Some(&table),
+        config,
+        now,
+    )?;
+    stats.extra.push((
+        "restarts_mean",
+        json!(restarts as f64 / config.samples.max(1) as f64),
+    ));
+    stats
+        .extra
+        .push(("budget_iterations", json!(config.budget)));
+    stats.extra.push(("seed_table_entries", json!(table.len())));
+    stats
+        .extra
+        .push(("seed_table_rng_seed", json!(seed_table_rng_seed(config))));
+    Some(stats.json(
+        &format!("{robot_id} cold, seed table"),
+        robot_id,
+        "dls",
+        "seed = the sampled q whose tool pose is nearest the target (look-up timed), table drawn with another seed than the targets",
     ))
 }
 
@@ -240,7 +298,7 @@ fn closed_form_row(robot_id: &str, config: &BenchConfig, now: &dyn Fn() -> f64) 
 
 /// The hybrid: the closed-form branch nearest the seed through the solver interface.
 fn hybrid_row(robot_id: &str, config: &BenchConfig, now: &dyn Fn() -> f64) -> Option<Value> {
-    let (mut stats, _) = solve_stats(robot_id, IkMethod::ClosedForm, config, now)?;
+    let (mut stats, _) = solve_stats(robot_id, IkMethod::ClosedForm, None, config, now)?;
     Some(stats.json(
         &format!("{robot_id} closed form, branch nearest the seed"),
         robot_id,
@@ -369,6 +427,8 @@ pub fn run(config: &BenchConfig, now: &dyn Fn() -> f64) -> Value {
         cold_row("ur10", config, now),
         cold_row("ur10-standard", config, now),
         cold_row("panda", config, now),
+        seed_table_row("ur10", config, now),
+        seed_table_row("panda", config, now),
         closed_form_row("ur10", config, now),
         hybrid_row("ur10", config, now),
         drag_row(

@@ -1,10 +1,11 @@
 //! The IK benchmark (TRAC-IK protocol) natively: prints the report as JSON.
 //!
-//! `cargo run --release --no-default-features --bin ikbench [samples] [budget]`
+//! `cargo run --release --no-default-features --bin ikbench [samples] [budget] [seed table entries]`
 
 use std::time::Instant;
 
 use armlab::bench::ik::{BenchConfig, MAX_BUDGET, MAX_SAMPLES, run};
+use armlab::kinematics::ik::MAX_SEED_TABLE;
 
 fn main() {
     let mut config = BenchConfig::default();
@@ -14,6 +15,9 @@ fn main() {
     }
     if let Some(budget) = args.get(1).and_then(|s| s.parse::<usize>().ok()) {
         config.budget = budget.clamp(1, MAX_BUDGET);
+    }
+    if let Some(entries) = args.get(2).and_then(|s| s.parse::<usize>().ok()) {
+        config.seed_table = entries.clamp(1, MAX_SEED_TABLE);
     }
     let start = Instant::now();
     let now = move || start.elapsed().as_secs_f64();

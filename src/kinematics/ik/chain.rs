@@ -1,4 +1,4 @@
-//! The numeric solver's own forward kinematics (docs/kinematics.md §9.4): the DH rows
+//! The numeric solver's own forward kinematics (docs/kinematics.md §8.8): the DH rows
 //! with sin α and cos α computed once per robot, one pass down the chain per iteration
 //! keeping only what the solver reads (each joint's axis and a point on it, and the tool
 //! pose; not the link transforms A_i or the frames the app shows), and the task Jacobian
@@ -215,19 +215,24 @@ impl Chain {
     }
 }
 
-/// Solves `A·y = b` for a symmetric positive definite 6×6 `A` by its `L·D·Lᵀ`
-/// factorisation (L unit lower triangular, D diagonal: Cholesky without square roots),
-/// then forward substitution, division by D and back substitution, written out on arrays
-/// (one division per pivot). `None` when a pivot is not positive (A is not positive
+/// Solves `(A + shift·I)·y = b` for a symmetric 6×6 `A` with `A + shift·I` positive
+/// definite by its `L·D·Lᵀ` factorisation (L unit lower triangular, D diagonal: Cholesky
+/// without square roots), then forward substitution, division by D and back
+/// substitution, written out on arrays (one division per pivot; the shift is added to the
+/// pivots, so `A` is not copied). `None` when a pivot is not positive (not positive
 /// definite to working precision).
-pub(crate) fn solve_spd6(a: &Matrix6<f64>, b: &nalgebra::Vector6<f64>) -> Option<[f64; 6]> {
+pub(crate) fn solve_spd6(
+    a: &Matrix6<f64>,
+    shift: f64,
+    b: &nalgebra::Vector6<f64>,
+) -> Option<[f64; 6]> {
     let mut l = [[0.0f64; 6]; 6];
     let mut dd = [0.0f64; 6];
     let mut inv_d = [0.0f64; 6];
     for j in 0..6 {
         // w[k] = L[j][k]·D[k] for k < j
         let mut w = [0.0f64; 6];
-        let mut d = a[(j, j)];
+        let mut d = a[(j, j)] + shift;
         for k in 0..j {
             w[k] = l[j][k] * dd[k];
             d -= w[k] * l[j][k];

@@ -26,6 +26,7 @@ mod chain;
 mod closed_form;
 mod distinct;
 mod numeric;
+mod seeds;
 
 use nalgebra::{IsometryMatrix3, Matrix3, Vector3};
 
@@ -47,6 +48,7 @@ pub use distinct::{
     configuration_signs, distinct_solutions,
 };
 use numeric::{TaskTarget, Workspace, evaluate};
+pub use seeds::{MAX_SEED_TABLE, SeedTable};
 
 /// The largest change of any joint per [`drag_step`] call when the settings give none
 /// (radians; see [`IkSettings::max_joint_change`] for prismatic joints).

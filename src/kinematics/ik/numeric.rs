@@ -52,8 +52,13 @@ pub(crate) fn rotation_vector(r: &Matrix3<f64>) -> Vector3<f64> {
             r[(1, 0)] - r[(0, 1)],
         );
     let c = 0.5 * (r.trace() - 1.0);
+    let s2 = v.norm_squared();
+    if c > 0.0 && s2 < SMALL_SIN2 {
+        // The late iterations: θ/sin θ from sin² θ alone, no square root or division.
+        return v * asin_over_sin(s2);
+    }
     if c > -0.98 {
-        let s = v.norm();
+        let s = s2.sqrt();
         if s < 1e-300 {
             return Vector3::zeros();
         }
@@ -61,6 +66,19 @@ pub(crate) fn rotation_vector(r: &Matrix3<f64>) -> Vector3<f64> {
     } else {
         rotation_log(r)
     }
+}
+
+/// Below this sin² θ (θ < 0.05 rad, θ < π/2) [`rotation_vector`] uses [`asin_over_sin`].
+const SMALL_SIN2: f64 = 0.0025;
+
+/// `asin(s) / s` from `s2 = s²` for `s² <` [`SMALL_SIN2`] (θ/sin θ for θ < π/2):
+/// `1 + s²/6 + 3s⁴/40 + 5s⁶/112 + 35s⁸/1152 + 63s¹⁰/2816 + …`; the first omitted term,
+/// `231s¹²/13312`, is below 5·10⁻¹⁸ there.
+#[inline]
+fn asin_over_sin(s2: f64) -> f64 {
+    1.0 + s2
+        * (1.0 / 6.0
+            + s2 * (3.0 / 40.0 + s2 * (5.0 / 112.0 + s2 * (35.0 / 1152.0 + s2 * (63.0 / 2816.0)))))
 }
 
 /// `atan2(s, c) / s` for `s > 0`: below 0.05 rad a polynomial (the late iterations of a
@@ -160,8 +178,10 @@ const DLS_STATIONARY: f64 = 1e-9;
 /// (weight 1) the orientation dominated the first steps and attempts stalled more often
 /// with the orientation met and the position not (docs/kinematics.md §8.3).
 const LINEAR_WEIGHT: f64 = 4.0;
-/// An attempt that does not halve its cost every this many iterations is restarted.
-const SLOW_WINDOW: usize = 8;
+/// An attempt that does not halve its cost every this many iterations is restarted (8
+/// before the joint locking of §8.9; 6 cut the Panda's p99 by about a tenth and the
+/// UR10's too, success unchanged, in the benchmark of README "Benchmarks").
+const SLOW_WINDOW: usize = 6;
 
 /// The workspace of the numeric methods, sized to the robot on first use.
 #[derive(Debug, Clone)]
@@ -180,6 +200,8 @@ pub(crate) struct Workspace {
     dq: Vec<f64>,
     best: Vec<f64>,
     scratch: Vec<f64>,
+    /// Joints held at a limit in the current step ([`Workspace::damped_step`]).
+    locked: Vec<bool>,
 }
 
 impl Default for Workspace {
@@ -195,6 +217,7 @@ impl Default for Workspace {
             dq: Vec::new(),
             best: Vec::new(),
             scratch: Vec::new(),
+            locked: Vec::new(),
         }
     }
 }
@@ -232,6 +255,7 @@ impl Workspace {
         ] {
             v.resize(n, 0.0);
         }
+        self.locked.resize(n, false);
         if self.jt.ncols() != n {
             self.jt = Matrix6xX::zeros(n);
         }
@@ -400,6 +424,41 @@ impl Workspace {
         }
     }
 
+    /// The damped step `dq = Jᵀ(J·Jᵀ + λ²I)⁻¹·e` into `dq`; returns ‖dq‖, or `None`
+    /// when the system is not positive definite. A joint that cannot move is locked
+    /// (docs/kinematics.md §8.9): on a limit it cannot wrap past, with the gradient
+    /// `J_iᵀ·e` pointing outward. Its column leaves `J·Jᵀ` (a rank-one downdate) and its
+    /// step is zero, so the other joints no longer count on a motion it never makes.
+    fn damped_step(&mut self, ctx: &Ctx, lambda2: f64, e: &Vector6<f64>) -> Option<f64> {
+        let mut reduced: Option<Matrix6<f64>> = None;
+        for (((lock, joint), &q), c) in self
+            .locked
+            .iter_mut()
+            .zip(&ctx.robot.joints)
+            .zip(&self.q)
+            .zip(self.jt.column_iter())
+        {
+            // Most joints are off their limits: the gradient only for those on one.
+            *lock = (q <= joint.limits.min || q >= joint.limits.max)
+                && locks(joint, ctx.wrap, q, c.dot(e));
+            if *lock {
+                *reduced.get_or_insert(self.m) -= c * c.transpose();
+            }
+        }
+        let y = Vector6::from(solve_spd6(reduced.as_ref().unwrap_or(&self.m), lambda2, e)?);
+        let mut norm2 = 0.0;
+        for ((d, c), &lock) in self
+            .dq
+            .iter_mut()
+            .zip(self.jt.column_iter())
+            .zip(&self.locked)
+        {
+            *d = if lock { 0.0 } else { c.dot(&y) };
+            norm2 += *d * *d;
+        }
+        Some(norm2.sqrt())
+    }
+
     /// `dq = jtᵀ·y`; returns ‖dq‖.
     fn back_substitute(&mut self, y: &Vector6<f64>) -> f64 {
         let mut norm2 = 0.0;
@@ -464,15 +523,8 @@ impl Workspace {
                 _ => {
                     let lambda2 = mu * (ev.cost + DLS_FLOOR);
                     damping = lambda2.sqrt();
-                    let mut a = self.m;
-                    for k in 0..6 {
-                        a[(k, k)] += lambda2;
-                    }
-                    match solve_spd6(&a, &ev.e) {
-                        Some(y) => {
-                            let y = Vector6::from(y);
-                            self.back_substitute(&y)
-                        }
+                    match self.damped_step(ctx, lambda2, &ev.e) {
+                        Some(step) => step,
                         None => {
                             mu *= DLS_MU_UP;
                             if mu > DLS_MU_MAX {
@@ -575,6 +627,18 @@ fn keep(joint: &Joint, raw: f64, current: f64) -> f64 {
     }
 }
 
+/// Whether joint `joint` at `q` cannot move in direction `dq`: it sits on a limit that
+/// keeping clamps to (a prismatic joint, or a revolute one whose range is under a turn
+/// while values are kept) and `dq` points outward.
+#[inline]
+fn locks(joint: &Joint, wrap: bool, q: f64, dq: f64) -> bool {
+    let clamps = match joint.kind {
+        JointKind::Prismatic => true,
+        JointKind::Revolute => wrap && joint.limits.max - joint.limits.min < std::f64::consts::TAU,
+    };
+    clamps && ((q <= joint.limits.min && dq < 0.0) || (q >= joint.limits.max && dq > 0.0))
+}
+
 /// [`keep`] when `wrap` is on; else the raw value (a prismatic joint still clamps).
 #[inline]
 fn keep_or_raw(wrap: bool, joint: &Joint, raw: f64, current: f64) -> f64 {
@@ -630,7 +694,9 @@ fn start_step(q: &[f64], raw_q: &[f64], ev: &Eval, restart: bool) -> IkStep {
 #[cfg(test)]
 // On wasm the tests are wasm_bindgen_tests (run in Node like the other core tests).
 mod tests {
-    use super::angle_over_sin;
+    use super::{SMALL_SIN2, angle_over_sin, asin_over_sin, rotation_vector};
+    use crate::kinematics::orientation::rotation_log;
+    use nalgebra::{Rotation3, Vector3};
     #[cfg(target_arch = "wasm32")]
     use wasm_bindgen_test::wasm_bindgen_test as test;
 
@@ -644,6 +710,43 @@ mod tests {
             assert!(
                 (got - want).abs() <= 1e-14 * want,
                 "θ = {theta}: {got} vs {want}"
+            );
+        }
+    }
+
+    #[test]
+    fn asin_over_sin_is_the_angle_over_its_sine_below_the_switch() {
+        // θ from 10⁻⁸ up to the switch (sin θ = 0.05): within 2 ulp of θ / sin θ.
+        let top = SMALL_SIN2.sqrt().asin();
+        for k in 0..=2000 {
+            let theta = 1e-8 + (top - 1e-8) * k as f64 / 2000.0;
+            let s = theta.sin();
+            if s * s >= SMALL_SIN2 {
+                continue;
+            }
+            let want = theta / s;
+            let got = asin_over_sin(s * s);
+            assert!(
+                (got - want).abs() <= 4.5e-16 * want,
+                "θ = {theta}: {got} vs {want}"
+            );
+        }
+    }
+
+    #[test]
+    fn rotation_vector_matches_the_rotation_log_on_both_sides_of_the_switch() {
+        let axis = Vector3::new(0.3, -0.5, 0.8).normalize();
+        for theta in [1e-9, 1e-5, 0.01, 0.049, 0.0501, 0.051, 0.3, 1.5, 2.9, 3.1] {
+            let r = *Rotation3::from_scaled_axis(axis * theta).matrix();
+            let got = rotation_vector(&r);
+            let want = rotation_log(&r);
+            assert!(
+                (got - want).norm() <= 1e-15 * theta.max(1.0),
+                "θ = {theta}: {got} vs {want}"
+            );
+            assert!(
+                (got.norm() - theta).abs() <= 1e-15 * theta.max(1.0),
+                "θ = {theta}"
             );
         }
     }
