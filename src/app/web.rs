@@ -466,6 +466,7 @@ fn install_hook(window: &web_sys::Window) {
             .unwrap_or(JsValue::NULL)
     });
     set_field(&obj, "memoryBytes", &memory.into_js_value());
+    install_workspace_benchmark(&obj);
     // For the browser test of the crash screen: the next frame panics.
     let panic = Closure::<dyn Fn()>::new(|| {
         PANIC_REQUESTED.with(|p| p.set(true));
@@ -473,6 +474,33 @@ fn install_hook(window: &web_sys::Window) {
     });
     set_field(&obj, "panicForTest", &panic.into_js_value());
     set_field(window, "armlab", &obj);
+}
+
+/// `window.armlab.workspaceBenchmark(samples)`: the workspace benchmark in the page
+/// (issue 12; printed by the browser test, not asserted): the UR10's cloud of `samples`
+/// tool positions with manipulability (the determinant) and, separately, with σ_min;
+/// milliseconds each, one thread.
+fn install_workspace_benchmark(obj: &js_sys::Object) {
+    let bench = Closure::<dyn Fn(u32) -> JsValue>::new(|samples: u32| {
+        use crate::kinematics::workspace::{WorkspaceCloud, WorkspaceMeasure};
+        let Ok(robot) = crate::kinematics::preset("ur10") else {
+            return JsValue::NULL;
+        };
+        let o = js_sys::Object::new();
+        for (key, measure) in [
+            ("manipulability_ms", WorkspaceMeasure::Manipulability),
+            ("sigma_min_ms", WorkspaceMeasure::SigmaMin),
+        ] {
+            let start = super::hook::now_ms();
+            let mut cloud = WorkspaceCloud::new(&robot, measure, samples as usize, 0x5eed);
+            cloud.fill(samples as usize);
+            let ms = super::hook::now_ms() - start;
+            set_field(&o, key, &ms.into());
+            set_field(&o, "samples", &(cloud.len() as f64).into());
+        }
+        o.into()
+    });
+    set_field(obj, "workspaceBenchmark", &bench.into_js_value());
 }
 
 /// Sets `object[key] = value`, logging a failure.

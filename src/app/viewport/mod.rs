@@ -52,7 +52,15 @@ pub struct Viewport {
     rect: Option<Rect>,
     grid_step: f64,
     rendered: bool,
+    /// Where and when (egui's input time, s) the press of the current drag began: a
+    /// release near it soon after is a click (on a ghost arm).
+    press: Option<(egui::Pos2, f64)>,
 }
+
+/// A press released within this distance (points) of where it began is a click.
+const CLICK_DISTANCE: f32 = 6.0;
+/// ... and within this time (s).
+const CLICK_SECONDS: f64 = 0.8;
 
 impl Viewport {
     /// A viewport drawing with wgpu when a render state is given (none: a placeholder
@@ -68,6 +76,7 @@ impl Viewport {
             rect: None,
             grid_step: 0.0,
             rendered: false,
+            press: None,
         }
     }
 
@@ -154,7 +163,14 @@ impl Viewport {
             // the arm to that solution; on the target it was only a grab.
             let grabbed = self.dragging();
             self.drag = None;
-            let click = ui.input(|i| i.pointer.any_click().then(|| i.pointer.interact_pos()));
+            // egui's own click flag, or a release near the press and soon after it: in
+            // the browser egui reports no click for a widget that senses drags only.
+            let (now, at, egui_click) =
+                ui.input(|i| (i.time, i.pointer.interact_pos(), i.pointer.any_click()));
+            let near_press = self.press.take().zip(at).is_some_and(|((p, t), at)| {
+                at.distance(p) <= CLICK_DISTANCE && now - t <= CLICK_SECONDS
+            });
+            let click = (egui_click || near_press).then_some(at);
             if let (false, Some(Some(at))) = (grabbed, click) {
                 let view = view_geometry(&self.camera, model, rect);
                 if let Some(i) = ghosts::pick(model, &view, to_array(at)) {
@@ -251,6 +267,7 @@ impl Viewport {
                 .or(response.interact_pointer_pos());
             let primary = response.dragged_by(egui::PointerButton::Primary);
             self.drag = Some(self.start_drag(model, press, primary && !shift, axes));
+            self.press = press.map(|p| (p, ui.input(|i| i.time)));
         }
         let height = response.rect.height().max(1.0) as f64;
         if response.dragged() {
