@@ -74,8 +74,8 @@ build_web() {
 }
 
 # The URDF module: the JS API built with features js,urdf (no GUI) as a second wasm module
-# in dist/urdf/, which the page imports only when a URDF file is opened or saved (URDF
-# support, urdf-rs and its XML crates, adds ~160 kB gzip: more than the first load's budget
+# in dist/urdf/, which the page imports only when a URDF file is opened or saved (the module
+# is ~225 kB gzip, urdf-rs and its XML crates included: more than the first load's budget
 # leaves). Trunk runs this as a build hook (Trunk.toml), so `trunk build` and `trunk serve`
 # make it too, beside the page and with its settings: build_web's profile variables, and in
 # release wasm-opt with index.html's data-wasm-opt level and data-wasm-opt-params. Its own
