@@ -78,3 +78,34 @@ pub fn robot_to_urdf(robot: &str) -> Result<String, JsError> {
         crate::kinematics::robot_from_json(robot).map_err(|e| JsError::new(&e.to_string()))?;
     crate::kinematics::urdf::robot_to_urdf(&robot).map_err(|e| JsError::new(&e.to_string()))
 }
+
+/// For the page's URDF upload (the page loads this module only then): a URDF text as
+/// `{"robot": <robot file>, "meshes": N}`, N the file's mesh visuals (ArmLab reads the
+/// joints, not the visuals, and draws its own parts). A bad file throws the core's
+/// sentence naming the element, in `lang` (`en` or `fi`; another id reads as `en`).
+/// Feature `urdf`.
+#[cfg(feature = "urdf")]
+#[wasm_bindgen]
+pub fn urdf_import(urdf: &str, lang: &str) -> Result<String, JsError> {
+    let lang = crate::i18n::Lang::from_id(lang).unwrap_or_default();
+    let robot = crate::kinematics::urdf::robot_from_urdf(urdf)
+        .map_err(|e| JsError::new(&e.sentence(lang)))?;
+    Ok(format!(
+        "{{\"robot\":{},\"meshes\":{}}}",
+        crate::kinematics::robot_to_json(&robot),
+        mesh_visuals(urdf)
+    ))
+}
+
+/// How many of a URDF text's link visuals are meshes (0 when it does not parse).
+#[cfg(feature = "urdf")]
+fn mesh_visuals(urdf: &str) -> usize {
+    urdf_rs::read_from_string(urdf).map_or(0, |robot| {
+        robot
+            .links
+            .iter()
+            .flat_map(|link| &link.visual)
+            .filter(|visual| matches!(visual.geometry, urdf_rs::Geometry::Mesh { .. }))
+            .count()
+    })
+}

@@ -72,3 +72,39 @@ build_web() {
        CARGO_PROFILE_RELEASE_CODEGEN_UNITS=1 \
        trunk build --release --offline "$@")
 }
+
+# The URDF module: the JS API built with features js,urdf (no GUI) as a second wasm module
+# in dist/urdf/, which the page imports only when a URDF file is opened or saved (the module
+# is ~225 kB gzip, urdf-rs and its XML crates included: more than the first load's budget
+# leaves). Trunk runs this as a build hook (Trunk.toml), so `trunk build` and `trunk serve`
+# make it too, beside the page and with its settings: build_web's profile variables, and in
+# release wasm-opt with index.html's data-wasm-opt level and data-wasm-opt-params. Its own
+# target folder inside the page's: the page's binary and this library are both armlab.wasm,
+# and one would overwrite the other. Writes $TRUNK_STAGING_DIR/urdf/armlab_urdf.js and
+# armlab_urdf-HASH_bg.wasm (HASH from cargo's wasm, so a new build never pairs with an old
+# cached wasm); the bindgen'd and optimised result is kept per HASH, so a build that changes
+# nothing here costs cargo's freshness check and a copy.
+build_urdf_module() {
+  local out="${TRUNK_STAGING_DIR:?set by trunk: build_urdf_module is its build hook (Trunk.toml)}/urdf"
+  local target="$CARGO_TARGET_DIR/urdf-module" profile=release
+  local flags=(--lib --crate-type cdylib --target wasm32-unknown-unknown --no-default-features --features js,urdf --locked)
+  if [ "${TRUNK_PROFILE:-release}" = release ]; then flags+=(--release); else profile=debug; fi
+  (cd "$ROOT" && CARGO_TARGET_DIR="$target" cargo rustc -q "${flags[@]}") || return 1
+  local wasm="$target/wasm32-unknown-unknown/$profile/armlab.wasm"
+  local hash; hash="$(sha256sum "$wasm" | cut -c1-16)"
+  local kept="$target/bindgen/$hash"
+  if [ ! -f "$kept/armlab_urdf.js" ]; then
+    rm -rf "$target/bindgen" && mkdir -p "$kept.tmp" || return 1
+    wasm-bindgen --target web --no-typescript --out-dir "$kept.tmp" --out-name "armlab_urdf-$hash" "$wasm" || return 1
+    mv "$kept.tmp/armlab_urdf-$hash.js" "$kept.tmp/armlab_urdf.js"
+    if [ "$profile" = release ]; then
+      local level params
+      level="$(sed -n 's/.*data-wasm-opt="\([^"]*\)".*/\1/p' "$ROOT/index.html" | head -1)"
+      params="$(sed -n 's/.*data-wasm-opt-params="\([^"]*\)".*/\1/p' "$ROOT/index.html" | head -1)"
+      # shellcheck disable=SC2086 # params is a list of flags
+      wasm-opt "-O${level:-z}" $params "$kept.tmp/armlab_urdf-${hash}_bg.wasm" -o "$kept.tmp/armlab_urdf-${hash}_bg.wasm" || return 1
+    fi
+    mv "$kept.tmp" "$kept"
+  fi
+  mkdir -p "$out" && cp "$kept"/* "$out/"
+}

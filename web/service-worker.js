@@ -5,7 +5,8 @@
 //
 // What the page needs is those files: index.html, the JS glue, the wasm, the manifest and
 // the icon. The fonts are compiled into the wasm (include_bytes! in src/app/style.rs), so
-// caching the wasm caches the fonts; the app fetches nothing else at run time.
+// caching the wasm caches the fonts. The one file the app fetches at run time, the URDF
+// module (urdf/, on the first URDF file opened or saved), is in the build's list too.
 //
 // - install: puts this build's files into the cache named by its version.
 // - activate: deletes every other ArmLab cache of this scope, and takes over open pages.

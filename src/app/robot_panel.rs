@@ -238,17 +238,54 @@ impl RobotPanel {
     }
 
     /// Loads a robot file's text; a bad file leaves the robot as it is and says why.
-    pub fn load_robot_text(&mut self, model: &mut Model, text: &str) {
+    /// Returns whether the robot was loaded.
+    pub fn load_robot_text(&mut self, model: &mut Model, text: &str) -> bool {
         match robot_from_json(text) {
             Ok(robot) => {
                 self.load_robot(model, robot, RobotSource::Custom);
                 model.dismiss_message();
+                true
             }
             Err(e) => {
                 let reason = e.sentence(model.settings().lang);
                 model.set_message(Message::error(trf(model, Key::FileNotLoaded, &[&reason])));
+                false
             }
         }
+    }
+
+    /// What a picked or dropped file, or a URDF download, gave (the browser). A URDF file
+    /// arrives as the robot file the URDF module made of it and takes a robot file's way
+    /// in; a bad one gets the robot file's message with the core's sentence, and the
+    /// robot stays.
+    #[cfg(target_arch = "wasm32")]
+    fn file_event(&mut self, model: &mut Model, event: super::web::FileEvent) {
+        use super::web::FileEvent;
+        let message = match event {
+            FileEvent::Robot(text) => {
+                self.load_robot_text(model, &text);
+                return;
+            }
+            FileEvent::UrdfLoading => Message::info(tr(model, Key::UrdfLoading)),
+            FileEvent::Urdf { robot, meshes } => {
+                if !self.load_robot_text(model, &robot) || meshes == 0 {
+                    return;
+                }
+                let name = model.robot().name.clone();
+                Message::info(trf(model, Key::UrdfMeshesNotDrawn, &[&name, &meshes]))
+            }
+            FileEvent::UrdfRejected(sentence) => {
+                Message::error(trf(model, Key::FileNotLoaded, &[&sentence]))
+            }
+            FileEvent::UrdfUnavailable(why) => {
+                Message::error(trf(model, Key::UrdfUnavailable, &[&why]))
+            }
+            FileEvent::UrdfSaved(name) => Message::info(trf(model, Key::SavedUrdf, &[&name])),
+            FileEvent::UrdfSaveFailed(why) => {
+                Message::error(trf(model, Key::DownloadFailed, &[&why]))
+            }
+        };
+        model.set_message(message);
     }
 
     /// Takes the model's table when a robot was loaded from elsewhere (a link).
@@ -289,11 +326,13 @@ impl RobotPanel {
         }
     }
 
-    fn file_buttons(&mut self, model: &mut Model, ui: &mut egui::Ui) {
+    fn file_buttons(&mut self, model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
         super::style::wrapped(ui, |ui| {
             #[cfg(target_arch = "wasm32")]
             {
-                if ui.button(tr(model, Key::SaveRobotDownload)).clicked() {
+                let save = ui.button(tr(model, Key::SaveRobotDownload));
+                points.insert("robot-save", save.rect.center());
+                if save.clicked() {
                     let text = robot_to_json(model.robot());
                     let name = robot_file_name(model.robot());
                     let message = match super::web::download(&name, &text) {
@@ -302,7 +341,18 @@ impl RobotPanel {
                     };
                     model.set_message(message);
                 }
-                if ui.button(tr(model, Key::LoadRobotFile)).clicked() {
+                // URDF support is a module of its own, fetched on the first use.
+                let urdf = ui
+                    .button(tr(model, Key::SaveRobotUrdf))
+                    .on_hover_text(tr(model, Key::SaveRobotUrdfHint));
+                points.insert("robot-urdf", urdf.rect.center());
+                if urdf.clicked() {
+                    let name = robot_file_name(model.robot()).replace(".json", ".urdf");
+                    super::web::download_urdf(name, robot_to_json(model.robot()));
+                }
+                let load = ui.button(tr(model, Key::LoadRobotFile));
+                points.insert("robot-load", load.rect.center());
+                if load.clicked() {
                     super::web::open_file_chooser();
                 }
             }
@@ -319,7 +369,13 @@ impl RobotPanel {
                 }
             }
         });
-        ui.label(egui::RichText::new(tr(model, Key::DropHint)).small());
+        #[cfg(not(target_arch = "wasm32"))]
+        let _ = points;
+        #[cfg(target_arch = "wasm32")]
+        let hint = Key::DropHintUrdf;
+        #[cfg(not(target_arch = "wasm32"))]
+        let hint = Key::DropHint;
+        ui.label(egui::RichText::new(tr(model, hint)).small());
     }
 
     /// Robot files dropped on the window or picked in the browser's chooser.
@@ -328,7 +384,9 @@ impl RobotPanel {
         for file in dropped {
             #[cfg(not(target_arch = "wasm32"))]
             match file.bytes() {
-                Ok(bytes) => self.load_robot_text(model, &String::from_utf8_lossy(&bytes)),
+                Ok(bytes) => {
+                    self.load_robot_text(model, &String::from_utf8_lossy(&bytes));
+                }
                 Err(e) => {
                     let text = trf(model, Key::DroppedUnreadable, &[&e]);
                     model.set_message(Message::error(text));
@@ -338,8 +396,8 @@ impl RobotPanel {
             super::web::read_dropped_file(file);
         }
         #[cfg(target_arch = "wasm32")]
-        if let Some(text) = super::web::take_uploaded_file() {
-            self.load_robot_text(model, &text);
+        for event in super::web::take_file_events() {
+            self.file_event(model, event);
         }
     }
 
@@ -357,7 +415,9 @@ impl RobotPanel {
         }
         match choice {
             Some(Choice::Open(path)) => match std::fs::read_to_string(&path) {
-                Ok(text) => self.load_robot_text(model, &text),
+                Ok(text) => {
+                    self.load_robot_text(model, &text);
+                }
                 Err(e) => {
                     let text = trf(model, Key::FileUnreadable, &[&path.display(), &e]);
                     model.set_message(Message::error(text));
@@ -395,7 +455,7 @@ impl Panel for RobotPanel {
                 .show(ui, |ui| dh_table(&mut self.editor, model, ui, points));
         points.insert("dh-header", header.header_response.rect.center());
         super::convention_view::both_conventions_ui(model, ui);
-        self.file_buttons(model, ui);
+        self.file_buttons(model, ui, points);
         self.receive_files(model, ui);
     }
 }

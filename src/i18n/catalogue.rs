@@ -382,6 +382,15 @@ catalogue! {
     UrdfPrismaticWithoutLimits: "The URDF joint \"{0}\" is prismatic and needs finite lower and upper limits." / "URDF-nivel \"{0}\" on liukuva ja tarvitsee äärelliset ala- ja ylärajat.",
     UrdfNoMovingJoints: "The URDF chain has no moving joint." / "URDF-ketjussa ei ole liikkuvaa niveltä.",
 
+    // --- URDF in the page (its own module, fetched on first use) ------------------------
+    SaveRobotUrdf: "Save as URDF" / "Tallenna URDF-tiedostona",
+    SaveRobotUrdfHint: "Download the robot as a URDF file (links and joints, in metres)" / "Lataa robotti URDF-tiedostona (linkit ja nivelet, metreinä)",
+    DropHintUrdf: "Or drop a robot file (.json) or a URDF file (.urdf) onto the page." / "Tai pudota robottitiedosto (.json) tai URDF-tiedosto (.urdf) sivulle.",
+    UrdfLoading: "Loading URDF support…" / "Ladataan URDF-tukea…",
+    UrdfUnavailable: "URDF support could not be loaded ({0}); robot files (.json) still open." / "URDF-tukea ei voitu ladata ({0}); robottitiedostot (.json) aukeavat silti.",
+    UrdfMeshesNotDrawn: "Loaded {0}. Its meshes ({1}) are not drawn: ArmLab draws its own boxes and cylinders along the DH table." / "Ladattiin {0}. Sen meshejä ({1}) ei piirretä: ArmLab piirtää omat laatikkonsa ja lieriönsä DH-taulukon mukaan.",
+    SavedUrdf: "Saved the robot as a URDF download ({0})." / "Robotti tallennettiin URDF-latauksena ({0}).",
+
     // --- The core's errors and reports: the motion lab ----------------------------------
     MotionNotFinite: "Not a valid value for {0}: it must be a finite number, not {1}." / "Arvo ei kelpaa ({0}): sen on oltava äärellinen luku, ei {1}.",
     MotionNegative: "Not a valid value for {0}: it cannot be negative ({1})." / "Arvo ei kelpaa ({0}): se ei voi olla negatiivinen ({1}).",
