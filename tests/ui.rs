@@ -832,3 +832,69 @@ fn both_conventions_are_shown_side_by_side_and_agree() {
     assert!(number < 1e-9, "{text}");
     h.snapshot("both_conventions");
 }
+
+#[test]
+fn with_move_on_the_arm_drives_to_the_answer_and_the_motion_panel_plots_it() {
+    use armlab::kinematics::motion::Controller;
+    let mut h = harness("#robot=rrr&q=0,0.5,-1&panels=ik,motion");
+    h.get_by_label("Move: drive to the IK answer").click();
+    h.run_steps(1);
+    assert!(h.state().model().motion().on());
+    let start = h.state().model().q().to_vec();
+    let mut target = *h.state().model().target();
+    target.translation.vector += nalgebra::Vector3::new(-150.0, 120.0, 80.0);
+    let distance0 = (h.state().model().fk().tool_position() - target.translation.vector).norm();
+    h.state_mut().model_mut().set_target(target);
+    h.get_by_label("Solve").click();
+    // kittest's frames are 0.25 s, each simulated as 0.1 s (the frame time is capped).
+    h.run_steps(1);
+    let d1 = (h.state().model().fk().tool_position() - target.translation.vector).norm();
+    assert!(
+        d1 > 1.0 && d1 < distance0,
+        "after one frame the arm is on its way: {d1} of {distance0}"
+    );
+    assert_ne!(h.state().model().q(), &start[..]);
+    h.run_steps(60);
+    let model = h.state().model();
+    assert_eq!(model.ik().reach, Reach::Reached, "{:?}", model.ik());
+    assert!(model.ik().position_error < 1e-3);
+    let sim = model.motion().sim().expect("the simulation runs");
+    assert!(sim.time() > 5.0, "simulated {} s", sim.time());
+    for (i, m) in sim.measures().iter().enumerate() {
+        // P on a first-order lag with K·τ = 0.1 < 1/4: no overshoot, settled.
+        assert!(
+            m.overshoot <= 1e-9,
+            "joint {}: overshoot {}",
+            i + 1,
+            m.overshoot
+        );
+        assert!(m.settling_time.is_some(), "joint {} settled", i + 1);
+        assert!(m.error.abs() < 1e-4, "joint {}: error {}", i + 1, m.error);
+    }
+    assert!(
+        model.motion().trail().len() > 10,
+        "the tool's path is kept: {} points",
+        model.motion().trail().len()
+    );
+    // A negative gain gets a sentence and K stays 5.
+    h.get_by_role_and_label(Role::TextInput, "K (1/s)").click();
+    h.run_steps(1);
+    h.key_press(egui::Key::Backspace);
+    h.get_by_role_and_label(Role::TextInput, "K (1/s)")
+        .type_text("-3");
+    h.run_steps(2);
+    assert!(
+        h.query_by_label_contains("must be above zero").is_some(),
+        "the sentence shows"
+    );
+    assert_eq!(
+        h.state().model().motion().settings().controller,
+        Controller::Proportional { gain: 5.0 }
+    );
+    // The Motion panel alone in its column: its measures and plots in sight.
+    let mut settings = h.state().model().settings().clone();
+    settings.set_panel_open(armlab::app::settings::PanelKind::Ik, false);
+    h.state_mut().model_mut().set_settings(settings);
+    h.run_steps(2);
+    h.snapshot("motion_panel_plots");
+}

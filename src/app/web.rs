@@ -426,6 +426,7 @@ fn install_hook(window: &web_sys::Window) {
                     ("scene", t.scene_ms),
                     ("render", t.render_ms),
                     ("workspace", t.workspace_ms),
+                    ("motion", t.motion_ms),
                 ] {
                     set_field(&o, key, &ms.into());
                 }
