@@ -898,3 +898,38 @@ fn with_move_on_the_arm_drives_to_the_answer_and_the_motion_panel_plots_it() {
     h.run_steps(2);
     h.snapshot("motion_panel_plots");
 }
+
+#[test]
+fn the_motion_panel_fits_a_projector_and_a_phone() {
+    use armlab::app::settings::PanelKind;
+    for (size, min_share) in [([1024.0, 768.0], 0.5), ([390.0, 844.0], 0.99)] {
+        let mut h = harness_at(
+            "#robot=ur10&panels=joints,motion&move=on&ctrl=pid&gains=100,200,20",
+            size,
+        );
+        if size[0] < 900.0 {
+            h.state_mut().set_sheet(Some(PanelKind::Motion));
+        }
+        h.run_steps(3);
+        let share = view_share_and_points(&h, size[0]);
+        assert!(share >= min_share, "{size:?}: the view has {share}");
+        // The panel's controls lie inside the window, left of the view in the wide layout.
+        let view = h.state().viewport().rect().expect("a view");
+        for label in ["Move: drive to the IK answer", "Kp", "Ki", "Kd"] {
+            let node = h.get_by_label(label);
+            let rect = node.rect();
+            assert!(
+                rect.min.x >= 0.0 && rect.max.x <= size[0],
+                "{size:?}: {label} at {rect:?}"
+            );
+            if size[0] >= 900.0 {
+                assert!(
+                    rect.max.x <= view.min.x,
+                    "{size:?}: {label} beside the view"
+                );
+            } else {
+                assert!(rect.min.y >= view.max.y, "{size:?}: {label} under the view");
+            }
+        }
+    }
+}

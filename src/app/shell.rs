@@ -118,6 +118,9 @@ impl SidePanels {
         egui::Panel::bottom("armlab_tabs")
             .resizable(false)
             .show(ui, |ui| {
+                // Five tabs share a phone's 390 points: narrow gaps keep "Matrices" (and
+                // the Finnish "Matriisit") on one line.
+                ui.spacing_mut().item_spacing.x = 2.0;
                 ui.columns(PanelKind::ALL.len(), |cols| {
                     for (col, kind) in cols.iter_mut().zip(PanelKind::ALL) {
                         let open = *sheet == Some(kind);
