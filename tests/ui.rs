@@ -933,3 +933,43 @@ fn the_motion_panel_fits_a_projector_and_a_phone() {
         }
     }
 }
+
+#[test]
+fn a_motion_into_the_base_stops_at_the_last_free_pose_and_names_the_parts() {
+    use armlab::kinematics::ForwardKinematics;
+    use armlab::kinematics::collision::CollisionChecker;
+    let mut h = harness("#robot=ur10&move=on&collide=on&ctrl=quintic&panels=motion");
+    let robot = h.state().model().robot().clone();
+    // The folded UR10 of tests/collision.rs: the wrist comes down onto the base.
+    let mut folded = robot.home();
+    folded[1] = 0.0;
+    folded[2] = (-150f64).to_radians();
+    h.state_mut()
+        .model_mut()
+        .set_motion_goal(&folded)
+        .expect("a valid goal");
+    h.run_steps(60);
+    let model = h.state().model();
+    let message = model.message().map(|m| m.text.clone()).unwrap_or_default();
+    assert!(
+        message.starts_with("Contact: ") && message.contains("stopped at the last collision-free"),
+        "{message}"
+    );
+    assert!(
+        model.motion().colliding().iter().any(|c| *c),
+        "parts drawn red"
+    );
+    assert!(!model.motion().moving(), "the motion stopped");
+    let q = model.q().to_vec();
+    assert!(
+        (q[2] - folded[2]).abs() > 0.05,
+        "the arm did not reach the folded pose: {q:?}"
+    );
+    let fk = ForwardKinematics::new(&robot, &q).expect("a valid q");
+    let mut checker = CollisionChecker::new(true, vec![]).expect("a checker");
+    assert!(
+        checker.check(&robot, &fk).is_free(),
+        "it rests where nothing touches"
+    );
+    h.snapshot("motion_collision_stop");
+}
