@@ -80,6 +80,7 @@ test('with move on, the arm drives to the target with each controller', async ()
   const start = '#robot=rrr&q=0,0.5,-1&task=position&panels=ik,motion';
   const target = `target=${goal.map((v) => v.toFixed(6)).join(',')},0,0,0`;
   const results = {};
+  const totals = { ms: 0, steps: 0 };
   for (const { ctrl, gains, tol } of CONTROLLERS) {
     await openHash(page, `${start}&${target}&move=on&ctrl=${ctrl}&gains=${gains}&timescale=2`);
     let s = await state(page);
@@ -97,6 +98,10 @@ test('with move on, the arm drives to the target with each controller', async ()
       if (s.motion.at_rest && s.motion.time > 0.2) break;
       if (s.motion.time > 8) break;
     }
+    for (const f of await page.evaluate(() => window.armlab.frameTimes())) {
+      totals.ms += f.motion;
+      totals.steps += f.motion_steps;
+    }
     const worst = Math.max(...s.motion.error.map(Math.abs));
     results[ctrl] = { final_error: worst, position_error: s.position_error, simulated_s: s.motion.time };
     assert.ok(worst < tol, `${ctrl}: final joint error ${worst} below ${tol}`);
@@ -105,6 +110,8 @@ test('with move on, the arm drives to the target with each controller', async ()
     if (ctrl !== 'onoff') assert.ok(s.reached, `${ctrl}: the target is reached`);
   }
   measurements.controllers = results;
+  measurements.motion_us_per_step = (1000 * totals.ms) / Math.max(1, totals.steps);
+  measurements.motion_steps = totals.steps;
   assert.deepEqual(errors, []);
   await ctx.close();
 });
@@ -132,6 +139,8 @@ test('driving with collision checks on: the cost per frame', async () => {
     frames: moving.length,
     motion_ms_p50: quantile(moving.map((f) => f.motion), 0.5),
     motion_ms_p95: quantile(moving.map((f) => f.motion), 0.95),
+    steps_per_frame_p50: quantile(moving.map((f) => f.motion_steps), 0.5),
+    motion_us_per_step: 1000 * moving.reduce((a, f) => a + f.motion, 0) / Math.max(1, moving.reduce((a, f) => a + f.motion_steps, 0)),
     frame_ms_p95: quantile(moving.map((f) => f.app + f.render), 0.95),
     contact: s.motion.contact,
   };

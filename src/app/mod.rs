@@ -76,6 +76,8 @@ pub struct FrameTime {
     pub workspace_ms: f64,
     /// Of `app_ms`: the motion simulation's steps (and their collision checks).
     pub motion_ms: f64,
+    /// The simulation steps (1 ms each) run in the frame.
+    pub motion_steps: f64,
 }
 
 /// What the device says before any link is read: the browser's language and whether its

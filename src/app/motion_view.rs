@@ -448,6 +448,11 @@ impl MotionPanel {
                 }
             }
         }
+        self.keep_outs_ui(model, ui);
+    }
+
+    /// The keep-out boxes: add one at the target, edit or remove each.
+    fn keep_outs_ui(&mut self, model: &mut Model, ui: &mut egui::Ui) {
         let boxes = model.motion().keep_outs().to_vec();
         if self.boxes.len() != boxes.len() {
             self.boxes = boxes

@@ -178,7 +178,7 @@ impl Viewport {
             // (at most 0.1 s a frame: a stalled frame slows the motion, never jumps it).
             let dt = f64::from(ui.input(|i| i.stable_dt).min(0.1));
             let t0 = hook::now_ms();
-            model.advance_motion(dt);
+            timing.motion_steps += model.advance_motion(dt) as f64;
             timing.motion_ms += hook::now_ms() - t0;
             if model.motion().moving() {
                 ui.ctx().request_repaint();
