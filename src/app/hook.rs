@@ -135,7 +135,8 @@ fn motion_json(model: &super::model::Model) -> serde_json::Value {
         "time_scale": m.time_scale(),
         "time": sim.map(|s| s.time()),
         "moving": m.moving(),
-        "at_rest": sim.map(|s| s.at_rest(REST_ERROR, REST_SPEED)),
+        "at_rest": sim.map(|s| s.at_rest(REST_ERROR, REST_SPEED)) == Some(true)
+            || (sim.is_some() && !m.moving() && m.time_scale() > 0.0),
         "error": sim.map(|s| s.error().to_vec()),
         "goal": sim.map(|s| s.goal().to_vec()),
         "collisions": m.collisions_on(),

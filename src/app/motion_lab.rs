@@ -15,8 +15,9 @@ use crate::kinematics::{ForwardKinematics, Robot};
 
 /// The most tool positions the trail keeps (the oldest are dropped).
 pub const TRAIL_POINTS: usize = 4000;
-/// A joint is at rest within this error (rad or units) …
-pub const REST_ERROR: f64 = 1e-4;
+/// A joint is at rest within this error (rad or units; well inside the "reached"
+/// tolerance of the tool, so the target turns green before the page stops drawing) …
+pub const REST_ERROR: f64 = 1e-7;
 /// … and below this speed (rad/s or units/s).
 pub const REST_SPEED: f64 = 1e-3;
 /// The slow-motion time scale (one simulated second takes ten real ones).
@@ -102,15 +103,22 @@ impl MotionLab {
         self.steps_last_frame
     }
 
-    /// Whether the arm is still on its way (a joint away from its goal or moving) and the
-    /// time runs.
+    /// Whether the arm is still on its way and the time runs: a joint moves, or is
+    /// farther from its goal than [`REST_ERROR`] (than the dead band, for on/off control,
+    /// which stops anywhere inside it).
     pub fn moving(&self) -> bool {
-        self.on
-            && self.time_scale > 0.0
-            && self
-                .sim
-                .as_ref()
-                .is_some_and(|s| !s.at_rest(REST_ERROR, REST_SPEED))
+        let Some(sim) = self
+            .sim
+            .as_ref()
+            .filter(|_| self.on && self.time_scale > 0.0)
+        else {
+            return false;
+        };
+        let band = match sim.settings().controller {
+            crate::kinematics::motion::Controller::OnOff { dead_band } => dead_band.max(REST_ERROR),
+            _ => REST_ERROR,
+        };
+        sim.qd().iter().any(|v| v.abs() > REST_SPEED) || sim.error().iter().any(|e| e.abs() > band)
     }
 
     /// Turns "move" on or off (off drops the simulation; the arm stays where it is).
