@@ -129,6 +129,30 @@ pub fn state_json(app: &ArmLabApp) -> String {
         "solutions": model.branches().map(|b| b.rows.iter().map(|r| r.q.clone()).collect::<Vec<_>>()),
         "workspace_samples": model.workspace().map(|c| c.len()),
         "directions_reachable": model.directions().map(|d| d.near.iter().filter(|n| **n).count()),
+        "motion": motion_json(model),
     })
     .to_string()
+}
+
+/// The motion lab's part of the state: on, the controller's id, simulated time, whether
+/// the arm is still moving, every joint's error and goal, collisions and the contact.
+fn motion_json(model: &super::model::Model) -> serde_json::Value {
+    use super::motion_lab::{REST_ERROR, REST_SPEED};
+    let m = model.motion();
+    let sim = m.sim();
+    json!({
+        "on": m.on(),
+        "controller": super::motion_view::Choice::of(&m.settings().controller).id(),
+        "time_scale": m.time_scale(),
+        "time": sim.map(|s| s.time()),
+        "moving": m.moving(),
+        "at_rest": sim.map(|s| s.at_rest(REST_ERROR, REST_SPEED)) == Some(true)
+            || (sim.is_some() && !m.moving() && m.time_scale() > 0.0),
+        "error": sim.map(|s| s.error().to_vec()),
+        "goal": sim.map(|s| s.goal().to_vec()),
+        "collisions": m.collisions_on(),
+        "contact": m.contact(),
+        "keep_outs": m.keep_outs().len(),
+        "trail": m.trail().len(),
+    })
 }

@@ -10,7 +10,7 @@ use crate::i18n::Key;
 use super::hook::ScreenPoints;
 use super::model::Model;
 use super::notebook::NotebookDemo;
-use super::{Panel, style, tr, trf};
+use super::{Panel, plot, style, tr, trf};
 
 /// The replay of the last full solve.
 #[derive(Debug, Clone, Default)]
@@ -238,60 +238,31 @@ fn replay_ui(replay: &mut Replay, model: &mut Model, ui: &mut egui::Ui) {
     }
 }
 
-/// The error per iteration on a log scale.
 /// The error per iteration on a log scale (log10 ‖e‖ from the top to the bottom of the
 /// box), the replayed iteration marked.
 fn error_plot(model: &Model, ui: &mut egui::Ui, run: &IkResult, current: usize) {
-    let (rect, _) = ui.allocate_exact_size(
-        egui::vec2(ui.available_width().min(300.0), 90.0),
-        egui::Sense::hover(),
-    );
-    let painter = ui.painter_at(rect);
-    painter.rect_stroke(
-        rect,
-        2.0,
-        ui.visuals().widgets.noninteractive.bg_stroke,
-        egui::StrokeKind::Inside,
-    );
     let errs: Vec<f64> = run
         .trace
         .iter()
         .map(|s| s.error.max(1e-16).log10())
         .collect();
-    let (lo, hi) = errs
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-            (a.min(*v), b.max(*v))
-        });
-    let span = (hi - lo).max(1e-9);
+    let (lo, hi) = plot::range_of(errs.iter().copied());
     let n = errs.len().max(2) - 1;
-    let to_screen = |i: usize, v: f64| {
-        egui::pos2(
-            rect.left() + rect.width() * i as f32 / n as f32,
-            rect.bottom() - rect.height() * ((v - lo) / span) as f32,
-        )
-    };
-    let points: Vec<egui::Pos2> = errs
-        .iter()
-        .enumerate()
-        .map(|(i, v)| to_screen(i, *v))
-        .collect();
-    painter.add(egui::Shape::line(
-        points,
+    let plot = plot::PlotBox::allocate(ui, 90.0, (0.0, n as f64), (lo, hi));
+    plot.line(
+        ui,
+        errs.iter().enumerate().map(|(i, v)| [i as f64, *v]),
         egui::Stroke::new(1.5, style::PENDING),
-    ));
+    );
     if let Some(v) = errs.get(current) {
-        painter.circle_filled(to_screen(current, *v), 3.5, style::HIGHLIGHT);
+        plot.dot(ui, current as f64, *v, style::HIGHLIGHT);
     }
-    painter.text(
-        rect.left_top() + egui::vec2(4.0, 2.0),
-        egui::Align2::LEFT_TOP,
+    plot.caption(
+        ui,
         trf(
             model,
             Key::ErrorPlotRange,
             &[&format!("{hi:.1}"), &format!("{lo:.1}")],
         ),
-        egui::FontId::proportional(11.0),
-        ui.visuals().text_color(),
     );
 }

@@ -94,7 +94,12 @@ pub fn plan(size: egui::Vec2, css_width: f32, settings: &Settings) -> Plan {
             vec![
                 (
                     Side::Left,
-                    vec![PanelKind::Joints, PanelKind::Ik, PanelKind::Robot],
+                    vec![
+                        PanelKind::Joints,
+                        PanelKind::Ik,
+                        PanelKind::Robot,
+                        PanelKind::Motion,
+                    ],
                 ),
                 (Side::Right, vec![PanelKind::Matrices]),
             ],
@@ -216,7 +221,7 @@ mod tests {
             for presentation in [false, true] {
                 let zoom = if presentation { 1.25 } else { 1.0 };
                 let size = egui::vec2(w / zoom, h / zoom);
-                for bits in 0..16u8 {
+                for bits in 0..32u8 {
                     let open = PanelSet::of(
                         &PanelKind::ALL
                             .into_iter()

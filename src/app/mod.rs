@@ -26,7 +26,10 @@ pub mod joints;
 pub mod layout;
 pub mod matrices;
 pub mod model;
+pub mod motion_lab;
+pub mod motion_view;
 pub mod notebook;
+pub mod plot;
 pub mod robot_panel;
 pub mod scene;
 pub mod shell;
@@ -71,6 +74,10 @@ pub struct FrameTime {
     pub render_ms: f64,
     /// Of `app_ms`: filling the workspace cloud (at most about 4 ms a frame).
     pub workspace_ms: f64,
+    /// Of `app_ms`: the motion simulation's steps (and their collision checks).
+    pub motion_ms: f64,
+    /// The simulation steps (1 ms each) run in the frame.
+    pub motion_steps: f64,
 }
 
 /// What the device says before any link is read: the browser's language and whether its
@@ -144,6 +151,7 @@ impl ArmLabApp {
                 joints: joints::JointsPanel::default(),
                 ik: ik_panel::IkPanel::default(),
                 matrices: matrices::MatricesPanel::default(),
+                motion: motion_view::MotionPanel::default(),
             },
             model,
             sheet: None,

@@ -5,7 +5,7 @@
 //! (FK and the Jacobian when q or the robot changes; the IK status when q, the robot, the
 //! target or the task changes). No egui here: the model is tested without a window.
 
-use nalgebra::{IsometryMatrix3, Matrix6xX, Vector3};
+use nalgebra::{IsometryMatrix3, Matrix6xX, Point3, Vector3};
 
 use crate::kinematics::ik::{
     Branch, IkError, IkResult, IkSettings, IkSolver, REACHED_ORIENTATION_TOLERANCE,
@@ -21,6 +21,7 @@ use crate::kinematics::{
     tool_pose,
 };
 
+use super::motion_lab::MotionLab;
 use super::session::{RobotSource, Session};
 pub use super::settings::Settings;
 use super::settings::{CameraPose, DisplayPatch};
@@ -214,6 +215,7 @@ pub struct Model {
     rescue: Option<Rescue>,
     /// The tool directions reached at the target's position, when asked for.
     directions: Option<DirectionSphere>,
+    motion: MotionLab,
 }
 
 impl Model {
@@ -246,6 +248,7 @@ impl Model {
             branch_switch: None,
             rescue: None,
             directions: None,
+            motion: MotionLab::default(),
         };
         model.open(session);
         model
@@ -426,6 +429,13 @@ impl Model {
             method: self.method,
             display: DisplayPatch::of(&self.settings),
             camera: self.camera,
+            motion: crate::link::motion::MotionPatch::of(
+                self.motion.on(),
+                self.motion.settings(),
+                self.motion.time_scale(),
+                self.motion.collisions_on(),
+                self.motion.keep_outs(),
+            ),
         }
     }
 
@@ -639,6 +649,7 @@ impl Model {
         self.target = session.target.unwrap_or(self.fk.base_from_tool);
         self.ik = IkStatus::default();
         self.recompute_reach();
+        self.open_motion(&session.motion);
     }
 
     /// Loads a robot as a new start (a preset or a file): its home pose, its default task
@@ -774,22 +785,24 @@ impl Model {
     /// warm-started at q (each joint moves at most the per-call limit). Returns whether it
     /// ran. A failure (only a broken target could cause one) becomes the message.
     pub fn drag_step(&mut self) -> bool {
+        if self.motion.on() {
+            return self.motion_drag();
+        }
         if self.ik.reach == Reach::Reached {
             return false;
         }
-        if self.method == IkMethod::ClosedForm && self.drag_step_on_branch() {
-            return true;
+        if !(self.method == IkMethod::ClosedForm && self.drag_step_on_branch()) {
+            let result = self.solver.drag_step(
+                &self.robot,
+                &self.q,
+                &self.target,
+                self.task,
+                self.method,
+                &IkSettings::drag(),
+            );
+            self.apply_result(result);
         }
-        let settings = IkSettings::drag();
-        let result = self.solver.drag_step(
-            &self.robot,
-            &self.q,
-            &self.target,
-            self.task,
-            self.method,
-            &settings,
-        );
-        self.apply_result(result);
+        self.stop_at_collision();
         true
     }
 
@@ -858,6 +871,11 @@ impl Model {
 
     fn apply_result(&mut self, result: Result<IkResult, IkError>) -> Option<IkResult> {
         match result {
+            Ok(result) if self.motion.on() => {
+                self.drive_to(result.q.clone(), result.unreachable);
+                self.ik.iterations = result.iterations;
+                Some(result)
+            }
             Ok(result) => {
                 self.set_q(result.q.clone());
                 self.ik.iterations = result.iterations;
@@ -878,6 +896,213 @@ impl Model {
                 None
             }
         }
+    }
+
+    // --- The motion lab (issue 14) -------------------------------------------------------
+
+    /// The motion lab: "move", its controller, the simulation and the tool's trail.
+    pub fn motion(&self) -> &MotionLab {
+        &self.motion
+    }
+
+    /// Turns "move" on (the arm drives to each IK answer with the controller) or off (it
+    /// jumps, as before).
+    pub fn set_motion_on(&mut self, on: bool) {
+        self.motion.set_on(on);
+        if on {
+            self.motion.sync(&self.robot, &self.q, self.robot_changes);
+        }
+    }
+
+    /// Takes the motion settings when they pass the core's checks; otherwise the last
+    /// good ones stay and the error says why.
+    pub fn set_motion_settings(
+        &mut self,
+        settings: crate::kinematics::motion::MotionSettings,
+    ) -> Result<(), crate::kinematics::motion::MotionError> {
+        self.motion.set_settings(settings)
+    }
+
+    /// Takes a time scale (0 pauses, 1 is real time, at most 10).
+    pub fn set_time_scale(
+        &mut self,
+        scale: f64,
+    ) -> Result<(), crate::kinematics::motion::MotionError> {
+        self.motion.set_time_scale(scale)
+    }
+
+    /// Drives the arm to a typed joint vector (with "move" on).
+    pub fn set_motion_goal(
+        &mut self,
+        goal: &[f64],
+    ) -> Result<(), crate::kinematics::motion::MotionError> {
+        self.motion.sync(&self.robot, &self.q, self.robot_changes);
+        self.motion.set_goal(goal, None)
+    }
+
+    /// Takes the motion lab's fields a link names (already checked by the link parser).
+    fn open_motion(&mut self, patch: &crate::link::motion::MotionPatch) {
+        if let Some(settings) = patch.settings {
+            let _ = self.motion.set_settings(settings);
+        }
+        if let Some(scale) = patch.time_scale {
+            let _ = self.motion.set_time_scale(scale);
+        }
+        if let Some(boxes) = &patch.keep_outs {
+            let _ = self.motion.set_keep_outs(boxes.clone());
+        }
+        if let Some(on) = patch.collisions {
+            self.motion.set_collisions_on(on);
+        }
+        if let Some(on) = patch.move_on {
+            self.set_motion_on(on);
+        }
+    }
+
+    /// Sets the simulation's goal to an IK answer of the target.
+    fn drive_to(&mut self, mut goal: Vec<f64>, unreachable: bool) {
+        self.motion.sync(&self.robot, &self.q, self.robot_changes);
+        goal.resize(self.robot.dof(), 0.0);
+        self.robot.keep_q(&mut goal, &self.q);
+        if let Err(e) = self.motion.set_goal(&goal, Some(self.target)) {
+            self.message = Some(Message::error(e.sentence(self.settings.lang)));
+        }
+        if unreachable && self.ik.reach != Reach::Reached {
+            self.ik.reach = Reach::OutOfReach;
+        }
+    }
+
+    /// A drag frame with "move" on: when the target moved since the goal was solved, a
+    /// full solve warm-started at the current goal gives the new goal.
+    fn motion_drag(&mut self) -> bool {
+        self.motion.sync(&self.robot, &self.q, self.robot_changes);
+        if self.motion.goal_target() == Some(&self.target) {
+            return false;
+        }
+        let start = self
+            .motion
+            .sim()
+            .map_or_else(|| self.q.clone(), |s| s.goal().to_vec());
+        let settings = IkSettings {
+            restarts: 0,
+            max_iterations: 300,
+            budget: 300,
+            ..IkSettings::default()
+        };
+        let result = self.solver.solve(
+            &self.robot,
+            &self.target,
+            self.task,
+            &start,
+            self.method,
+            &settings,
+        );
+        match result {
+            Ok(result) => {
+                self.ik.iterations = result.iterations;
+                self.drive_to(result.q, result.unreachable);
+            }
+            Err(e) => self.message = Some(Message::error(e.sentence(self.settings.lang))),
+        }
+        true
+    }
+
+    /// Runs the simulation for `real_dt` seconds of real time (× the time scale) and
+    /// moves the arm where it got to; returns the steps run.
+    pub fn advance_motion(&mut self, real_dt: f64) -> usize {
+        if !self.motion.on() {
+            return 0;
+        }
+        self.motion.sync(&self.robot, &self.q, self.robot_changes);
+        if let Some(q) = self.motion.advance(real_dt) {
+            self.take_motion_q(q);
+        }
+        self.motion.steps_last_frame()
+    }
+
+    /// One step of the record's spacing (10 ms), for a paused simulation.
+    pub fn step_motion(&mut self) {
+        if !self.motion.on() {
+            return;
+        }
+        self.motion.sync(&self.robot, &self.q, self.robot_changes);
+        if let Some(q) = self.motion.single_step() {
+            self.take_motion_q(q);
+        }
+    }
+
+    /// Forgets the tool's trail.
+    pub fn clear_trail(&mut self) {
+        self.motion.clear_trail();
+    }
+
+    /// Moves the arm to where the simulation got, as it is (no turn re-mapping: the
+    /// simulation keeps its joints in range).
+    fn take_motion_q(&mut self, q: Vec<f64>) {
+        self.q = q;
+        self.recompute_kinematics();
+        self.recompute_reach();
+        self.stop_at_collision();
+        let tool = Point3::from(self.fk.tool_position());
+        self.motion.note_tool(tool, self.robot.reach() * 1e-4);
+    }
+
+    /// Turns the collision check on or off.
+    pub fn set_collisions_on(&mut self, on: bool) {
+        self.motion.set_collisions_on(on);
+        self.update_collisions();
+    }
+
+    /// Replaces the keep-out boxes; on an error the old ones stay.
+    pub fn set_keep_outs(
+        &mut self,
+        boxes: Vec<crate::kinematics::collision::KeepOut>,
+    ) -> Result<(), crate::kinematics::motion::MotionError> {
+        self.motion.set_keep_outs(boxes)?;
+        self.update_collisions();
+        Ok(())
+    }
+
+    /// Checks the pose now (when collisions are on and the arm moved since the last
+    /// check), so touching parts show red whatever moved the arm.
+    pub fn update_collisions(&mut self) {
+        self.motion.check(
+            &self.robot,
+            &self.q,
+            &self.fk,
+            self.robot_changes,
+            self.settings.lang,
+        );
+    }
+
+    /// Checks the pose now; when it collides and a collision-free pose is known, moves
+    /// the arm back there, stops the motion and says which parts touch (the drag IK and
+    /// the motion stop at the last collision-free pose).
+    fn stop_at_collision(&mut self) {
+        let lang = self.settings.lang;
+        if self
+            .motion
+            .check(&self.robot, &self.q, &self.fk, self.robot_changes, lang)
+        {
+            return;
+        }
+        let Some(back) = self.motion.last_free().map(<[f64]>::to_vec) else {
+            return;
+        };
+        if back == self.q {
+            return;
+        }
+        let contact = self.motion.contact().unwrap_or_default().to_string();
+        self.q = back;
+        self.recompute_kinematics();
+        self.recompute_reach();
+        self.motion.stop_at(&self.q);
+        self.motion.keep_report_at(&self.q);
+        self.message = Some(Message::warning(crate::i18n::fill(
+            lang,
+            crate::i18n::Key::CollisionStopped,
+            &[&contact],
+        )));
     }
 
     // --- Derived values ------------------------------------------------------------------

@@ -8,7 +8,7 @@ use super::hook::ScreenPoints;
 use super::layout::{Column, EDGE_TAB_WIDTH, Plan, Side};
 use super::model::Model;
 use super::settings::PanelKind;
-use super::{ik_panel, joints, matrices, robot_panel, tr as t};
+use super::{ik_panel, joints, matrices, motion_view, robot_panel, tr as t};
 use crate::i18n::Key;
 
 /// The four side panels.
@@ -21,6 +21,8 @@ pub struct SidePanels {
     pub robot: robot_panel::RobotPanel,
     /// The matrices and the Jacobian.
     pub matrices: matrices::MatricesPanel,
+    /// The motion lab: controllers, time scale, plots.
+    pub motion: motion_view::MotionPanel,
 }
 
 impl SidePanels {
@@ -37,6 +39,7 @@ impl SidePanels {
             PanelKind::Ik => self.ik.ui(model, ui, points),
             PanelKind::Matrices => self.matrices.ui(model, ui, points),
             PanelKind::Robot => self.robot.ui(model, ui, points),
+            PanelKind::Motion => self.motion.ui(model, ui, points),
         }
     }
 
@@ -115,6 +118,9 @@ impl SidePanels {
         egui::Panel::bottom("armlab_tabs")
             .resizable(false)
             .show(ui, |ui| {
+                // Five tabs share a phone's 390 points: narrow gaps keep "Matrices" (and
+                // the Finnish "Matriisit") on one line.
+                ui.spacing_mut().item_spacing.x = 2.0;
                 ui.columns(PanelKind::ALL.len(), |cols| {
                     for (col, kind) in cols.iter_mut().zip(PanelKind::ALL) {
                         let open = *sheet == Some(kind);
@@ -176,6 +182,7 @@ pub fn title(kind: PanelKind) -> Key {
         PanelKind::Ik => Key::PanelIk,
         PanelKind::Matrices => Key::PanelMatrices,
         PanelKind::Robot => Key::PanelRobot,
+        PanelKind::Motion => Key::PanelMotion,
     }
 }
 

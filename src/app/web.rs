@@ -429,6 +429,8 @@ fn install_hook(window: &web_sys::Window) {
                     ("scene", t.scene_ms),
                     ("render", t.render_ms),
                     ("workspace", t.workspace_ms),
+                    ("motion", t.motion_ms),
+                    ("motion_steps", t.motion_steps),
                 ] {
                     set_field(&o, key, &ms.into());
                 }

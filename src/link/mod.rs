@@ -6,5 +6,6 @@
 //! parser is tested and fuzzed natively and as wasm without eframe.
 
 pub mod format;
+pub mod motion;
 pub mod session;
 pub mod settings;

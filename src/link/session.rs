@@ -26,6 +26,7 @@ use crate::i18n::echo::Text;
 use crate::i18n::{Key, Lang, fill, text};
 
 use super::format::number_list;
+use super::motion::{MotionLinkError, MotionPatch};
 use super::settings::{CameraPose, DisplayPatch};
 
 /// Decimals of the numbers a link writes (1e-6 rad, 1e-6 of a length unit).
@@ -75,6 +76,9 @@ pub enum LinkError {
     CustomWithoutTable,
     /// The robot (a preset id, a table) or the joint vector is not valid.
     Robot(RobotError),
+    /// A motion lab field (`move`, `ctrl`, `gains`, `plant`, `timescale`, `collide`,
+    /// `keepout`) is not valid.
+    Motion(MotionLinkError),
 }
 
 impl LinkError {
@@ -111,6 +115,7 @@ impl LinkError {
             LinkError::NoRobot => plain(Key::LinkNoRobot),
             LinkError::CustomWithoutTable => plain(Key::LinkCustomWithoutTable),
             LinkError::Robot(e) => e.sentence(lang),
+            LinkError::Motion(e) => e.sentence(lang),
         }
     }
 }
@@ -165,6 +170,8 @@ pub struct Session {
     pub display: DisplayPatch,
     /// The camera, if the link names one.
     pub camera: Option<CameraPose>,
+    /// The motion lab's fields the link names.
+    pub motion: MotionPatch,
 }
 
 /// The preset the app opens with, and falls back to when a link is broken.
@@ -184,6 +191,7 @@ impl Session {
             method: IkMethod::DampedLeastSquares,
             display: DisplayPatch::default(),
             camera: None,
+            motion: MotionPatch::default(),
         })
     }
 
@@ -227,6 +235,7 @@ impl Session {
                 number_list(&c.to_array(), LINK_DECIMALS)
             ));
         }
+        parts.extend(self.motion.to_parts());
         parts.join("&")
     }
 
@@ -250,6 +259,7 @@ impl Session {
                     method: parts.method,
                     display: DisplayPatch::default(),
                     camera: None,
+                    motion: MotionPatch::default(),
                 }
             }
             Some(id) => Session::for_preset(id)?,
@@ -265,6 +275,7 @@ impl Session {
         session.method = parts.method;
         session.display = parts.display;
         session.camera = parts.camera;
+        session.motion = parts.motion;
         Ok(Some(session))
     }
 }
@@ -279,6 +290,7 @@ struct LinkParts {
     method: IkMethod,
     display: DisplayPatch,
     camera: Option<CameraPose>,
+    motion: MotionPatch,
 }
 
 impl LinkParts {
@@ -292,6 +304,7 @@ impl LinkParts {
             method: IkMethod::DampedLeastSquares,
             display: DisplayPatch::default(),
             camera: None,
+            motion: MotionPatch::default(),
         };
         for part in hash.split('&').filter(|p| !p.is_empty()) {
             let (key, value) = part
@@ -321,6 +334,7 @@ impl LinkParts {
                         .map_err(|_| LinkError::BadCamera)?;
                     parts.camera = Some(CameraPose::from_array(c).ok_or(LinkError::BadCamera)?);
                 }
+                other if parts.motion.read(other, value).map_err(LinkError::Motion)? => {}
                 other => {
                     let read = parts.display.read(other, value).map_err(|allowed| {
                         LinkError::BadValue {
@@ -335,6 +349,7 @@ impl LinkParts {
                 }
             }
         }
+        parts.motion.finish().map_err(LinkError::Motion)?;
         Ok(parts)
     }
 }

@@ -15,15 +15,18 @@ pub enum PanelKind {
     Matrices,
     /// The robot: presets, the DH table, files.
     Robot,
+    /// The motion lab: controllers, the simulation's plots (closed unless opened).
+    Motion,
 }
 
 impl PanelKind {
     /// Every panel, in the order of the tabs.
-    pub const ALL: [PanelKind; 4] = [
+    pub const ALL: [PanelKind; 5] = [
         PanelKind::Joints,
         PanelKind::Ik,
         PanelKind::Matrices,
         PanelKind::Robot,
+        PanelKind::Motion,
     ];
 
     /// The id a link uses.
@@ -33,6 +36,7 @@ impl PanelKind {
             PanelKind::Ik => "ik",
             PanelKind::Matrices => "matrices",
             PanelKind::Robot => "robot",
+            PanelKind::Motion => "motion",
         }
     }
 
@@ -237,7 +241,12 @@ impl Default for Settings {
             precision: 3,
             presentation: false,
             lang: Lang::En,
-            panels: PanelSet::ALL,
+            panels: PanelSet::of(&[
+                PanelKind::Joints,
+                PanelKind::Ik,
+                PanelKind::Matrices,
+                PanelKind::Robot,
+            ]),
             presentation_panels: PanelSet::of(&[PanelKind::Joints, PanelKind::Matrices]),
             overlays: OverlaySet::NONE,
         }
@@ -446,7 +455,7 @@ mod tests {
 
     #[test]
     fn panel_sets_round_trip_through_the_link_form() {
-        for bits in 0..16u16 {
+        for bits in 0..32u16 {
             let set = PanelSet::of(
                 &PanelKind::ALL
                     .into_iter()
@@ -457,7 +466,7 @@ mod tests {
             );
             assert_eq!(PanelSet::from_link(&set.to_link()), Ok(set));
         }
-        assert_eq!(PanelSet::ALL.iter().count(), 4);
+        assert_eq!(PanelSet::ALL.iter().count(), 5);
         assert_eq!(
             OverlaySet::from_link("jcols,vel").map(|s| s.iter().count()),
             Ok(2)

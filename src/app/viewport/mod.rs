@@ -184,6 +184,22 @@ impl Viewport {
                 }
             }
         }
+        if model.motion().collisions_on() {
+            let t0 = hook::now_ms();
+            model.update_collisions();
+            timing.motion_ms += hook::now_ms() - t0;
+        }
+        if model.motion().on() {
+            // The simulation runs the frame's real time × the time scale in 1 ms steps
+            // (at most 0.1 s a frame: a stalled frame slows the motion, never jumps it).
+            let dt = f64::from(ui.input(|i| i.stable_dt).min(0.1));
+            let t0 = hook::now_ms();
+            timing.motion_steps += model.advance_motion(dt) as f64;
+            timing.motion_ms += hook::now_ms() - t0;
+            if model.motion().moving() {
+                ui.ctx().request_repaint();
+            }
+        }
         self.update_hover(model, &response, &axes);
         if model.settings().overlays.contains(Overlay::Workspace) {
             let measure = workspace_view::measure(model);
@@ -412,6 +428,14 @@ impl Viewport {
         workspace_view::direction_instances(model, &mut scene.instances);
         convention_view::instances(model, model.robot().reach(), &mut scene.instances);
         ghosts::instances(model, &mut scene.instances);
+        super::motion_view::trail_lines(model, &mut scene.lines);
+        super::motion_view::keep_out_instances(model, &mut scene.instances);
+        // The arm's parts come first in the scene, in the core's part order.
+        for (instance, red) in scene.instances.iter_mut().zip(model.motion().colliding()) {
+            if *red {
+                instance.color = [230, 60, 50, 255];
+            }
+        }
         self.grid_step = step;
         let t1 = hook::now_ms();
         let texture = renderer.render(rs, px_size, &scene);

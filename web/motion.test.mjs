@@ -1,0 +1,149 @@
+// The motion lab in the built page (dist/) in headless Chromium: with "move" on, Solve
+// makes the arm drive to the IK answer with each controller; the final error is read from
+// window.armlab.state().motion. Prints one JSON line of measurements (not asserted): the
+// simulation's milliseconds per frame (frameTimes()'s `motion` part, steps and collision
+// checks) and the frame's p95 while driving with collision checks on.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { serveDist, launchChromium } from './static-server.mjs';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', 'dist');
+const VIEW = { width: 1400, height: 860 };
+const measurements = {};
+
+let server;
+let base;
+let browser;
+
+before(async () => {
+  ({ server, base } = await serveDist(dist));
+  browser = await launchChromium();
+});
+
+after(async () => {
+  console.log(`ARMLAB_MOTION_MEASUREMENTS ${JSON.stringify(measurements)}`);
+  await browser?.close();
+  server?.close();
+});
+
+const state = async (page) => JSON.parse(await page.evaluate(() => window.armlab.state()));
+
+async function openPage(hash) {
+  const ctx = await browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
+  const page = await ctx.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.goto(base + hash, { waitUntil: 'domcontentloaded' });
+  await page.waitForFunction(() => {
+    const text = window.armlab?.state();
+    return Boolean(text) && JSON.parse(text).rendered;
+  }, null, { timeout: 120000 });
+  return { page, ctx, errors };
+}
+
+/** Opens `hash` in the running page and waits for two more frames. */
+async function openHash(page, hash) {
+  const before = (await state(page)).frame;
+  await page.evaluate((h) => window.armlab.open(h), hash);
+  for (let i = 0; i < 200 && (await state(page)).frame < before + 2; i++) {
+    await page.mouse.move(700 + (i % 2), 40);
+    await page.waitForTimeout(20);
+  }
+}
+
+const quantile = (xs, q) => {
+  const s = [...xs].sort((a, b) => a - b);
+  return s.length ? s[Math.min(s.length - 1, Math.floor(s.length * q))] : null;
+};
+
+// Each controller with its gains (the link's `gains=`) and the largest final joint error
+// it must reach: the on/off controller stops inside its dead band (0.05 rad: the motor's
+// 20 ms lag coasts 0.03 rad past the band's edge, which stays inside it); the others
+// settle to rest (|e| < 1e-4, |q̇| < 1e-3).
+const CONTROLLERS = [
+  { ctrl: 'onoff', gains: '0.05', tol: 0.05 },
+  { ctrl: 'p', gains: '5', tol: 1e-4 },
+  { ctrl: 'pd', gains: '100,20', tol: 1e-4 },
+  { ctrl: 'pid', gains: '100,200,20', tol: 1e-4 },
+  { ctrl: 'trapezoidal', gains: '0', tol: 1e-4 },
+  { ctrl: 'cubic', gains: '0', tol: 1e-4 },
+  { ctrl: 'quintic', gains: '1', tol: 1e-4 },
+];
+
+test('with move on, the arm drives to the target with each controller', async () => {
+  // The target: the tool of the RRR arm at another pose (surely reachable).
+  const { page, ctx, errors } = await openPage('#robot=rrr&q=0.4,0.3,-0.7&task=position&panels=ik,motion');
+  const goal = (await state(page)).tool;
+  const start = '#robot=rrr&q=0,0.5,-1&task=position&panels=ik,motion';
+  const target = `target=${goal.map((v) => v.toFixed(6)).join(',')},0,0,0`;
+  const results = {};
+  const totals = { ms: 0, steps: 0 };
+  for (const { ctrl, gains, tol } of CONTROLLERS) {
+    await openHash(page, `${start}&${target}&move=on&ctrl=${ctrl}&gains=${gains}&timescale=2`);
+    let s = await state(page);
+    assert.equal(s.motion.on, true, `${ctrl}: move is on`);
+    assert.equal(s.motion.controller, ctrl);
+    assert.ok(s.position_error > 10 * 1e-3, `${ctrl}: the arm starts away from the target`);
+    await page.evaluate(() => window.armlab.frameTimes());
+    const solve = await page.evaluate(() => window.armlab.screenPoint('ik-solve'));
+    assert.ok(solve, 'the Solve button is on screen');
+    await page.mouse.click(solve.x, solve.y);
+    // Until at rest, or 8 simulated seconds (on/off rests inside its band, not at |e| < 1e-4).
+    for (let i = 0; i < 600; i++) {
+      await page.waitForTimeout(50);
+      s = await state(page);
+      if (s.motion.at_rest && s.motion.time > 0.2) break;
+      if (s.motion.time > 8) break;
+    }
+    for (const f of await page.evaluate(() => window.armlab.frameTimes())) {
+      totals.ms += f.motion;
+      totals.steps += f.motion_steps;
+    }
+    const worst = Math.max(...s.motion.error.map(Math.abs));
+    results[ctrl] = { final_error: worst, position_error: s.position_error, simulated_s: s.motion.time };
+    assert.ok(worst < tol, `${ctrl}: final joint error ${worst} below ${tol}`);
+    assert.ok(s.motion.time > 0.3, `${ctrl}: the arm drove there (${s.motion.time} s), it did not jump`);
+    assert.ok(s.motion.trail >= 2, `${ctrl}: the tool's path was drawn (${s.motion.trail} points)`);
+    if (ctrl !== 'onoff') assert.ok(s.reached, `${ctrl}: the target is reached`);
+  }
+  measurements.controllers = results;
+  measurements.motion_us_per_step = (1000 * totals.ms) / Math.max(1, totals.steps);
+  measurements.motion_steps = totals.steps;
+  assert.deepEqual(errors, []);
+  await ctx.close();
+});
+
+test('driving with collision checks on: the cost per frame', async () => {
+  const { page, ctx, errors } = await openPage('#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2&panels=ik,motion');
+  const s0 = await state(page);
+  const t = s0.tool;
+  const target = `target=${(t[0] - 300).toFixed(3)},${(t[1] + 400).toFixed(3)},${(t[2] + 200).toFixed(3)},0,0,0`;
+  await openHash(page, `#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2&${target}&task=position&panels=ik,motion&move=on&ctrl=quintic&collide=on`);
+  await page.evaluate(() => window.armlab.frameTimes());
+  const solve = await page.evaluate(() => window.armlab.screenPoint('ik-solve'));
+  await page.mouse.click(solve.x, solve.y);
+  let s;
+  for (let i = 0; i < 300; i++) {
+    await page.waitForTimeout(50);
+    s = await state(page);
+    if (s.motion.at_rest && s.motion.time > 0.2) break;
+  }
+  const frames = await page.evaluate(() => window.armlab.frameTimes());
+  const moving = frames.filter((f) => f.motion > 0);
+  assert.ok(moving.length >= 3, `frames while driving: ${moving.length}`);
+  assert.equal(s.motion.collisions, true);
+  measurements.ur10_collide = {
+    frames: moving.length,
+    motion_ms_p50: quantile(moving.map((f) => f.motion), 0.5),
+    motion_ms_p95: quantile(moving.map((f) => f.motion), 0.95),
+    steps_per_frame_p50: quantile(moving.map((f) => f.motion_steps), 0.5),
+    motion_us_per_step: 1000 * moving.reduce((a, f) => a + f.motion, 0) / Math.max(1, moving.reduce((a, f) => a + f.motion_steps, 0)),
+    frame_ms_p95: quantile(moving.map((f) => f.app + f.render), 0.95),
+    contact: s.motion.contact,
+  };
+  assert.deepEqual(errors, []);
+  await ctx.close();
+});
