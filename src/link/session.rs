@@ -25,8 +25,9 @@ use crate::kinematics::{
 use crate::i18n::echo::Text;
 use crate::i18n::{Key, Lang, fill, text};
 
+use super::exercise::ExerciseId;
 use super::format::number_list;
-use super::settings::{CameraPose, DisplayPatch};
+use super::settings::{CameraPose, DisplayPatch, HiddenSet};
 
 /// Decimals of the numbers a link writes (1e-6 rad, 1e-6 of a length unit).
 const LINK_DECIMALS: usize = 6;
@@ -75,6 +76,12 @@ pub enum LinkError {
     CustomWithoutTable,
     /// The robot (a preset id, a table) or the joint vector is not valid.
     Robot(RobotError),
+    /// `exercise=` names neither a preset nor `mystery-SEED`.
+    UnknownExercise(String),
+    /// `exercise=` with `robot=` or `dh=`: an exercise's link names no table.
+    ExerciseWithRobot,
+    /// An item of `hide=` that is not a matrix, an entry or a Jacobian column.
+    BadHidden(String),
 }
 
 impl LinkError {
@@ -111,6 +118,9 @@ impl LinkError {
             LinkError::NoRobot => plain(Key::LinkNoRobot),
             LinkError::CustomWithoutTable => plain(Key::LinkCustomWithoutTable),
             LinkError::Robot(e) => e.sentence(lang),
+            LinkError::UnknownExercise(id) => fill(lang, Key::LinkUnknownExercise, &[&Text(id)]),
+            LinkError::ExerciseWithRobot => plain(Key::LinkExerciseWithRobot),
+            LinkError::BadHidden(item) => fill(lang, Key::LinkBadHidden, &[&Text(item)]),
         }
     }
 }
@@ -165,6 +175,8 @@ pub struct Session {
     pub display: DisplayPatch,
     /// The camera, if the link names one.
     pub camera: Option<CameraPose>,
+    /// The DH-table exercise this robot is (`exercise=`): the link then names no table.
+    pub exercise: Option<ExerciseId>,
 }
 
 /// The preset the app opens with, and falls back to when a link is broken.
@@ -184,6 +196,7 @@ impl Session {
             method: IkMethod::DampedLeastSquares,
             display: DisplayPatch::default(),
             camera: None,
+            exercise: None,
         })
     }
 
@@ -200,6 +213,15 @@ impl Session {
     pub fn to_hash(&self) -> String {
         let mut parts = Vec::new();
         match &self.source {
+            // An exercise's link names its robot, never its table.
+            _ if self.exercise.is_some() => {
+                let id = self
+                    .exercise
+                    .as_ref()
+                    .map(ExerciseId::id)
+                    .unwrap_or_default();
+                parts.push(format!("exercise={id}"));
+            }
             RobotSource::Preset(id) => parts.push(format!("robot={id}")),
             RobotSource::Custom => {
                 parts.push("robot=custom".to_string());
@@ -238,6 +260,24 @@ impl Session {
         }
         let parts = LinkParts::parse(hash)?;
         let mut session = match parts.robot.as_deref() {
+            _ if parts.exercise.is_some() => {
+                if parts.robot.is_some() || parts.dh.is_some() {
+                    return Err(LinkError::ExerciseWithRobot);
+                }
+                let id = parts.exercise.clone().ok_or(LinkError::NoRobot)?;
+                let robot = id.robot()?;
+                Session {
+                    q: robot.home(),
+                    task: Task::default_for(robot.dof()),
+                    robot,
+                    source: RobotSource::Custom,
+                    target: None,
+                    method: parts.method,
+                    display: DisplayPatch::default(),
+                    camera: None,
+                    exercise: Some(id),
+                }
+            }
             Some("custom") => {
                 let text = parts.dh.ok_or(LinkError::CustomWithoutTable)?;
                 let robot = robot_from_json(&text)?;
@@ -250,6 +290,7 @@ impl Session {
                     method: parts.method,
                     display: DisplayPatch::default(),
                     camera: None,
+                    exercise: None,
                 }
             }
             Some(id) => Session::for_preset(id)?,
@@ -279,6 +320,7 @@ struct LinkParts {
     method: IkMethod,
     display: DisplayPatch,
     camera: Option<CameraPose>,
+    exercise: Option<ExerciseId>,
 }
 
 impl LinkParts {
@@ -292,6 +334,7 @@ impl LinkParts {
             method: IkMethod::DampedLeastSquares,
             display: DisplayPatch::default(),
             camera: None,
+            exercise: None,
         };
         for part in hash.split('&').filter(|p| !p.is_empty()) {
             let (key, value) = part
@@ -320,6 +363,11 @@ impl LinkParts {
                         .try_into()
                         .map_err(|_| LinkError::BadCamera)?;
                     parts.camera = Some(CameraPose::from_array(c).ok_or(LinkError::BadCamera)?);
+                }
+                "exercise" => parts.exercise = Some(ExerciseId::parse(value)?),
+                "hide" => {
+                    let hidden = HiddenSet::from_link(value).map_err(LinkError::BadHidden)?;
+                    parts.display.hidden = Some(hidden);
                 }
                 other => {
                     let read = parts.display.read(other, value).map_err(|allowed| {
