@@ -862,9 +862,16 @@ fn adding_or_removing_a_joint_in_the_dh_editor_keeps_the_other_joints_values() {
         .expect("a pose")
         .tool_position();
     assert!((model.fk().tool_position() - before).norm() < 1e-9);
-    // Remove joint 2 (the panel's own × comes first, then one per row): joints 1, 3 and
-    // 4 keep their values.
-    h.get_all_by_label("×").nth(2).expect("a × per row").click();
+    // Remove joint 2 (the × on its row): joints 1, 3 and 4 keep their values.
+    let row_2 = h
+        .query_all_by_role(Role::TextInput)
+        .nth(6)
+        .expect("a cell")
+        .rect();
+    h.get_all_by_label("×")
+        .find(|b| (b.rect().center().y - row_2.center().y).abs() < row_2.height() / 2.0)
+        .expect("row 2's ×")
+        .click_accesskit();
     h.run_steps(3);
     let model = h.state().model();
     assert_eq!(model.robot().dof(), 3);
@@ -923,7 +930,7 @@ fn the_dh_exercise_hides_the_table_and_names_the_joint_of_a_wrong_answer() {
     assert!(!h.state().model().table_hidden());
     assert!(h.query_by_label_contains(hidden).is_none());
     assert!(
-        h.query_by_label_contains("T_03").is_some(),
+        h.query_all_by_label_contains("T_03").count() > 0,
         "the matrices are back"
     );
     assert!(
@@ -965,40 +972,47 @@ fn a_mystery_exercise_draws_its_axes_and_fits_every_screen() {
 #[test]
 fn predict_then_reveal_hides_entries_until_a_click_and_the_link_keeps_them() {
     let mut h = harness_at(
-        "#robot=rrr&q=0.4,0.5,-0.9&present=on&ppanels=matrices&decimals=2&hide=Tn.14,J2",
+        "#robot=rrr&q=0.4,0.5,-0.9&present=on&ppanels=matrices&decimals=2&hide=Tn.34,J2",
         [1024.0, 768.0],
     );
     h.run_steps(2);
-    let x = format!("{:.2}", h.state().model().fk().tool_position().x);
-    let j12 = format!("{:.2}", h.state().model().jacobian()[(0, 1)]);
-    // T_0n's x and J's column 2 (six entries) are "?".
+    let tool = h.state().model().fk().tool_position();
+    let z = format!("{:.2}", tool.z);
+    // T_0n's z and J's column 2 (six entries) are "?".
     assert_eq!(h.query_all_by_label("?").count(), 7);
-    assert!(h.query_by_label(&x).is_none(), "x = {x} is hidden");
+    assert_eq!(h.query_all_by_label(&z).count(), 0, "z = {z} is hidden");
     h.snapshot("predict_reveal_1024x768");
-    // A click reveals x; "Hide again" puts it back.
-    h.get_all_by_label("?").next().expect("x's ?").click();
+    // A click reveals z (drawn first); "Hide again" puts it back.
+    h.get_all_by_label("?").next().expect("z's ?").click();
     h.run_steps(2);
-    assert!(h.query_by_label(&x).is_some(), "x = {x} revealed");
-    assert!(h.query_by_label(&j12).is_none(), "the column stays hidden");
-    assert_eq!(h.query_all_by_label("?").count(), 6);
+    assert_eq!(h.query_all_by_label(&z).count(), 1, "z = {z} revealed");
+    assert_eq!(
+        h.query_all_by_label("?").count(),
+        6,
+        "the column stays hidden"
+    );
     h.get_by_label("Hide again").click();
     h.run_steps(2);
     assert_eq!(h.query_all_by_label("?").count(), 7);
-    // Choosing: a click on T_0n's y hides it too, and the link carries it.
+    // Choosing: every number shows; a click on T_0n's y hides it too, and the link
+    // carries it.
     h.get_by_label("Choose what to hide").click();
     h.run_steps(2);
-    let y = format!("{:.2}", h.state().model().fk().tool_position().y);
-    let [cx, cy] = h.state().points().get("cell-Tn-2-4").expect("the y entry");
-    assert_eq!(h.query_all_by_label(&y).count(), 1);
-    h.event(egui::Event::PointerMoved(egui::pos2(cx, cy)));
-    h.run_steps(1);
-    h.get_by_label(&y).click();
-    h.run_steps(2);
-    assert!(
-        h.state().hash().contains("hide=Tn.14,Tn.24,J2"),
-        "{}",
-        h.state().hash()
+    assert_eq!(
+        h.query_all_by_label(&z).count(),
+        1,
+        "z shows while choosing"
     );
+    assert!(
+        h.state().points().get("hide-Tn").is_some(),
+        "T_0n's whole-matrix ?"
+    );
+    let y = format!("{:.2}", tool.y);
+    h.get_all_by_label(&y).next().expect("T_0n's y").click();
+    h.run_steps(2);
+    let hash = h.state().hash();
+    assert!(hash.contains("hide=Tn.24,Tn.34,J2"), "{hash}");
+    assert!(h.state().points().get("cell-Tn-2-4").is_some());
     h.get_by_label("Choose what to hide").click();
     h.run_steps(2);
     assert_eq!(h.query_all_by_label("?").count(), 8);

@@ -72,17 +72,27 @@ impl ExercisePanel {
         let Some(exercise) = model.exercise() else {
             return;
         };
+        // Sentences wrap at the column's visible edge (the table may be wider and scroll).
+        let visible = (ui.clip_rect().right() - ui.cursor().left() - 6.0).max(120.0);
         if let Some(verdict) = exercise.verdict {
             let color = match verdict {
                 Verdict::Correct => style::REACHED,
                 Verdict::Wrong(_) => style::ERROR,
             };
-            ui.colored_label(color, verdict.sentence(model.settings().lang));
+            let sentence = egui::RichText::new(verdict.sentence(model.settings().lang));
+            ui.scope(|ui| {
+                ui.set_max_width(visible);
+                ui.add(egui::Label::new(sentence.color(color)).wrap());
+            });
         }
         if exercise.solved {
             own_table(model, ui);
         }
-        ui.label(egui::RichText::new(tr(model, Key::ExerciseShareHint)).small());
+        let hint = egui::RichText::new(tr(model, Key::ExerciseShareHint)).small();
+        ui.scope(|ui| {
+            ui.set_max_width(visible);
+            ui.add(egui::Label::new(hint).wrap());
+        });
     }
 
     /// Grades the answer; a cell that is not a number is named beside it instead.
@@ -203,6 +213,9 @@ pub fn start_ui(model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints)
     }
 }
 
+/// Angles between axes below this (radians) are drawn as parallel.
+const ANGLE_TINY: f64 = 1e-9;
+
 /// A measured distance or angle of the drawing.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Dimension {
@@ -250,7 +263,7 @@ pub fn dimensions(robot: &Robot, fk: &ForwardKinematics) -> Vec<Dimension> {
     let mut out = Vec::new();
     let mut push = |from: Vector3<f64>, to: Vector3<f64>, angle: Option<f64>| {
         let length = (to - from).norm();
-        if length > tiny || angle.is_some_and(|a| a > 1e-9) {
+        if length > tiny || angle.is_some_and(|a| a > ANGLE_TINY) {
             out.push(Dimension {
                 from,
                 to,
@@ -273,7 +286,8 @@ pub fn dimensions(robot: &Robot, fk: &ForwardKinematics) -> Vec<Dimension> {
         let leave = if i + 1 < n {
             let (o2, z2) = axis(i + 1);
             let (c1, c2) = common_normal((&o, &z), (&o2, &z2), &arrive);
-            (c1, Some((c2, z.dot(&z2).clamp(-1.0, 1.0).acos())))
+            // atan2 of |z × z2| and z · z2: exact near 0 and π, where acos is not.
+            (c1, Some((c2, z.cross(&z2).norm().atan2(z.dot(&z2)))))
         } else {
             (foot(&tool, axis(i)), None)
         };
@@ -342,8 +356,8 @@ pub fn draw_in_view(
         if d.length > reach * 1e-6 {
             text = format!("{} {unit}", number(d.length, 1));
         }
-        if let Some(angle) = d.angle.filter(|a| *a > 1e-9) {
-            let angle = format!("∠{}°", number(angle.to_degrees(), 1));
+        if let Some(angle) = d.angle.filter(|a| *a > ANGLE_TINY) {
+            let angle = format!("{}°", number(angle.to_degrees(), 1));
             text = if text.is_empty() {
                 angle
             } else {
