@@ -89,6 +89,12 @@ pub fn state_json(app: &ArmLabApp) -> String {
     json!({
         "robot": robot.name,
         "preset": match model.source() { RobotSource::Preset(id) => Some(id.clone()), RobotSource::Custom => None },
+        // The exercise, never its table: its id, whether solved, the last verdict (English).
+        "exercise": model.exercise().map(|e| json!({
+            "id": e.id.id(),
+            "solved": e.solved,
+            "verdict": e.verdict.map(|v| v.sentence(crate::i18n::Lang::En)),
+        })),
         "dof": robot.dof(),
         "length_unit": robot.length_unit.symbol(),
         "q": model.q(),

@@ -8,13 +8,14 @@ use crate::kinematics::{
     Convention, JacobianAnalysis, JacobianMeasures, JointKind, Orientation, Robot, Task,
 };
 
+use crate::i18n::text as text_of;
 use crate::i18n::{Key, Lang, text};
 
 use super::format::number;
 use super::hook::ScreenPoints;
 use super::jacobian_view::{self, LinearSvd};
 use super::model::{HoverSource, Model};
-use super::settings::Overlay;
+use super::settings::{Hidden, HiddenSet, MatrixId, Overlay};
 use super::style::NameRow;
 use super::symbolic_view::{SymbolicCache, symbolic_block};
 use super::{Panel, style, tr, trf};
@@ -78,6 +79,7 @@ fn clean(v: f64, decimals: usize) -> f64 {
 /// A matrix with copy buttons; returns true when it is hovered.
 ///
 /// Blocks scrolled out of sight keep their last size without drawing their numbers.
+#[allow(clippy::too_many_arguments)]
 fn matrix_block(
     ui: &mut egui::Ui,
     lang: Lang,
@@ -86,6 +88,7 @@ fn matrix_block(
     m: &DMatrix<f64>,
     decimals: usize,
     highlighted: bool,
+    (target, hiding): (Target, &mut Hiding),
 ) -> bool {
     let mut hovered = false;
     let frame = egui::Frame::group(ui.style()).stroke(if highlighted {
@@ -114,6 +117,20 @@ fn matrix_block(
                     ui.ctx().copy_text(format(m, decimals));
                 }
             }
+            if let (true, Target::Matrix(id)) = (hiding.choosing, target) {
+                let whole = Hidden::Matrix(id);
+                let mut text = egui::RichText::new("?").strong();
+                if hiding.hidden.contains(whole) {
+                    text = text.background_color(HIDDEN_BACKGROUND);
+                }
+                let button = ui
+                    .small_button(text)
+                    .on_hover_text(text_of(lang, Key::HideWhole));
+                hiding.point(format!("hide-{}", whole.to_link()), button.rect.center());
+                if button.clicked() {
+                    hiding.toggled.push(whole);
+                }
+            }
             title.hovered()
         });
         hovered |= header.inner || header.response.hovered();
@@ -131,7 +148,13 @@ fn matrix_block(
             None => {
                 let out = egui::ScrollArea::horizontal()
                     .id_salt(("matrix scroll", title))
-                    .show(ui, |ui| number_table(ui, m, decimals));
+                    .show(ui, |ui| {
+                        if hiding.interactive(target) {
+                            hiding_table(ui, lang, m, decimals, target, hiding)
+                        } else {
+                            number_table(ui, m, decimals)
+                        }
+                    });
                 (out.inner_rect.size(), out.inner.hovered())
             }
         };
@@ -349,6 +372,10 @@ pub struct MatricesPanel {
     /// Show A_i and T_0i symbolically instead of as numbers.
     symbolic: bool,
     chain: SymbolicCache,
+    /// Predict, then reveal: the lecturer is choosing what to hide.
+    choosing: bool,
+    /// What a click revealed during the lecture ("Hide again" puts it back).
+    revealed: Vec<Hidden>,
 }
 
 /// A Jacobian analysis and what it was computed for.
@@ -380,8 +407,15 @@ impl MatricesPanel {
 }
 
 impl Panel for MatricesPanel {
-    fn ui(&mut self, model: &mut Model, ui: &mut egui::Ui, _points: &mut ScreenPoints) {
+    fn ui(&mut self, model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
+        if model.table_hidden() {
+            // Every number here (A_i, T_0i, J, even T_0n at a chosen q) would give the
+            // exercise's table away.
+            ui.label(tr(model, Key::ExerciseHidden));
+            return;
+        }
         precision_row(model, ui);
+        let mut hiding = self.hiding(model, ui);
         let decimals = model.settings().precision;
         let n = model.robot().dof();
         let unit = model.robot().length_unit.symbol();
@@ -394,6 +428,7 @@ impl Panel for MatricesPanel {
             &homogeneous(&model.fk().base_from_tool),
             decimals,
             false,
+            (Target::Matrix(MatrixId::Tool), &mut hiding),
         );
         orientation_block(
             ui,
@@ -407,7 +442,7 @@ impl Panel for MatricesPanel {
             .default_open(true)
             .show(ui, |ui| {
                 let analysis = self.analysis(model);
-                jacobian_block(model, analysis, ui, decimals)
+                jacobian_block(model, analysis, ui, decimals, &mut hiding)
             });
         let symbolic = self
             .symbolic
@@ -421,11 +456,233 @@ impl Panel for MatricesPanel {
         .show(ui, |ui| {
             ui.checkbox(&mut self.symbolic, tr(model, Key::ShowSymbolic))
                 .on_hover_text(tr(model, Key::ShowSymbolicHint));
-            link_blocks(model, ui, decimals, symbolic)
+            link_blocks(model, ui, decimals, symbolic, &mut hiding)
         })
         .body_returned
         .flatten();
         model.set_hovered_link(hovered, HoverSource::Matrices);
+        self.finish_hiding(model, hiding, points);
+    }
+}
+
+// --- Predict, then reveal (presentation mode) ---------------------------------------------
+
+/// The background of an entry the lecturer chose to hide (while choosing).
+const HIDDEN_BACKGROUND: egui::Color32 = egui::Color32::from_rgb(120, 70, 20);
+
+/// A matrix block entries can be hidden in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Target {
+    /// T_0n, A_i or T_0i: entries or the whole matrix.
+    Matrix(MatrixId),
+    /// The Jacobian: whole columns.
+    Jacobian,
+}
+
+impl Target {
+    /// The item a click on entry (row, column), from 0, hides or shows while choosing.
+    fn item(self, row: usize, column: usize) -> Hidden {
+        match self {
+            Target::Matrix(id) => Hidden::Entry(id, row + 1, column + 1),
+            Target::Jacobian => Hidden::JacobianColumn(column + 1),
+        }
+    }
+
+    /// The items that hide entry (row, column).
+    fn items(self, row: usize, column: usize) -> impl Iterator<Item = Hidden> {
+        let whole = match self {
+            Target::Matrix(id) => Some(Hidden::Matrix(id)),
+            Target::Jacobian => None,
+        };
+        whole
+            .into_iter()
+            .chain(std::iter::once(self.item(row, column)))
+    }
+}
+
+/// One frame's view of what presentation mode hides: the settings' set, the panel's
+/// revealed items, and the clicks to apply when the frame's blocks are drawn.
+struct Hiding {
+    /// Presentation mode: hiding applies.
+    on: bool,
+    /// The lecturer is choosing: clicks hide and show instead of revealing.
+    choosing: bool,
+    hidden: HiddenSet,
+    revealed: Vec<Hidden>,
+    /// Items clicked while choosing, to toggle in the settings.
+    toggled: Vec<Hidden>,
+    /// Screen points of the entries and buttons, for the tests.
+    points: Vec<(String, egui::Pos2)>,
+}
+
+impl Hiding {
+    /// Whether a block draws its entries one by one (clickable): while choosing, or when
+    /// something in it is hidden.
+    fn interactive(&self, target: Target) -> bool {
+        self.on
+            && (self.choosing
+                || self.hidden.items().iter().any(|h| match (target, *h) {
+                    (Target::Matrix(id), Hidden::Matrix(m) | Hidden::Entry(m, _, _)) => m == id,
+                    (Target::Jacobian, Hidden::JacobianColumn(_)) => true,
+                    _ => false,
+                }))
+    }
+
+    /// The hidden item that hides entry (row, column), if any.
+    fn hiding_item(&self, target: Target, row: usize, column: usize) -> Option<Hidden> {
+        target.items(row, column).find(|h| self.hidden.contains(*h))
+    }
+
+    /// The item that conceals entry (row, column) now (hidden and not revealed).
+    fn concealing(&self, target: Target, row: usize, column: usize) -> Option<Hidden> {
+        (self.on && !self.choosing)
+            .then(|| {
+                target
+                    .items(row, column)
+                    .find(|h| self.hidden.contains(*h) && !self.revealed.contains(h))
+            })
+            .flatten()
+    }
+
+    /// The whole-matrix item concealing `id` now, if any.
+    fn concealed_whole(&self, id: MatrixId) -> Option<Hidden> {
+        let whole = Hidden::Matrix(id);
+        (self.on
+            && !self.choosing
+            && self.hidden.contains(whole)
+            && !self.revealed.contains(&whole))
+        .then_some(whole)
+    }
+
+    fn point(&mut self, name: String, at: egui::Pos2) {
+        self.points.push((name, at));
+    }
+
+    /// A whole matrix behind one "?" (the symbolic view's blocks); a click reveals it.
+    fn concealed_block(
+        &mut self,
+        ui: &mut egui::Ui,
+        lang: Lang,
+        title: &str,
+        item: Hidden,
+    ) -> bool {
+        let frame = egui::Frame::group(ui.style()).show(ui, |ui| {
+            ui.strong(title);
+            let button = ui
+                .button(egui::RichText::new("?").strong().size(24.0))
+                .on_hover_text(text_of(lang, Key::RevealHint));
+            self.point(format!("reveal-{}", item.to_link()), button.rect.center());
+            if button.clicked() {
+                self.revealed.push(item);
+            }
+        });
+        frame.response.hovered()
+    }
+}
+
+/// The matrix entry by entry, each clickable: "?" for a concealed entry (a click reveals
+/// it); while choosing, every number, the hidden ones on a dark orange background (a click
+/// hides or shows the entry, or the Jacobian's column).
+fn hiding_table(
+    ui: &mut egui::Ui,
+    lang: Lang,
+    m: &DMatrix<f64>,
+    decimals: usize,
+    target: Target,
+    hiding: &mut Hiding,
+) -> egui::Response {
+    let name = match target {
+        Target::Matrix(id) => Hidden::Matrix(id).to_link(),
+        Target::Jacobian => "J".to_string(),
+    };
+    let grid = egui::Grid::new(("hiding", name.clone()))
+        .spacing([10.0, 0.0])
+        .show(ui, |ui| {
+            for r in 0..m.nrows() {
+                for c in 0..m.ncols() {
+                    let value = format!("{:.p$}", clean(m[(r, c)], decimals), p = decimals);
+                    let concealed = hiding.concealing(target, r, c);
+                    let mut text = match concealed {
+                        Some(_) => egui::RichText::new("?").strong().color(style::HIGHLIGHT),
+                        None => egui::RichText::new(value),
+                    }
+                    .monospace();
+                    if hiding.choosing && hiding.hiding_item(target, r, c).is_some() {
+                        text = text.background_color(HIDDEN_BACKGROUND);
+                    }
+                    let mut cell = ui.add(egui::Label::new(text).sense(egui::Sense::click()));
+                    if concealed.is_some() {
+                        cell = cell.on_hover_text(text_of(lang, Key::RevealHint));
+                    }
+                    hiding.point(
+                        format!("cell-{name}-{}-{}", r + 1, c + 1),
+                        cell.rect.center(),
+                    );
+                    if cell.clicked() {
+                        match (hiding.choosing, concealed) {
+                            (true, _) => hiding.toggled.push(target.item(r, c)),
+                            (false, Some(item)) => hiding.revealed.push(item),
+                            (false, None) => {}
+                        }
+                    }
+                }
+                ui.end_row();
+            }
+        });
+    grid.response
+}
+
+impl MatricesPanel {
+    /// Presentation mode's row (choose what to hide, how many are hidden, hide again) and
+    /// this frame's view of the hidden set.
+    fn hiding(&mut self, model: &Model, ui: &mut egui::Ui) -> Hiding {
+        let on = model.settings().presentation;
+        let hidden = model.settings().hidden.clone();
+        self.revealed.retain(|h| hidden.contains(*h));
+        if on {
+            super::style::wrapped(ui, |ui| {
+                ui.toggle_value(&mut self.choosing, tr(model, Key::HideMode))
+                    .on_hover_text(tr(model, Key::HideModeHint));
+                if !hidden.is_empty() {
+                    ui.label(trf(model, Key::HiddenCount, &[&hidden.len()]));
+                    if ui
+                        .button(tr(model, Key::HideAgain))
+                        .on_hover_text(tr(model, Key::HideAgainHint))
+                        .clicked()
+                    {
+                        self.revealed.clear();
+                    }
+                }
+            });
+        }
+        Hiding {
+            on,
+            choosing: on && self.choosing,
+            hidden,
+            revealed: std::mem::take(&mut self.revealed),
+            toggled: Vec::new(),
+            points: Vec::new(),
+        }
+    }
+
+    /// Keeps what was revealed, and writes what was chosen into the settings (the link).
+    fn finish_hiding(&mut self, model: &mut Model, hiding: Hiding, points: &mut ScreenPoints) {
+        self.revealed = hiding.revealed;
+        for (name, at) in hiding.points {
+            points.insert(name, at);
+        }
+        if !hiding.toggled.is_empty() {
+            let mut settings = model.settings().clone();
+            for item in hiding.toggled {
+                settings.hidden.toggle(item);
+            }
+            model.set_settings(settings);
+        }
+    }
+
+    /// Whether the lecturer is choosing what to hide.
+    pub fn choosing(&self) -> bool {
+        self.choosing
     }
 }
 
@@ -451,6 +708,7 @@ fn link_blocks(
     ui: &mut egui::Ui,
     decimals: usize,
     symbolic: Option<&SymbolicChain>,
+    hiding: &mut Hiding,
 ) -> Option<usize> {
     let convention = match model.robot().convention {
         Convention::Standard => Key::StandardFormula,
@@ -472,9 +730,16 @@ fn link_blocks(
             let title = trf(model, Key::LinkTitle, &[&(i + 1), &joint.name, &variable]);
             let a = &chain.link_transforms[i];
             let t = &chain.base_from_frames[i];
-            let over_a = symbolic_block(ui, lang, &title, a, joint_under, highlighted);
+            // A whole matrix hidden for the lecture stays a "?" here too.
+            let over_a = match hiding.concealed_whole(MatrixId::Link(i + 1)) {
+                Some(item) => hiding.concealed_block(ui, lang, &title, item),
+                None => symbolic_block(ui, lang, &title, a, joint_under, highlighted),
+            };
             let title = format!("T_0{}", i + 1);
-            let over_t = symbolic_block(ui, lang, &title, t, joint_under, highlighted);
+            let over_t = match hiding.concealed_whole(MatrixId::Frame(i + 1)) {
+                Some(item) => hiding.concealed_block(ui, lang, &title, item),
+                None => symbolic_block(ui, lang, &title, t, joint_under, highlighted),
+            };
             if over_a || over_t {
                 hovered = Some(i + 1);
             }
@@ -490,13 +755,15 @@ fn link_blocks(
             &a,
             decimals,
             highlighted,
+            (Target::Matrix(MatrixId::Link(i + 1)), &mut *hiding),
         ) {
             hovered = Some(i + 1);
         }
         let t = homogeneous(&model.fk().base_from_frames[i]);
         let title = format!("T_0{}", i + 1);
         let hover = tr(model, Key::FrameInBase);
-        if matrix_block(ui, lang, &title, hover, &t, decimals, highlighted) {
+        let target = (Target::Matrix(MatrixId::Frame(i + 1)), &mut *hiding);
+        if matrix_block(ui, lang, &title, hover, &t, decimals, highlighted, target) {
             hovered = Some(i + 1);
         }
     }
@@ -508,6 +775,7 @@ fn jacobian_block(
     analysis: &JacobianAnalysis,
     ui: &mut egui::Ui,
     decimals: usize,
+    hiding: &mut Hiding,
 ) {
     let j = &analysis.geometric;
     let jm = DMatrix::from_fn(6, j.ncols(), |r, c| j[(r, c)]);
@@ -519,6 +787,7 @@ fn jacobian_block(
         &jm,
         decimals,
         false,
+        (Target::Jacobian, hiding),
     );
     let text = trf(
         model,

@@ -15,6 +15,7 @@
 #![deny(clippy::too_many_lines)]
 
 pub mod convention_view;
+pub mod exercise_view;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod files;
 // The link format lives beside the core (no GUI): the app uses it under its old paths.

@@ -25,6 +25,8 @@ use super::motion_lab::MotionLab;
 use super::session::{RobotSource, Session};
 pub use super::settings::Settings;
 use super::settings::{CameraPose, DisplayPatch};
+use crate::kinematics::exercise::{Verdict, check_table};
+use crate::link::exercise::ExerciseId;
 
 /// The IK state as the user sees it: the marker's colour and the IK panel's numbers.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -216,6 +218,19 @@ pub struct Model {
     /// The tool directions reached at the target's position, when asked for.
     directions: Option<DirectionSphere>,
     motion: MotionLab,
+    exercise: Option<ExerciseState>,
+}
+
+/// An open DH-table exercise (docs/kinematics.md §15): the model's robot is its reference,
+/// whose table stays hidden until a checked table is right.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExerciseState {
+    /// The exercise's robot, as the link names it.
+    pub id: ExerciseId,
+    /// The answer of the last check, if any.
+    pub verdict: Option<Verdict>,
+    /// A check said "correct": the robot's table shows everywhere again.
+    pub solved: bool,
 }
 
 impl Model {
@@ -249,6 +264,7 @@ impl Model {
             rescue: None,
             directions: None,
             motion: MotionLab::default(),
+            exercise: None,
         };
         model.open(session);
         model
@@ -436,6 +452,7 @@ impl Model {
                 self.motion.collisions_on(),
                 self.motion.keep_outs(),
             ),
+            exercise: self.exercise.as_ref().map(|e| e.id.clone()),
         }
     }
 
@@ -634,6 +651,11 @@ impl Model {
             self.camera = session.camera;
             self.camera_loads += 1;
         }
+        self.exercise = session.exercise.map(|id| ExerciseState {
+            id,
+            verdict: None,
+            solved: false,
+        });
         self.robot = session.robot;
         self.source = session.source;
         self.q = session.q;
@@ -661,6 +683,7 @@ impl Model {
         self.method = IkMethod::DampedLeastSquares;
         self.robot = robot;
         self.source = source;
+        self.exercise = None;
         self.keep_method_available();
         self.loads += 1;
         self.robot_changes += 1;
@@ -685,6 +708,7 @@ impl Model {
         let reframe = robot.reach() / self.robot.reach();
         self.robot = robot;
         self.source = source;
+        self.exercise = None;
         self.q = q;
         self.robot_changes += 1;
         self.keep_method_available();
@@ -1103,6 +1127,73 @@ impl Model {
             crate::i18n::Key::CollisionStopped,
             &[&contact],
         )));
+    }
+
+    // --- Editing that keeps the arm, the DH-table exercise (docs/kinematics.md §14.3, §15)
+
+    /// Swaps in a robot whose joint count the DH editor changed (a joint added or
+    /// removed), at the joint vector the edit kept (`kinematics::edit::insert_joint`,
+    /// `remove_joint`: every other joint keeps its value), each value clamped to its
+    /// joint's limits. The view frames the arm anew and the target moves onto the tool,
+    /// as for any change of the joint count.
+    pub fn edit_robot_with_q(&mut self, robot: Robot, source: RobotSource, q: Vec<f64>) {
+        self.edit_robot(robot, source);
+        self.set_q_exact(q);
+        self.snap_target();
+    }
+
+    /// The open DH-table exercise, if any.
+    pub fn exercise(&self) -> Option<&ExerciseState> {
+        self.exercise.as_ref()
+    }
+
+    /// Whether the robot's DH table must not show (an exercise is open and not yet
+    /// solved): the matrices, the frames and both-conventions views stay hidden.
+    pub fn table_hidden(&self) -> bool {
+        self.exercise.as_ref().is_some_and(|e| !e.solved)
+    }
+
+    /// Starts an exercise: its robot becomes the model's robot (at its home pose, its
+    /// table hidden).
+    pub fn start_exercise(&mut self, id: ExerciseId) -> Result<(), crate::kinematics::RobotError> {
+        let robot = id.robot()?;
+        self.load_robot(robot, RobotSource::Custom);
+        self.exercise = Some(ExerciseState {
+            id,
+            verdict: None,
+            solved: false,
+        });
+        Ok(())
+    }
+
+    /// Grades a student's table against the exercise's robot (`check_table`); a correct
+    /// one solves the exercise. `None` when no exercise is open.
+    pub fn check_exercise(&mut self, student: &Robot) -> Option<Verdict> {
+        let exercise = self.exercise.as_mut()?;
+        let verdict = check_table(&self.robot, student);
+        exercise.verdict = Some(verdict);
+        exercise.solved |= verdict == Verdict::Correct;
+        Some(verdict)
+    }
+
+    /// Ends the exercise: the robot stays, with its own names again, and its table shows
+    /// everywhere (the DH editor takes it).
+    pub fn end_exercise(&mut self) {
+        let Some(exercise) = self.exercise.take() else {
+            return;
+        };
+        if let Ok(original) = exercise.id.original_robot() {
+            self.robot.name = original.name;
+            self.robot.description = original.description;
+            for (joint, named) in self.robot.joints.iter_mut().zip(original.joints) {
+                joint.name = named.name;
+            }
+        }
+        if let ExerciseId::Preset(id) = exercise.id {
+            self.source = RobotSource::Preset(id);
+        }
+        self.loads += 1;
+        self.robot_changes += 1;
     }
 
     // --- Derived values ------------------------------------------------------------------

@@ -3,7 +3,7 @@
 //! loading robot files. Every way of loading a robot goes through
 //! [`RobotPanel::load_robot`].
 
-use crate::kinematics::edit::switch_convention;
+use crate::kinematics::edit::{insert_joint, remove_joint, switch_convention};
 use crate::kinematics::{
     Convention, DhRow, Joint, JointKind, JointLimits, Robot, RobotError, preset, preset_names,
     robot_from_json, robot_to_json,
@@ -42,6 +42,9 @@ pub struct DhEditor {
     pub rows: Vec<RowText>,
     /// The cell that is wrong, and why.
     pub error: Option<CellError>,
+    /// After a joint was added or removed: the joint vector that keeps every other
+    /// joint's value, applied with the table once it is valid.
+    pub kept_q: Option<Vec<f64>>,
 }
 
 /// A cell of the table that does not give a valid robot.
@@ -110,6 +113,7 @@ impl DhEditor {
             convention: Some(robot.convention),
             rows,
             error: None,
+            kept_q: None,
         }
     }
 
@@ -195,6 +199,8 @@ fn locate(e: &RobotError) -> (usize, usize) {
 /// dialog while it is open.
 pub struct RobotPanel {
     editor: DhEditor,
+    /// The DH-table exercise's answer table (while an exercise is open).
+    exercise: super::exercise_view::ExercisePanel,
     /// The model's robot-load count the editor's texts were taken at.
     editor_loads: u64,
     /// The native file dialog, while it is open.
@@ -207,6 +213,7 @@ impl RobotPanel {
     pub fn new(robot: &Robot) -> Self {
         RobotPanel {
             editor: DhEditor::from_robot(robot),
+            exercise: super::exercise_view::ExercisePanel::default(),
             editor_loads: 0,
             #[cfg(not(target_arch = "wasm32"))]
             file_dialog: None,
@@ -216,6 +223,11 @@ impl RobotPanel {
     /// The DH editor's texts and error.
     pub fn editor(&self) -> &DhEditor {
         &self.editor
+    }
+
+    /// The DH-table exercise's answer table.
+    pub fn exercise(&self) -> &super::exercise_view::ExercisePanel {
+        &self.exercise
     }
 
     /// The native file dialog, while it is open.
@@ -438,6 +450,12 @@ impl RobotPanel {
 
 impl Panel for RobotPanel {
     fn ui(&mut self, model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
+        if model.exercise().is_some() {
+            // Only the exercise: the editor, presets, both conventions and files would
+            // show the hidden table or end the exercise.
+            self.exercise.ui(model, ui, points);
+            return;
+        }
         self.sync_editor(model);
         self.preset_chooser(model, ui);
         let description = match model.source() {
@@ -457,6 +475,7 @@ impl Panel for RobotPanel {
         super::convention_view::both_conventions_ui(model, ui);
         self.file_buttons(model, ui, points);
         self.receive_files(model, ui);
+        super::exercise_view::start_ui(model, ui, points);
     }
 }
 
@@ -501,10 +520,17 @@ fn dh_table(
             }
         });
     if let Some(i) = remove {
+        edited.kept_q = kept_q(editor, model, |robot, q| {
+            remove_joint(robot, q, i).map(|(_, q)| q)
+        });
         edited.rows.remove(i);
         changed = true;
     }
     if ui.button(tr(model, Key::AddJoint)).clicked() {
+        let at = edited.rows.len();
+        edited.kept_q = kept_q(editor, model, |robot, q| {
+            Some(insert_joint(robot, q, at, new_joint(at)).1)
+        });
         edited.rows.push(RowText {
             kind: JointKind::Revolute,
             cells: ["0", "0", "0", "0", "-180", "180"].map(String::from),
@@ -524,8 +550,49 @@ fn dh_table(
     }
 }
 
+/// The joint vector after adding or removing a joint (`edit`, from the core): from the
+/// model's robot and q when the table's rows are that robot, or from the vector a
+/// previous, not yet applied add or remove kept; `None` (the home pose) otherwise.
+fn kept_q(
+    editor: &DhEditor,
+    model: &Model,
+    edit: impl Fn(&Robot, &[f64]) -> Option<Vec<f64>>,
+) -> Option<Vec<f64>> {
+    let rows = editor.rows.len();
+    let robot = model.robot();
+    match &editor.kept_q {
+        Some(q) if q.len() == rows => {
+            // Only the count matters here: the kept values stand for the rows.
+            let mut stand_in = robot.clone();
+            stand_in.joints.resize(rows, new_joint(0));
+            edit(&stand_in, q)
+        }
+        _ if robot.dof() == rows => edit(robot, model.q()),
+        _ => None,
+    }
+}
+
+/// The joint the "add a joint" button adds: revolute, all zeros, ±180°, home 0.
+fn new_joint(i: usize) -> Joint {
+    Joint {
+        name: format!("joint {}", i + 1),
+        kind: JointKind::Revolute,
+        dh: DhRow {
+            theta: 0.0,
+            d: 0.0,
+            a: 0.0,
+            alpha: 0.0,
+        },
+        limits: JointLimits::FULL_TURN,
+        max_speed: None,
+        max_acceleration: None,
+        home: 0.0,
+        parts: Default::default(),
+    }
+}
+
 /// The convention's radio buttons; returns whether it changed.
-fn convention_row(editor: &mut DhEditor, model: &Model, ui: &mut egui::Ui) -> bool {
+pub(super) fn convention_row(editor: &mut DhEditor, model: &Model, ui: &mut egui::Ui) -> bool {
     let mut changed = false;
     super::style::wrapped(ui, |ui| {
         ui.label(tr(model, Key::Convention));
@@ -550,13 +617,15 @@ fn convention_row(editor: &mut DhEditor, model: &Model, ui: &mut egui::Ui) -> bo
 }
 
 /// What the user did in one row of the table.
-struct RowEdit {
-    changed: bool,
-    remove: bool,
+pub(super) struct RowEdit {
+    /// A cell or the type changed.
+    pub changed: bool,
+    /// The row's × was clicked.
+    pub remove: bool,
 }
 
 /// One joint's row: number, type, six cells, remove button, and its error beneath.
-fn dh_row(
+pub(super) fn dh_row(
     ui: &mut egui::Ui,
     model: &Model,
     i: usize,
@@ -649,8 +718,15 @@ fn apply_edit(editor: &mut DhEditor, mut edited: DhEditor, model: &mut Model) {
     match edited.to_robot(model.robot()) {
         Ok(robot) => {
             edited.error = None;
+            // A joint added or removed: the other joints keep their values.
+            let kept = edited
+                .kept_q
+                .take()
+                .filter(|q| q.len() == robot.dof() && robot.dof() != model.robot().dof());
             *editor = edited;
-            if &robot != model.robot() {
+            if let Some(q) = kept {
+                model.edit_robot_with_q(robot, RobotSource::Custom, q);
+            } else if &robot != model.robot() {
                 model.edit_robot(robot, RobotSource::Custom);
             }
         }

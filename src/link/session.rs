@@ -25,9 +25,10 @@ use crate::kinematics::{
 use crate::i18n::echo::Text;
 use crate::i18n::{Key, Lang, fill, text};
 
+use super::exercise::ExerciseId;
 use super::format::number_list;
 use super::motion::{MotionLinkError, MotionPatch};
-use super::settings::{CameraPose, DisplayPatch};
+use super::settings::{CameraPose, DisplayPatch, HiddenSet};
 
 /// Decimals of the numbers a link writes (1e-6 rad, 1e-6 of a length unit).
 const LINK_DECIMALS: usize = 6;
@@ -79,6 +80,12 @@ pub enum LinkError {
     /// A motion lab field (`move`, `ctrl`, `gains`, `plant`, `timescale`, `collide`,
     /// `keepout`) is not valid.
     Motion(MotionLinkError),
+    /// `exercise=` names neither a preset nor `mystery-SEED`.
+    UnknownExercise(String),
+    /// `exercise=` with `robot=` or `dh=`: an exercise's link names no table.
+    ExerciseWithRobot,
+    /// An item of `hide=` that is not a matrix, an entry or a Jacobian column.
+    BadHidden(String),
 }
 
 impl LinkError {
@@ -116,6 +123,9 @@ impl LinkError {
             LinkError::CustomWithoutTable => plain(Key::LinkCustomWithoutTable),
             LinkError::Robot(e) => e.sentence(lang),
             LinkError::Motion(e) => e.sentence(lang),
+            LinkError::UnknownExercise(id) => fill(lang, Key::LinkUnknownExercise, &[&Text(id)]),
+            LinkError::ExerciseWithRobot => plain(Key::LinkExerciseWithRobot),
+            LinkError::BadHidden(item) => fill(lang, Key::LinkBadHidden, &[&Text(item)]),
         }
     }
 }
@@ -172,6 +182,8 @@ pub struct Session {
     pub camera: Option<CameraPose>,
     /// The motion lab's fields the link names.
     pub motion: MotionPatch,
+    /// The DH-table exercise this robot is (`exercise=`): the link then names no table.
+    pub exercise: Option<ExerciseId>,
 }
 
 /// The preset the app opens with, and falls back to when a link is broken.
@@ -192,6 +204,7 @@ impl Session {
             display: DisplayPatch::default(),
             camera: None,
             motion: MotionPatch::default(),
+            exercise: None,
         })
     }
 
@@ -208,6 +221,15 @@ impl Session {
     pub fn to_hash(&self) -> String {
         let mut parts = Vec::new();
         match &self.source {
+            // An exercise's link names its robot, never its table.
+            _ if self.exercise.is_some() => {
+                let id = self
+                    .exercise
+                    .as_ref()
+                    .map(ExerciseId::id)
+                    .unwrap_or_default();
+                parts.push(format!("exercise={id}"));
+            }
             RobotSource::Preset(id) => parts.push(format!("robot={id}")),
             RobotSource::Custom => {
                 parts.push("robot=custom".to_string());
@@ -247,6 +269,25 @@ impl Session {
         }
         let parts = LinkParts::parse(hash)?;
         let mut session = match parts.robot.as_deref() {
+            _ if parts.exercise.is_some() => {
+                if parts.robot.is_some() || parts.dh.is_some() {
+                    return Err(LinkError::ExerciseWithRobot);
+                }
+                let id = parts.exercise.clone().ok_or(LinkError::NoRobot)?;
+                let robot = id.robot()?;
+                Session {
+                    q: robot.home(),
+                    task: Task::default_for(robot.dof()),
+                    robot,
+                    source: RobotSource::Custom,
+                    target: None,
+                    method: parts.method,
+                    display: DisplayPatch::default(),
+                    camera: None,
+                    motion: MotionPatch::default(),
+                    exercise: Some(id),
+                }
+            }
             Some("custom") => {
                 let text = parts.dh.ok_or(LinkError::CustomWithoutTable)?;
                 let robot = robot_from_json(&text)?;
@@ -260,6 +301,7 @@ impl Session {
                     display: DisplayPatch::default(),
                     camera: None,
                     motion: MotionPatch::default(),
+                    exercise: None,
                 }
             }
             Some(id) => Session::for_preset(id)?,
@@ -291,6 +333,7 @@ struct LinkParts {
     display: DisplayPatch,
     camera: Option<CameraPose>,
     motion: MotionPatch,
+    exercise: Option<ExerciseId>,
 }
 
 impl LinkParts {
@@ -305,6 +348,7 @@ impl LinkParts {
             display: DisplayPatch::default(),
             camera: None,
             motion: MotionPatch::default(),
+            exercise: None,
         };
         for part in hash.split('&').filter(|p| !p.is_empty()) {
             let (key, value) = part
@@ -333,6 +377,11 @@ impl LinkParts {
                         .try_into()
                         .map_err(|_| LinkError::BadCamera)?;
                     parts.camera = Some(CameraPose::from_array(c).ok_or(LinkError::BadCamera)?);
+                }
+                "exercise" => parts.exercise = Some(ExerciseId::parse(value)?),
+                "hide" => {
+                    let hidden = HiddenSet::from_link(value).map_err(LinkError::BadHidden)?;
+                    parts.display.hidden = Some(hidden);
                 }
                 other if parts.motion.read(other, value).map_err(LinkError::Motion)? => {}
                 other => {

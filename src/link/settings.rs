@@ -212,6 +212,143 @@ impl<K: Flag> FlagSet<K> {
     }
 }
 
+/// A matrix of the matrices panel that entries can be hidden in (predict, then reveal).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum MatrixId {
+    /// The tool pose T_0n (link id `Tn`).
+    Tool,
+    /// The link transform A_i, i from 1 (`A3`).
+    Link(usize),
+    /// The running product T_0i, i from 1 (`T3`).
+    Frame(usize),
+}
+
+/// One thing the lecturer hides behind a "?" until a click (presentation mode).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Hidden {
+    /// A whole matrix (`A3`, `T3`, `Tn`).
+    Matrix(MatrixId),
+    /// One entry, row and column from 1 (`A3.14`: row 1, column 4).
+    Entry(MatrixId, usize, usize),
+    /// A column of the Jacobian, from 1 (`J4`).
+    JacobianColumn(usize),
+}
+
+/// The largest matrix or column index a link may name.
+pub const MAX_HIDDEN_INDEX: usize = 99;
+
+impl Hidden {
+    /// The link form of one item.
+    pub fn to_link(self) -> String {
+        let matrix = |m: MatrixId| match m {
+            MatrixId::Tool => "Tn".to_string(),
+            MatrixId::Link(i) => format!("A{i}"),
+            MatrixId::Frame(i) => format!("T{i}"),
+        };
+        match self {
+            Hidden::Matrix(m) => matrix(m),
+            Hidden::Entry(m, r, c) => format!("{}.{r}{c}", matrix(m)),
+            Hidden::JacobianColumn(c) => format!("J{c}"),
+        }
+    }
+
+    /// Reads one item of the link form; `None` when it is not one.
+    pub fn from_link(text: &str) -> Option<Hidden> {
+        let index = |s: &str| {
+            (!s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()))
+                .then(|| s.parse::<usize>().ok())
+                .flatten()
+                .filter(|i| (1..=MAX_HIDDEN_INDEX).contains(i))
+        };
+        if let Some(c) = text.strip_prefix('J') {
+            return index(c).map(Hidden::JacobianColumn);
+        }
+        let (name, entry) = match text.split_once('.') {
+            Some((name, entry)) => (name, Some(entry)),
+            None => (text, None),
+        };
+        let matrix = match name {
+            "Tn" => MatrixId::Tool,
+            _ => match name.split_at_checked(1)? {
+                ("A", i) => MatrixId::Link(index(i)?),
+                ("T", i) => MatrixId::Frame(index(i)?),
+                _ => return None,
+            },
+        };
+        let Some(entry) = entry else {
+            return Some(Hidden::Matrix(matrix));
+        };
+        let digit = |b: u8| (b'1'..=b'4').contains(&b).then(|| usize::from(b - b'0'));
+        match entry.as_bytes() {
+            [r, c] => Some(Hidden::Entry(matrix, digit(*r)?, digit(*c)?)),
+            _ => None,
+        }
+    }
+}
+
+/// What the lecturer hides (`hide=A2,T3.14,Tn,J4`): kept sorted, each item once.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct HiddenSet(Vec<Hidden>);
+
+impl HiddenSet {
+    /// Whether nothing is hidden.
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+
+    /// How many items are hidden.
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    /// The items, sorted.
+    pub fn items(&self) -> &[Hidden] {
+        &self.0
+    }
+
+    /// Whether `item` itself is in the set.
+    pub fn contains(&self, item: Hidden) -> bool {
+        self.0.binary_search(&item).is_ok()
+    }
+
+    /// Adds `item`, or removes it when it is there.
+    pub fn toggle(&mut self, item: Hidden) {
+        match self.0.binary_search(&item) {
+            Ok(i) => {
+                self.0.remove(i);
+            }
+            Err(i) => self.0.insert(i, item),
+        }
+    }
+
+    /// The link form: items joined by commas, `none` for the empty set.
+    pub fn to_link(&self) -> String {
+        if self.0.is_empty() {
+            return "none".to_string();
+        }
+        self.0
+            .iter()
+            .map(|h| h.to_link())
+            .collect::<Vec<_>>()
+            .join(",")
+    }
+
+    /// Reads the link form; the first item that is not one is the error.
+    pub fn from_link(text: &str) -> Result<HiddenSet, String> {
+        let mut set = HiddenSet::default();
+        if text == "none" {
+            return Ok(set);
+        }
+        for item in text.split(',') {
+            let hidden = Hidden::from_link(item).ok_or_else(|| item.to_string())?;
+            if !set.contains(hidden) {
+                set.toggle(hidden);
+            }
+        }
+        Ok(set)
+    }
+}
+
 /// Display preferences.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Settings {
@@ -231,6 +368,8 @@ pub struct Settings {
     pub presentation_panels: PanelSet,
     /// What the 3D view draws besides the arm.
     pub overlays: OverlaySet,
+    /// What presentation mode hides behind a "?" until a click.
+    pub hidden: HiddenSet,
 }
 
 impl Default for Settings {
@@ -249,6 +388,7 @@ impl Default for Settings {
             ]),
             presentation_panels: PanelSet::of(&[PanelKind::Joints, PanelKind::Matrices]),
             overlays: OverlaySet::NONE,
+            hidden: HiddenSet::default(),
         }
     }
 }
@@ -292,6 +432,9 @@ pub struct DisplayPatch {
     pub presentation_panels: Option<PanelSet>,
     /// `show=jcols,jang,vel,force,null,twist,ghosts,cloud,slice,sigma,both` (or `none`): the 3D view's overlays.
     pub overlays: Option<OverlaySet>,
+    /// `hide=A2,T3.14,Tn,J4`: what presentation mode hides behind a "?" (written only
+    /// when something is hidden).
+    pub hidden: Option<HiddenSet>,
 }
 
 /// The most decimals the matrices show.
@@ -309,6 +452,7 @@ impl DisplayPatch {
             panels: Some(settings.panels),
             presentation_panels: Some(settings.presentation_panels),
             overlays: Some(settings.overlays),
+            hidden: Some(settings.hidden.clone()),
         }
     }
 
@@ -323,6 +467,7 @@ impl DisplayPatch {
             panels,
             presentation_panels,
             overlays,
+            hidden,
         } = self.clone();
         settings.degrees = degrees.unwrap_or(settings.degrees);
         settings.show_frames = show_frames.unwrap_or(settings.show_frames);
@@ -332,6 +477,9 @@ impl DisplayPatch {
         settings.panels = panels.unwrap_or(settings.panels);
         settings.presentation_panels = presentation_panels.unwrap_or(settings.presentation_panels);
         settings.overlays = overlays.unwrap_or(settings.overlays);
+        if let Some(hidden) = hidden {
+            settings.hidden = hidden;
+        }
     }
 
     /// The link's `key=value` parts for the fields it has.
@@ -361,6 +509,9 @@ impl DisplayPatch {
         }
         if let Some(o) = self.overlays {
             parts.push(format!("show={}", o.to_link()));
+        }
+        if let Some(h) = self.hidden.as_ref().filter(|h| !h.is_empty()) {
+            parts.push(format!("hide={}", h.to_link()));
         }
         parts
     }
@@ -404,6 +555,9 @@ impl DisplayPatch {
             }
             "show" => {
                 self.overlays = Some(OverlaySet::from_link(value).map_err(|_| Key::AllowedShow)?);
+            }
+            "hide" => {
+                self.hidden = Some(HiddenSet::from_link(value).map_err(|_| Key::AllowedHide)?);
             }
             _ => return Ok(false),
         }
@@ -486,6 +640,7 @@ mod tests {
             panels: PanelSet::of(&[PanelKind::Ik]),
             presentation_panels: PanelSet::NONE,
             overlays: OverlaySet::of(&[Overlay::JacobianColumns, Overlay::ForceEllipsoid]),
+            hidden: HiddenSet::from_link("A2,T3.14,Tn,J4").expect("valid"),
         };
         let mut read = DisplayPatch::default();
         for part in DisplayPatch::of(&settings).to_parts() {
@@ -512,5 +667,30 @@ mod tests {
         assert!(s.open_panels().contains(PanelKind::Ik));
         assert!(!s.open_panels().contains(PanelKind::Robot));
         assert_eq!(s.presentation_panels.iter().count(), 3);
+    }
+
+    #[test]
+    fn a_hidden_set_round_trips_and_names_its_first_bad_item() {
+        let set = HiddenSet::from_link("J4,A2,T3.14,Tn,A2,Tn.34").expect("valid");
+        assert_eq!(set.len(), 5, "A2 once");
+        assert_eq!(set.to_link(), "Tn,A2,Tn.34,T3.14,J4");
+        assert_eq!(HiddenSet::from_link(&set.to_link()), Ok(set.clone()));
+        assert!(set.contains(Hidden::Entry(MatrixId::Frame(3), 1, 4)));
+        assert!(set.contains(Hidden::JacobianColumn(4)));
+        assert!(!set.contains(Hidden::Matrix(MatrixId::Frame(3))));
+        for bad in [
+            "A0", "A100", "T3.15", "T3.1", "X2", "J", "A2.104", "Tn.", "", "A+2", "J-1",
+        ] {
+            assert_eq!(
+                HiddenSet::from_link(&format!("A2,{bad}")),
+                Err(bad.to_string()),
+                "{bad}"
+            );
+        }
+        assert_eq!(HiddenSet::from_link("none"), Ok(HiddenSet::default()));
+        let mut toggled = set;
+        toggled.toggle(Hidden::JacobianColumn(4));
+        toggled.toggle(Hidden::JacobianColumn(1));
+        assert_eq!(toggled.to_link(), "Tn,A2,Tn.34,T3.14,J1");
     }
 }

@@ -216,6 +216,15 @@ impl Viewport {
         self.draw_scene(model, ui, rect, render_state, &axes, timing);
         let touch = ui.spacing().interact_size.y >= style::TOUCH_TARGET;
         overlay::draw(model, &ui.painter_at(rect), rect, self.grid_step, touch);
+        if model.exercise().is_some() {
+            // The exercise's joint axes and dimensions, over the picture.
+            let view = view_geometry(&self.camera, model, rect);
+            let project = |p: &Point3<f64>| {
+                view.project(p)
+                    .map(|s| egui::pos2(s[0] as f32, s[1] as f32))
+            };
+            super::exercise_view::draw_in_view(model, &ui.painter_at(rect), &project);
+        }
         self.publish_points(model, rect, &axes, points);
         if response.hovered() && self.hover.is_some() {
             ui.ctx().set_cursor_icon(egui::CursorIcon::Grab);
@@ -415,7 +424,8 @@ impl Viewport {
             fk: model.fk(),
             camera: &self.camera,
             viewport_px: [rect.width().max(1.0) as f64, rect.height().max(1.0) as f64],
-            show_frames: model.settings().show_frames,
+            // The DH frames would show the exercise's hidden table.
+            show_frames: model.settings().show_frames && !model.table_hidden(),
             highlighted_link: model.hovered_link(),
             target: model.target(),
             marker: &look,
@@ -426,7 +436,9 @@ impl Viewport {
         }
         workspace_view::instances(model, &mut scene.instances);
         workspace_view::direction_instances(model, &mut scene.instances);
-        convention_view::instances(model, model.robot().reach(), &mut scene.instances);
+        if !model.table_hidden() {
+            convention_view::instances(model, model.robot().reach(), &mut scene.instances);
+        }
         ghosts::instances(model, &mut scene.instances);
         super::motion_view::trail_lines(model, &mut scene.lines);
         super::motion_view::keep_out_instances(model, &mut scene.instances);

@@ -1,0 +1,123 @@
+// The DH-table exercise in the built page (dist/), in Debian's headless Chromium: a
+// lecturer's link opens the RRR as an exercise with its table hidden; a student types a
+// table with the keyboard, presses Check, and reads the verdict (window.armlab.state()).
+// Run as tools/test.sh runs web/e2e.test.mjs (after build_web).
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { serveDist, launchChromium } from './static-server.mjs';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', 'dist');
+const shots = path.resolve(here, 'screenshots');
+const VIEW = { width: 1400, height: 860 };
+
+let server;
+let base;
+let browser;
+
+before(async () => {
+  assert.ok(fs.existsSync(path.join(dist, 'index.html')), 'dist/ holds the built page (trunk build --release)');
+  fs.mkdirSync(shots, { recursive: true });
+  ({ server, base } = await serveDist(dist));
+  browser = await launchChromium();
+});
+
+after(async () => {
+  await browser?.close();
+  server?.close();
+});
+
+const state = async (page) => JSON.parse(await page.evaluate(() => window.armlab.state()));
+
+/** Waits until the app has drawn a few more frames (egui draws on input: nudge it). */
+async function settle(page, frames = 3) {
+  const start = (await state(page)).frame;
+  for (let i = 0; i < 400; i++) {
+    await page.mouse.move(VIEW.width / 2 - (i % 2), 40);
+    if ((await state(page)).frame >= start + frames) return;
+    await page.waitForTimeout(20);
+  }
+  throw new Error('the app stopped drawing frames');
+}
+
+async function point(page, name) {
+  const p = await page.evaluate((n) => window.armlab.screenPoint(n), name);
+  assert.ok(p, `screenPoint("${name}") is on screen`);
+  return p;
+}
+
+async function click(page, name) {
+  const p = await point(page, name);
+  await page.mouse.click(p.x, p.y);
+  await settle(page);
+}
+
+/** Clicks an answer cell, selects its text and types over it. */
+async function type(page, cell, text) {
+  await click(page, cell);
+  await page.keyboard.press('Control+A');
+  await page.keyboard.type(text);
+  await settle(page, 4);
+}
+
+test('an exercise link hides the table; a wrong table is named by joint, a right one is correct', async () => {
+  const ctx = await browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
+  const page = await ctx.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.goto(`${base}#exercise=rrr&panels=robot,matrices`, { waitUntil: 'domcontentloaded' });
+  await page.waitForFunction(() => {
+    const text = window.armlab?.state();
+    return Boolean(text) && JSON.parse(text).rendered;
+  }, null, { timeout: 120000 });
+  await settle(page);
+  let s = await state(page);
+  assert.deepEqual(s.exercise, { id: 'rrr', solved: false, verdict: null });
+  assert.equal(s.robot, '', 'the preset is not named');
+  assert.equal(s.dof, 3);
+  assert.match(s.hash, /^exercise=rrr&/);
+  assert.doesNotMatch(s.hash, /dh=|robot=/, 'the link carries no table');
+  assert.doesNotMatch(page.url(), /dh=/, 'nor does the address bar');
+
+  // a2 = 222.1 written in row 1: the verdict names joint 2.
+  await type(page, 'dh-1-2', '100.9');
+  await type(page, 'dh-1-4', '90');
+  await type(page, 'dh-1-3', '222.1');
+  await type(page, 'dh-3-3', '136.2');
+  await click(page, 'exercise-check');
+  s = await state(page);
+  assert.equal(s.exercise.verdict,
+    "Joint 2's frame is the first to disagree: the length a in row 1 belongs in column a of row 2.");
+  assert.equal(s.exercise.solved, false);
+  await page.screenshot({ path: path.join(shots, 'exercise-wrong.png') });
+
+  // The length moved to row 2: correct.
+  await type(page, 'dh-1-3', '0');
+  await type(page, 'dh-2-3', '222.1');
+  await click(page, 'exercise-check');
+  s = await state(page);
+  assert.match(s.exercise.verdict, /^Correct: /);
+  assert.equal(s.exercise.solved, true);
+  await page.screenshot({ path: path.join(shots, 'exercise-correct.png') });
+  assert.deepEqual(errors, []);
+  await ctx.close();
+});
+
+test('a broken exercise link says why and opens the default robot', async () => {
+  const ctx = await browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
+  const page = await ctx.newPage();
+  await page.goto(`${base}#exercise=mystery-x`, { waitUntil: 'domcontentloaded' });
+  await page.waitForFunction(() => {
+    const text = window.armlab?.state();
+    return Boolean(text) && JSON.parse(text).rendered;
+  }, null, { timeout: 120000 });
+  await settle(page);
+  const s = await state(page);
+  assert.equal(s.exercise, null);
+  assert.equal(s.robot, 'UR10');
+  assert.match(s.message, /the link's exercise "mystery-x" is neither a preset id nor mystery- and a whole number/);
+  await ctx.close();
+});
