@@ -25,7 +25,11 @@ pub fn ui(model: &mut Model, ui: &mut egui::Ui, narrow: bool) -> Option<ViewActi
         if !narrow {
             ui.heading(tr(model, Key::AppName));
         }
-        ui.label(egui::RichText::new(&model.robot().name).strong());
+        // An exercise's robot has no name (it would give the table away); an empty label
+        // in a wrapping row makes egui draw the next button over the heading.
+        if !model.robot().name.is_empty() {
+            ui.label(egui::RichText::new(&model.robot().name).strong());
+        }
         ui.separator();
         if ui
             .button(tr(model, Key::Fit))
