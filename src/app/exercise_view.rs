@@ -119,13 +119,7 @@ impl ExercisePanel {
             .striped(true)
             .spacing([4.0, 2.0])
             .show(ui, |ui| {
-                ui.label("#");
-                ui.label(tr(model, Key::ColumnType));
-                for c in COLUMNS {
-                    ui.label(c);
-                }
-                ui.label("");
-                ui.end_row();
+                super::robot_panel::dh_header_row(model, ui);
                 for (i, row) in answer.rows.iter_mut().enumerate() {
                     let edit = dh_row(ui, model, i, row, error.as_ref(), points);
                     if edit.changed {

@@ -10,6 +10,12 @@ use nalgebra::{IsometryMatrix3, Point3};
 
 use crate::i18n::Lang;
 use crate::kinematics::collision::{CollisionChecker, CollisionReport, KeepOut};
+
+/// Whether this build checks collisions. The page does not: parry3d adds about 15 kB
+/// gzip, which takes the page's first load over its 1.8 MB budget with this stop's
+/// features (loading it lazily, as the URDF module is, is the next step). The desktop
+/// app, the UI tests and the core (the JSON API, `tests/collision.rs`) check them.
+pub const COLLISIONS_IN_THIS_BUILD: bool = !cfg!(target_arch = "wasm32");
 use crate::kinematics::motion::{MotionError, MotionSettings, MotionSim, check_time_scale};
 use crate::kinematics::{ForwardKinematics, Robot};
 
@@ -239,9 +245,10 @@ impl MotionLab {
         self.collisions.on
     }
 
-    /// Checks collisions (or stops checking; the red parts go).
+    /// Checks collisions (or stops checking; the red parts go). In a build without them
+    /// ([`COLLISIONS_IN_THIS_BUILD`]: the page) they stay off.
     pub fn set_collisions_on(&mut self, on: bool) {
-        self.collisions.on = on;
+        self.collisions.on = on && COLLISIONS_IN_THIS_BUILD;
         self.collisions.checked_q.clear();
         self.collisions.report = CollisionReport::default();
         self.collisions.sentence = None;
@@ -289,7 +296,9 @@ impl MotionLab {
         lang: Lang,
     ) -> bool {
         let c = &mut self.collisions;
-        if !c.on {
+        // A constant: in the page the check below is dead code, so the linker leaves
+        // parry3d out.
+        if !c.on || !COLLISIONS_IN_THIS_BUILD {
             return true;
         }
         if c.checker.is_none() || c.built_for != robot_changes {

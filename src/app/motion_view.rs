@@ -431,10 +431,17 @@ impl MotionPanel {
     /// The collision switch, the contact, and the keep-out boxes.
     fn collision_ui(&mut self, model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
         let mut on = model.motion().collisions_on();
+        let available = super::motion_lab::COLLISIONS_IN_THIS_BUILD;
         let r = ui
-            .checkbox(&mut on, tr(model, Key::MotionCollisions))
+            .add_enabled(
+                available,
+                egui::Checkbox::new(&mut on, tr(model, Key::MotionCollisions)),
+            )
             .on_hover_text(tr(model, Key::MotionCollisionsHint));
         points.insert("motion-collisions", r.rect.center());
+        if !available {
+            ui.label(egui::RichText::new(tr(model, Key::MotionCollisionsNotInPage)).small());
+        }
         if r.changed() {
             model.set_collisions_on(on);
         }

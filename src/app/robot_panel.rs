@@ -504,13 +504,7 @@ fn dh_table(
         .striped(true)
         .spacing([4.0, 2.0])
         .show(ui, |ui| {
-            ui.label("#");
-            ui.label(tr(model, Key::ColumnType));
-            for c in COLUMNS {
-                ui.label(c);
-            }
-            ui.label("");
-            ui.end_row();
+            dh_header_row(model, ui);
             for (i, row) in edited.rows.iter_mut().enumerate() {
                 let row_edit = dh_row(ui, model, i, row, editor.error.as_ref(), points);
                 changed |= row_edit.changed;
@@ -756,6 +750,18 @@ fn preset_description(id: &str) -> Option<Key> {
 /// The file name a robot is saved under: its name in lower case, spaces as dashes.
 pub fn robot_file_name(robot: &Robot) -> String {
     format!("{}.json", robot.name.to_lowercase().replace(' ', "-"))
+}
+
+/// The DH table's header row: #, type, the columns, and room for the remove button (the
+/// editor and the exercise's answer table share it).
+pub(super) fn dh_header_row(model: &Model, ui: &mut egui::Ui) {
+    ui.label("#");
+    ui.label(tr(model, Key::ColumnType));
+    for c in COLUMNS {
+        ui.label(c);
+    }
+    ui.label("");
+    ui.end_row();
 }
 
 #[cfg(test)]

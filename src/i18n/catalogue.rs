@@ -470,6 +470,7 @@ catalogue! {
     MotionCollisions: "Check collisions (self, floor, keep-out boxes)" / "Tarkista törmäykset (itsensä, lattia, kieltoalueet)",
     MotionCollisionsHint: "Touching parts turn red; dragging and motion stop at the last collision-free pose" / "Koskettavat osat muuttuvat punaisiksi; vetäminen ja liike pysähtyvät viimeiseen törmäyksettömään asentoon",
     MotionNoContact: "No part touches." / "Mikään osa ei kosketa.",
+    MotionCollisionsNotInPage: "The page does not check collisions yet: the collision library would take it over its download budget. The desktop app and the JSON API check them." / "Sivu ei vielä tarkista törmäyksiä: törmäyskirjasto kasvattaisi sen latauksen yli budjetin. Työpöytäsovellus ja JSON-rajapinta tarkistavat ne.",
     MotionKeepOuts: "Keep-out boxes" / "Kieltoalueet",
     MotionAddKeepOut: "Add a box at the target" / "Lisää laatikko kohteeseen",
     MotionKeepOutRow: "centre x, y, z and size x, y, z:" / "keskipiste x, y, z ja koko x, y, z:",

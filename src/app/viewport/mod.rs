@@ -159,30 +159,7 @@ impl Viewport {
             }
         }
         if response.drag_stopped() {
-            // A press and release without movement (egui's click) on a ghost arm moves
-            // the arm to that solution; on the target it was only a grab.
-            let grabbed = self.dragging();
-            self.drag = None;
-            // egui's own click flag, or a release near the press and soon after it: in
-            // the browser egui reports no click for a widget that senses drags only.
-            let (now, at, egui_click) =
-                ui.input(|i| (i.time, i.pointer.interact_pos(), i.pointer.any_click()));
-            let near_press = self.press.take().zip(at).is_some_and(|((p, t), at)| {
-                at.distance(p) <= CLICK_DISTANCE && now - t <= CLICK_SECONDS
-            });
-            let click = (egui_click || near_press).then_some(at);
-            if let (false, Some(Some(at))) = (grabbed, click) {
-                let view = view_geometry(&self.camera, model, rect);
-                if let Some(i) = ghosts::pick(model, &view, to_array(at)) {
-                    let q = model
-                        .branches()
-                        .and_then(|b| b.rows.get(i))
-                        .map(|r| r.q.clone());
-                    if let Some(q) = q {
-                        model.set_q_exact(q);
-                    }
-                }
-            }
+            self.drag_stopped(model, ui, rect);
         }
         if model.motion().collisions_on() {
             let t0 = hook::now_ms();
@@ -232,6 +209,33 @@ impl Viewport {
         let pose = self.camera_pose();
         if model.camera() != Some(pose) {
             model.note_camera(pose);
+        }
+    }
+
+    /// A press and release without movement (egui's click) on a ghost arm moves the arm
+    /// to that solution; on the target it was only a grab.
+    fn drag_stopped(&mut self, model: &mut Model, ui: &egui::Ui, rect: Rect) {
+        let grabbed = self.dragging();
+        self.drag = None;
+        // egui's own click flag, or a release near the press and soon after it: in
+        // the browser egui reports no click for a widget that senses drags only.
+        let (now, at, egui_click) =
+            ui.input(|i| (i.time, i.pointer.interact_pos(), i.pointer.any_click()));
+        let near_press = self.press.take().zip(at).is_some_and(|((p, t), at)| {
+            at.distance(p) <= CLICK_DISTANCE && now - t <= CLICK_SECONDS
+        });
+        let click = (egui_click || near_press).then_some(at);
+        if let (false, Some(Some(at))) = (grabbed, click) {
+            let view = view_geometry(&self.camera, model, rect);
+            if let Some(i) = ghosts::pick(model, &view, to_array(at)) {
+                let q = model
+                    .branches()
+                    .and_then(|b| b.rows.get(i))
+                    .map(|r| r.q.clone());
+                if let Some(q) = q {
+                    model.set_q_exact(q);
+                }
+            }
         }
     }
 
