@@ -197,7 +197,7 @@ pub fn start() {
                 let detail = e.as_string().unwrap_or_else(|| format!("{e:?}"));
                 set_message(
                     &format!(
-                        "ArmLab needs WebGPU or WebGL2 to draw the robot, and this browser offers neither \
+                        "ArmLab needs WebGL2 to draw the robot, and this browser offers neither \
                          (or has them switched off). Try a current Chrome, Edge, Firefox or Safari, or enable \
                          hardware acceleration. Details: {detail}"
                     ),
