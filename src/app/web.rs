@@ -140,7 +140,7 @@ fn show_crash(sentence: &str, reload: &str) {
 }
 
 /// Starts the app on `#armlab_canvas`; replaces the loading text by the app, or by a
-/// sentence when the browser has neither WebGPU nor WebGL2.
+/// sentence when the browser has no WebGL2 (the page draws through wgpu's WebGL2 backend).
 pub fn start() {
     eframe::WebLogger::init(log::LevelFilter::Warn).ok();
     wasm_bindgen_futures::spawn_local(async {
@@ -197,8 +197,8 @@ pub fn start() {
                 let detail = e.as_string().unwrap_or_else(|| format!("{e:?}"));
                 set_message(
                     &format!(
-                        "ArmLab needs WebGL2 to draw the robot, and this browser offers neither \
-                         (or has them switched off). Try a current Chrome, Edge, Firefox or Safari, or enable \
+                        "ArmLab needs WebGL2 to draw the robot, and this browser does not offer it \
+                         (or has it switched off). Try a current Chrome, Edge, Firefox or Safari, or enable \
                          hardware acceleration. Details: {detail}"
                     ),
                     true,
