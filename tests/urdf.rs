@@ -1,7 +1,8 @@
 //! docs/kinematics.md §16: URDF out and in. Every preset exported, read back as a URDF
 //! chain and imported as a DH table gives the same tool pose at 1000 random q; a Panda
 //! URDF written from its published joint origins gives SPEC §1.5's flange pose; bad URDF
-//! gets a typed error naming the element. Needs the `urdf` feature.
+//! gets a typed error naming the element; a UR10 URDF as `ur_description` writes it stands
+//! as tall as UR's published numbers say. Needs the `urdf` feature.
 #![cfg(feature = "urdf")]
 // On wasm the tests are wasm_bindgen_tests, which clippy does not treat as tests.
 #![cfg_attr(
@@ -260,4 +261,77 @@ fn continuous_joints_and_offset_axes_import() {
         let q = [rng.uniform(-3.0, 3.0), rng.uniform(-1.0, 1.0)];
         assert!(difference(&chain.tool_pose(&q), &tool_pose(&robot, &q)) <= 1e-12);
     }
+}
+
+/// The UR10 as ROS-Industrial's `ur_description` (ur10.urdf.xacro, the pre-2020 "ur10"
+/// macro) writes it: joint origins from Universal Robots' published DH numbers
+/// (d1 = 0.1273, a2 = 0.612, a3 = 0.5723, d4 = 0.163941, d5 = 0.1157, d6 = 0.0922 m), the
+/// shoulder offset 0.220941 and elbow offset 0.1719 of the drawn links, and axes along y
+/// for the parallel joints.
+const UR10_URDF: &str = r#"<?xml version="1.0"?>
+<robot name="ur10">
+  <link name="base_link"/><link name="shoulder_link"/><link name="upper_arm_link"/>
+  <link name="forearm_link"/><link name="wrist_1_link"/><link name="wrist_2_link"/>
+  <link name="wrist_3_link"/><link name="ee_link"/>
+  <joint name="shoulder_pan_joint" type="revolute">
+    <parent link="base_link"/><child link="shoulder_link"/>
+    <origin xyz="0.0 0.0 0.1273" rpy="0.0 0.0 0.0"/><axis xyz="0 0 1"/>
+    <limit lower="-6.2832" upper="6.2832" effort="330.0" velocity="2.16"/>
+  </joint>
+  <joint name="shoulder_lift_joint" type="revolute">
+    <parent link="shoulder_link"/><child link="upper_arm_link"/>
+    <origin xyz="0.0 0.220941 0.0" rpy="0.0 1.570796325 0.0"/><axis xyz="0 1 0"/>
+    <limit lower="-6.2832" upper="6.2832" effort="330.0" velocity="2.16"/>
+  </joint>
+  <joint name="elbow_joint" type="revolute">
+    <parent link="upper_arm_link"/><child link="forearm_link"/>
+    <origin xyz="0.0 -0.1719 0.612" rpy="0.0 0.0 0.0"/><axis xyz="0 1 0"/>
+    <limit lower="-6.2832" upper="6.2832" effort="150.0" velocity="3.15"/>
+  </joint>
+  <joint name="wrist_1_joint" type="revolute">
+    <parent link="forearm_link"/><child link="wrist_1_link"/>
+    <origin xyz="0.0 0.0 0.5723" rpy="0.0 1.570796325 0.0"/><axis xyz="0 1 0"/>
+    <limit lower="-6.2832" upper="6.2832" effort="54.0" velocity="3.2"/>
+  </joint>
+  <joint name="wrist_2_joint" type="revolute">
+    <parent link="wrist_1_link"/><child link="wrist_2_link"/>
+    <origin xyz="0.0 0.1149 0.0" rpy="0.0 0.0 0.0"/><axis xyz="0 0 1"/>
+    <limit lower="-6.2832" upper="6.2832" effort="54.0" velocity="3.2"/>
+  </joint>
+  <joint name="wrist_3_joint" type="revolute">
+    <parent link="wrist_2_link"/><child link="wrist_3_link"/>
+    <origin xyz="0.0 0.0 0.1157" rpy="0.0 0.0 0.0"/><axis xyz="0 1 0"/>
+    <limit lower="-6.2832" upper="6.2832" effort="54.0" velocity="3.2"/>
+  </joint>
+  <joint name="ee_fixed_joint" type="fixed">
+    <parent link="wrist_3_link"/><child link="ee_link"/>
+    <origin xyz="0.0 0.0922 0.0" rpy="0.0 0.0 1.570796325"/>
+  </joint>
+</robot>
+"#;
+
+#[test]
+fn a_ur10_urdf_from_ur_description_stands_as_tall_as_urs_published_numbers() {
+    let robot = robot_from_urdf(UR10_URDF).unwrap();
+    let chain = UrdfChain::parse(UR10_URDF).unwrap();
+    assert_eq!(robot.dof(), 6);
+    let mut rng = common::rng(34);
+    for _ in 0..1000 {
+        let q: Vec<f64> = (0..6).map(|_| rng.uniform(-3.0, 3.0)).collect();
+        let d = difference(&chain.tool_pose(&q), &tool_pose(&robot, &q));
+        assert!(
+            d <= 1e-9,
+            "the DH import differs from the URDF chain by {d}"
+        );
+    }
+    // Straight up (UR's own (0, -90°, 0, -90°, 0, 0)): the flange is d1 + a2 + a3 + d5 =
+    // 1.4273 m high and d4 + d6 = 0.256141 m off the base axis (UR's published numbers).
+    let straight = [0.0, -FRAC_PI_2, 0.0, -FRAC_PI_2, 0.0, 0.0];
+    let up = tool_pose(&robot, &straight).translation.vector;
+    assert!((up.z - 1.4273).abs() < 1e-9, "height {}", up.z);
+    let off_axis = (up.x * up.x + up.y * up.y).sqrt();
+    assert!(
+        (off_axis - 0.256141).abs() < 1e-9,
+        "off the axis {off_axis}"
+    );
 }
