@@ -108,8 +108,8 @@ pub fn state_json(app: &ArmLabApp) -> String {
         "reached": ik.reach == Reach::Reached,
         "unreachable": model.shown_reach() == Reach::OutOfReach,
         "held_at_limit": model.rescue().map(|r| serde_json::json!({
-            "joint": r.joint + 1,
-            "at_max": r.at_max,
+            "joint": r.held.map(|(j, _)| j + 1),
+            "at_max": r.held.map(|(_, at_max)| at_max),
             "reached_from_another_start": r.reach.is_some(),
             "tried": r.tried,
         })),

@@ -133,16 +133,16 @@ pub struct Branches {
     pub continuum: bool,
 }
 
-/// A drag stalled with a joint at its limit, and what other starts make of its target.
+/// A drag stalled short of its target (often with a joint at its limit), and what other
+/// starts make of the target.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Rescue {
     target: IsometryMatrix3<f64>,
     robot_changes: u64,
     task: Task,
-    /// The joint (from 0) that holds the arm, pulled past its limit by the error.
-    pub joint: usize,
-    /// Held at its upper limit (else its lower one).
-    pub at_max: bool,
+    /// The joint (from 0) that holds the arm, pulled past its limit by the error, and
+    /// whether at its upper limit; `None` when the stall is not at a limit.
+    pub held: Option<(usize, bool)>,
     /// A solution within the limits that reaches the target (the closed form's branches
     /// or seeded restarts), nearest the arm; `None` when none was found.
     pub reach: Option<Vec<f64>>,
@@ -393,8 +393,8 @@ impl Model {
         self.branch_switch
     }
 
-    /// The stall at a joint limit of the current target (only while it is out of reach
-    /// from where the arm is): which joint holds it, and a start that reaches it if any.
+    /// The stall of the current target (only while it is out of reach from where the arm
+    /// is): which joint holds it at a limit if one does, and a start that reaches it if any.
     pub fn rescue(&self) -> Option<&Rescue> {
         self.rescue.as_ref().filter(|r| {
             self.ik.reach == Reach::OutOfReach
@@ -414,7 +414,7 @@ impl Model {
         }
     }
 
-    /// Moves the arm to the start that reaches a target held at a limit.
+    /// Moves the arm to the start that reaches a target the drag stalled short of.
     pub fn take_rescue(&mut self) {
         if let Some(q) = self.rescue().and_then(|r| r.reach.clone()) {
             self.set_q(q);
@@ -1198,12 +1198,13 @@ impl Model {
 
     // --- Derived values ------------------------------------------------------------------
 
-    /// When the arm stalls with a joint held at its limit: every closed-form branch of
-    /// the target and a few seeded restarts, and the one within the limits that reaches
-    /// it nearest the arm.
+    /// When the drag stalls short of the target: the joint that holds it at a limit, if
+    /// one does, and of every closed-form branch of the target and a few seeded restarts,
+    /// the one within the limits that reaches it nearest the arm.
     fn find_rescue(&self) -> Option<Rescue> {
-        let held = joints_held_at_limits(&self.robot, &self.q, &self.target, self.task, 1e-6);
-        let first = held.first()?;
+        let held = joints_held_at_limits(&self.robot, &self.q, &self.target, self.task, 1e-6)
+            .first()
+            .map(|h| (h.joint, h.at_max));
         let tolerance = REACHED_POSITION_TOLERANCE_M / self.robot.length_unit.in_metres();
         let reaches = |q: &[f64]| {
             let (p, o) = pose_error(&self.robot, q, &self.target, self.task);
@@ -1253,8 +1254,7 @@ impl Model {
             target: self.target,
             robot_changes: self.robot_changes,
             task: self.task,
-            joint: first.joint,
-            at_max: first.at_max,
+            held,
             reach,
             tried: branches + RESCUE_RESTARTS,
         })
@@ -1563,8 +1563,7 @@ mod tests {
     }
 
     #[test]
-    fn a_drag_held_at_a_limit_offers_the_start_that_reaches_and_says_out_of_reach_only_when_none_does()
-     {
+    fn a_stalled_drag_offers_the_start_that_reaches_and_says_out_of_reach_only_when_none_does() {
         let mut rng = SplitMix64::new(5);
         let mut model = Model::new(Session::for_preset("puma560").expect("preset"));
         model.set_method(IkMethod::DampedLeastSquares);
@@ -1582,12 +1581,11 @@ mod tests {
             if model.ik().reach != Reach::OutOfReach {
                 continue;
             }
-            let Some(rescue) = model.rescue().cloned() else {
-                assert_eq!(model.shown_reach(), Reach::OutOfReach);
-                continue;
-            };
-            // The target is FK of a q within the limits: some start reaches it.
+            // Every stall gets the search: which joint holds it, and the other starts.
+            let rescue = model.rescue().cloned().expect("a stall is searched");
+            // The target is FK of a q within the limits: some start usually reaches it.
             let Some(q) = rescue.reach.clone() else {
+                assert_eq!(model.shown_reach(), Reach::OutOfReach);
                 continue;
             };
             assert_eq!(
@@ -1595,16 +1593,15 @@ mod tests {
                 Reach::Pending,
                 "not called out of reach"
             );
-            let joint = &robot.joints[rescue.joint];
-            let limit = if rescue.at_max {
-                joint.limits.max
-            } else {
-                joint.limits.min
-            };
-            assert!(
-                (model.q()[rescue.joint] - limit).abs() < 1e-5,
-                "held at the limit"
-            );
+            if let Some((j, at_max)) = rescue.held {
+                let joint = &robot.joints[j];
+                let limit = if at_max {
+                    joint.limits.max
+                } else {
+                    joint.limits.min
+                };
+                assert!((model.q()[j] - limit).abs() < 1e-5, "held at the limit");
+            }
             model.take_rescue();
             assert!(
                 joint_distance(&robot, model.q(), &q) < 1e-12,
@@ -1620,7 +1617,7 @@ mod tests {
                 break;
             }
         }
-        assert!(rescued >= 3, "{rescued} stalls at a limit were rescued");
+        assert!(rescued >= 3, "{rescued} stalls were rescued");
         // Far away: out of reach from every start, and said so.
         let mut far = *model.target();
         far.translation.vector *= 50.0;

@@ -165,26 +165,23 @@ pub fn workspace_ui(model: &mut Model, ui: &mut egui::Ui) {
         });
 }
 
-/// When the drag stalls with a joint at its limit: which joint holds it, and either a
-/// button to the start that reaches the target or the verdict that none does.
+/// When the drag stalls short of the target: the joint that holds it at a limit, if one
+/// does, and either a button to the start that reaches the target or the verdict that
+/// none does.
 fn held_at_limit(model: &mut Model, ui: &mut egui::Ui) {
     let Some(rescue) = model.rescue().cloned() else {
         return;
     };
-    let side = tr(
-        model,
-        if rescue.at_max {
-            Key::LimitMax
-        } else {
-            Key::LimitMin
-        },
-    );
-    let joint = rescue.joint + 1;
+    let held = rescue.held.map(|(j, at_max)| {
+        let side = tr(model, if at_max { Key::LimitMax } else { Key::LimitMin });
+        (j + 1, side.to_owned())
+    });
     if rescue.reach.is_some() {
-        ui.colored_label(
-            style::PENDING,
-            trf(model, Key::HeldAtLimit, &[&joint, &side]),
-        );
+        let text = match &held {
+            Some((joint, side)) => trf(model, Key::HeldAtLimit, &[joint, side]),
+            None => tr(model, Key::StalledOtherStart).to_owned(),
+        };
+        ui.colored_label(style::PENDING, text);
         if ui
             .button(tr(model, Key::HeldAtLimitGo))
             .on_hover_text(tr(model, Key::HeldAtLimitGoHint))
@@ -192,10 +189,15 @@ fn held_at_limit(model: &mut Model, ui: &mut egui::Ui) {
         {
             model.take_rescue();
         }
+    } else if let Some((joint, side)) = &held {
+        ui.colored_label(
+            style::UNREACHABLE,
+            trf(model, Key::HeldAtLimitNone, &[joint, side, &rescue.tried]),
+        );
     } else {
         ui.colored_label(
             style::UNREACHABLE,
-            trf(model, Key::HeldAtLimitNone, &[&joint, &side, &rescue.tried]),
+            trf(model, Key::StalledNoStart, &[&rescue.tried]),
         );
     }
 }

@@ -247,6 +247,8 @@ catalogue! {
     ToolDirectionsCount: "{0} of {1} tool directions reachable here (to {2}°)" / "{0}/{1} työkalun suunnasta ylettyy tässä ({2}° tarkkuudella)",
     HeldAtLimitGoHint: "Moves the arm to the solution within the limits that reaches the target, nearest where it is (a closed-form branch or a restart)" / "Siirtää käsivarren lähimpään rajojen sisällä olevaan ratkaisuun, joka ylettyy kohteeseen (suljetun muodon haara tai uusi alku)",
     HeldAtLimitNone: "Joint {0} holds the arm at its {1} limit, and none of {2} branches and restarts reaches the target: it is out of reach." / "Nivel {0} pitää käsivartta {1}rajassaan, eikä yksikään {2} haarasta ja uudesta alusta ylety kohteeseen: se on ulottumattomissa.",
+    StalledOtherStart: "The drag stopped short of the target, but another start reaches it." / "Veto pysähtyi ennen kohdetta, mutta toisesta alkuasennosta siihen ylettyy.",
+    StalledNoStart: "None of {0} branches and restarts reaches the target: it is out of reach." / "Yksikään {0} haarasta ja uudesta alusta ei ylety kohteeseen: se on ulottumattomissa.",
     BranchVanished: "The branch {0} has no solution here (the target crossed a singularity): the arm took the nearest, {1}." / "Haaralla {0} ei ole ratkaisua tässä (kohde ylitti singulariteetin): käsivarsi otti lähimmän, {1}.",
     LimitMin: "lower" / "ala",
     LimitMax: "upper" / "ylä",
