@@ -127,7 +127,10 @@ impl SidePanels {
                         let size = egui::vec2(col.available_width(), 40.0);
                         let response = col.add_sized(
                             size,
-                            egui::Button::selectable(open, t(model, tab_title(kind))),
+                            egui::Button::selectable(
+                                open,
+                                tab_label(col, t(model, tab_title(kind))),
+                            ),
                         );
                         points.insert(format!("tab-{}", kind.id()), response.rect.center());
                         if response.clicked() {
@@ -155,6 +158,25 @@ impl SidePanels {
                         self.ui(kind, model, ui, points);
                     });
             });
+    }
+}
+
+/// A tab's title in the narrow bar, its text made smaller (down to three quarters) when
+/// it would not fit its column on one line: with five tabs on a phone, "Matrices" wrapped
+/// into "Matrice / s".
+fn tab_label(ui: &egui::Ui, title: &str) -> egui::RichText {
+    let font = egui::TextStyle::Button.resolve(ui.style());
+    let room = ui.available_width() - 2.0 * ui.spacing().button_padding.x;
+    let width = ui
+        .painter()
+        .layout_no_wrap(title.to_owned(), font.clone(), egui::Color32::PLACEHOLDER)
+        .size()
+        .x;
+    let text = egui::RichText::new(title);
+    if width > room && width > 0.0 {
+        text.size(font.size * (room / width).max(0.75))
+    } else {
+        text
     }
 }
 
