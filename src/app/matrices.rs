@@ -97,71 +97,98 @@ fn matrix_block(
         ui.visuals().widgets.noninteractive.bg_stroke
     });
     frame.show(ui, |ui| {
-        // Left to right and wrapping: a narrow column puts the copy buttons under the
-        // title instead of over it.
-        let header = super::style::wrapped(ui, |ui| {
-            let title = ui.strong(title).on_hover_text(hover);
-            ui.label(egui::RichText::new(text(lang, Key::Copy)).weak());
-            type Format = fn(&DMatrix<f64>, usize) -> String;
-            let formats: [(Key, Key, Format); 3] = [
-                (Key::CopyText, Key::CopyAsText, to_plain),
-                (Key::CopyLatex, Key::CopyAsLatex, to_latex),
-                (Key::CopyNumpy, Key::CopyAsNumpy, to_numpy),
-            ];
-            for (label, hint, format) in formats {
-                if ui
-                    .small_button(text(lang, label))
-                    .on_hover_text(text(lang, hint))
-                    .clicked()
-                {
-                    ui.ctx().copy_text(format(m, decimals));
-                }
-            }
-            if let (true, Target::Matrix(id)) = (hiding.choosing, target) {
-                let whole = Hidden::Matrix(id);
-                let mut text = egui::RichText::new("?").strong();
-                if hiding.hidden.contains(whole) {
-                    text = text.background_color(HIDDEN_BACKGROUND);
-                }
-                let button = ui
-                    .small_button(text)
-                    .on_hover_text(text_of(lang, Key::HideWhole));
-                hiding.point(format!("hide-{}", whole.to_link()), button.rect.center());
-                if button.clicked() {
-                    hiding.toggled.push(whole);
-                }
-            }
-            title.hovered()
-        });
-        hovered |= header.inner || header.response.hovered();
-        let id = ui.make_persistent_id(("matrix body", title));
-        let known: Option<egui::Vec2> = ui.data(|d| d.get_temp(id));
-        let out_of_sight = known
-            .filter(|size| !ui.is_rect_visible(egui::Rect::from_min_size(ui.cursor().min, *size)));
-        // A matrix wider than the column scrolls sideways on its own: were the column to
-        // grow to its width, every text after it would run out of sight.
-        let (size, over) = match out_of_sight {
-            Some(size) => {
-                let body = ui.allocate_exact_size(size, egui::Sense::hover()).1;
-                (size, body.hovered())
-            }
-            None => {
-                let out = egui::ScrollArea::horizontal()
-                    .id_salt(("matrix scroll", title))
-                    .show(ui, |ui| {
-                        if hiding.interactive(target) {
-                            hiding_table(ui, lang, m, decimals, target, hiding)
-                        } else {
-                            number_table(ui, m, decimals)
-                        }
-                    });
-                (out.inner_rect.size(), out.inner.hovered())
-            }
-        };
-        ui.data_mut(|d| d.insert_temp(id, size));
-        hovered |= over;
+        let over_header = matrix_header(ui, lang, (title, hover), m, decimals, target, hiding);
+        let over_body = matrix_body(ui, lang, title, m, decimals, (target, hiding));
+        hovered = over_header || over_body;
     });
     hovered
+}
+
+/// A matrix block's title, copy buttons and (while choosing what to hide) its "?"
+/// button; returns whether the title row is hovered. Left to right and wrapping: a
+/// narrow column puts the copy buttons under the title instead of over it.
+fn matrix_header(
+    ui: &mut egui::Ui,
+    lang: Lang,
+    (title, hover): (&str, &str),
+    m: &DMatrix<f64>,
+    decimals: usize,
+    target: Target,
+    hiding: &mut Hiding,
+) -> bool {
+    let header = super::style::wrapped(ui, |ui| {
+        let title = ui.strong(title).on_hover_text(hover);
+        ui.label(egui::RichText::new(text(lang, Key::Copy)).weak());
+        type Format = fn(&DMatrix<f64>, usize) -> String;
+        let formats: [(Key, Key, Format); 3] = [
+            (Key::CopyText, Key::CopyAsText, to_plain),
+            (Key::CopyLatex, Key::CopyAsLatex, to_latex),
+            (Key::CopyNumpy, Key::CopyAsNumpy, to_numpy),
+        ];
+        for (label, hint, format) in formats {
+            if ui
+                .small_button(text(lang, label))
+                .on_hover_text(text(lang, hint))
+                .clicked()
+            {
+                ui.ctx().copy_text(format(m, decimals));
+            }
+        }
+        if let (true, Target::Matrix(id)) = (hiding.choosing, target) {
+            let whole = Hidden::Matrix(id);
+            let mut text = egui::RichText::new("?").strong();
+            if hiding.hidden.contains(whole) {
+                text = text.background_color(HIDDEN_BACKGROUND);
+            }
+            let button = ui
+                .small_button(text)
+                .on_hover_text(text_of(lang, Key::HideWhole));
+            hiding.point(format!("hide-{}", whole.to_link()), button.rect.center());
+            if button.clicked() {
+                hiding.toggled.push(whole);
+            }
+        }
+        title.hovered()
+    });
+    header.inner || header.response.hovered()
+}
+
+/// A matrix block's numbers (or, while hiding applies, its clickable entries); returns
+/// whether they are hovered. Scrolled out of sight, the block keeps its last size
+/// without drawing. A matrix wider than the column scrolls sideways on its own: were the
+/// column to grow to its width, every text after it would run out of sight.
+fn matrix_body(
+    ui: &mut egui::Ui,
+    lang: Lang,
+    title: &str,
+    m: &DMatrix<f64>,
+    decimals: usize,
+    (target, hiding): (Target, &mut Hiding),
+) -> bool {
+    let id = ui.make_persistent_id(("matrix body", title));
+    let known: Option<egui::Vec2> = ui.data(|d| d.get_temp(id));
+    let out_of_sight =
+        known.filter(|size| !ui.is_rect_visible(egui::Rect::from_min_size(ui.cursor().min, *size)));
+    let (size, over) = match out_of_sight {
+        Some(size) => {
+            let body = ui.allocate_exact_size(size, egui::Sense::hover()).1;
+            (size, body.hovered())
+        }
+        None => {
+            let out = egui::ScrollArea::horizontal()
+                .id_salt(("matrix scroll", title))
+                .show(ui, |ui| {
+                    if hiding.interactive(target) {
+                        hiding_table(ui, lang, m, decimals, target, hiding)
+                    } else {
+                        number_table(ui, m, decimals)
+                    }
+                });
+            (out.inner_rect.size(), out.inner.hovered())
+        }
+    };
+    ui.data_mut(|d| d.insert_temp(id, size));
+    over
 }
 
 /// The characters a formatted number can hold.

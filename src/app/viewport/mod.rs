@@ -161,35 +161,9 @@ impl Viewport {
         if response.drag_stopped() {
             self.drag_stopped(model, ui, rect);
         }
-        if model.motion().collisions_on() {
-            let t0 = hook::now_ms();
-            model.update_collisions();
-            timing.motion_ms += hook::now_ms() - t0;
-        }
-        if model.motion().on() {
-            // The simulation runs the frame's real time × the time scale in 1 ms steps
-            // (at most 0.1 s a frame: a stalled frame slows the motion, never jumps it).
-            let dt = f64::from(ui.input(|i| i.stable_dt).min(0.1));
-            let t0 = hook::now_ms();
-            timing.motion_steps += model.advance_motion(dt) as f64;
-            timing.motion_ms += hook::now_ms() - t0;
-            if model.motion().moving() {
-                ui.ctx().request_repaint();
-            }
-        }
+        advance_motion(model, ui, timing);
         self.update_hover(model, &response, &axes);
-        if model.settings().overlays.contains(Overlay::Workspace) {
-            let measure = workspace_view::measure(model);
-            let (samples, budget) = (workspace_view::SAMPLES, workspace_view::BUDGET_MS);
-            let ms = model.fill_workspace(measure, samples, budget, hook::now_ms);
-            timing.workspace_ms += ms;
-            if model.workspace().is_some_and(|c| !c.is_full()) {
-                ui.ctx().request_repaint();
-            }
-        }
-        if model.settings().overlays.contains(Overlay::Directions) {
-            timing.workspace_ms += model.fill_directions(hook::now_ms);
-        }
+        fill_overlays(model, ui, timing);
         self.draw_scene(model, ui, rect, render_state, &axes, timing);
         let touch = ui.spacing().interact_size.y >= style::TOUCH_TARGET;
         overlay::draw(model, &ui.painter_at(rect), rect, self.grid_step, touch);
@@ -583,4 +557,43 @@ fn hovered_link(model: &Model, view: &ViewGeometry<'_>, at: [f64; 2]) -> Option<
         prev = o;
     }
     best.map(|(_, i)| i)
+}
+
+/// The motion lab's frame: the collision check of the pose, and the simulation run for
+/// the frame's time (repainting while the arm moves).
+fn advance_motion(model: &mut Model, ui: &egui::Ui, timing: &mut FrameTime) {
+    if model.motion().collisions_on() {
+        let t0 = hook::now_ms();
+        model.update_collisions();
+        timing.motion_ms += hook::now_ms() - t0;
+    }
+    if model.motion().on() {
+        // The simulation runs the frame's real time × the time scale in 1 ms steps
+        // (at most 0.1 s a frame: a stalled frame slows the motion, never jumps it).
+        let dt = f64::from(ui.input(|i| i.stable_dt).min(0.1));
+        let t0 = hook::now_ms();
+        timing.motion_steps += model.advance_motion(dt) as f64;
+        timing.motion_ms += hook::now_ms() - t0;
+        if model.motion().moving() {
+            ui.ctx().request_repaint();
+        }
+    }
+}
+
+/// The overlays that fill over frames: the workspace cloud (a few milliseconds a frame,
+/// repainting until full) and the sphere of tool directions (redone when the target
+/// moves).
+fn fill_overlays(model: &mut Model, ui: &egui::Ui, timing: &mut FrameTime) {
+    if model.settings().overlays.contains(Overlay::Workspace) {
+        let measure = workspace_view::measure(model);
+        let (samples, budget) = (workspace_view::SAMPLES, workspace_view::BUDGET_MS);
+        let ms = model.fill_workspace(measure, samples, budget, hook::now_ms);
+        timing.workspace_ms += ms;
+        if model.workspace().is_some_and(|c| !c.is_full()) {
+            ui.ctx().request_repaint();
+        }
+    }
+    if model.settings().overlays.contains(Overlay::Directions) {
+        timing.workspace_ms += model.fill_directions(hook::now_ms);
+    }
 }
