@@ -3,7 +3,9 @@
 # 2 cores). Everything comes from crates.io, npm or Debian; nothing else is downloaded.
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-export PATH="$HOME/.cargo/bin:$ROOT/web/node_modules/.bin:$PATH"
+# tools/cached first: its wasm-opt keeps results by input and flags (a warm build skips the
+# minute of -Oz passes), and calls npm binaryen's wasm-opt in web/node_modules/.bin.
+export PATH="$HOME/.cargo/bin:$ROOT/tools/cached:$ROOT/web/node_modules/.bin:$PATH"
 TRUNK_VERSION="0.21.14"
 # Build output outside the clone, so that CI's fresh clones on a warm machine reuse
 # compiled dependencies (a brand-new machine starts cold either way).
