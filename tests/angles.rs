@@ -8,7 +8,7 @@
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
-mod common;
+use crate::common;
 
 use armlab::kinematics::angles::{nearest_equivalent_within, wrap_to_pi};
 use armlab::kinematics::{JointLimits, preset};

@@ -10,7 +10,7 @@
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
-mod common;
+use crate::common;
 
 use armlab::kinematics::ik::joint_distance;
 use armlab::kinematics::{

@@ -11,8 +11,6 @@
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
-mod common;
-
 use armlab::kinematics::ik::joint_distance;
 use armlab::kinematics::{
     ClosedFormSet, ClosedFormSolution, IkMethod, IkSettings, Robot, Task, closed_form_solutions,

@@ -10,7 +10,7 @@
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
-mod common;
+use crate::common;
 
 use armlab::kinematics::convention::{convert, frames_in_both_conventions, link_part};
 use armlab::kinematics::edit::{insert_joint, remove_joint, switch_convention};

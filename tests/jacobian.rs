@@ -9,7 +9,7 @@
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
-mod common;
+use crate::common;
 
 use armlab::kinematics::{
     ForwardKinematics, NUMERIC_EPSILON, SINGULARITY_THRESHOLD, Task, ToolAxis, geometric_jacobian,

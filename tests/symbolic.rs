@@ -9,7 +9,7 @@
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
-mod common;
+use crate::common;
 
 use armlab::kinematics::symbolic::{EntryText, MAX_SHOWN_TERMS, number, symbolic_chain};
 use armlab::kinematics::{Convention, ForwardKinematics, preset};

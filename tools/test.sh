@@ -79,9 +79,18 @@ say "the docs build without warnings (core and app)"
 run doc-core env RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --no-default-features --lib -q
 run doc-app env RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib -q
 
+say "every test file is built: a test binary of Cargo.toml or a module of tests/core.rs"
+test_targets="$(awk '/^\[\[test\]\]/ { t = 1; next } /^\[/ { t = 0 } t && /^name = / { gsub(/"/, "", $3); print $3 }' Cargo.toml)"
+for f in tests/*.rs; do
+  name="$(basename "$f" .rs)"
+  if ! grep -qx "mod $name;" tests/core.rs && ! grep -qx "$name" <<<"$test_targets"; then
+    echo "FAILED: $f is in no test binary (add 'mod $name;' to tests/core.rs, or a [[test]] to Cargo.toml)"; exit 1
+  fi
+done
+
 run core-native cargo test --no-default-features --tests
 run core-doc cargo test --no-default-features --doc
-run core-wasm cargo test --no-default-features --tests --target wasm32-unknown-unknown
+run core-wasm cargo test --profile wasm-test --no-default-features --tests --target wasm32-unknown-unknown
 read -r native _ < <(count "$LOG/core-native.log")
 read -r wasm _ < <(count "$LOG/core-wasm.log")
 say "core tests: $native passed natively, $wasm passed as wasm in Node"
