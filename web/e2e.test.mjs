@@ -293,8 +293,10 @@ test('dragging the target with the mouse moves the arm; far out of reach it stre
   await page.mouse.move(t.x, t.y);
   await page.mouse.down();
   await page.evaluate(() => window.armlab.frameTimes()); // clears what came before the drag
-  await page.mouse.move(dropAt.x, dropAt.y, { steps: 40 });
-  for (let i = 0; i < 30; i++) await page.mouse.move(dropAt.x + (i % 2), dropAt.y);
+  // Each mouse move costs the software renderer a few hundred milliseconds of full-canvas
+  // frames: 20 steps and 12 nudges give about 100 measured frames.
+  await page.mouse.move(dropAt.x, dropAt.y, { steps: 20 });
+  for (let i = 0; i < 12; i++) await page.mouse.move(dropAt.x + (i % 2), dropAt.y);
   const frameMs = await page.evaluate(() => window.armlab.frameTimes());
   await page.mouse.up();
   await settle(page);
@@ -312,8 +314,8 @@ test('dragging the target with the mouse moves the arm; far out of reach it stre
   await page.mouse.move(t2.x, t2.y);
   await page.mouse.down();
   await page.evaluate(() => window.armlab.frameTimes());
-  await page.mouse.move(40 + 340, 80, { steps: 30 });
-  for (let i = 0; i < 40; i++) await page.mouse.move(380 + (i % 2), 80);
+  await page.mouse.move(40 + 340, 80, { steps: 15 });
+  for (let i = 0; i < 20; i++) await page.mouse.move(380 + (i % 2), 80);
   // The page's second drag: its code is warm, and the IK runs all its iterations every
   // frame without reaching the target.
   measureFrames('stretch_drag', await page.evaluate(() => window.armlab.frameTimes()));
@@ -721,7 +723,7 @@ test('dragging with the ghosts shown: the frame times are measured', async () =>
   await page.mouse.move(t.x, t.y);
   await page.mouse.down();
   await page.evaluate(() => window.armlab.frameTimes());
-  await page.mouse.move(t.x + (b.x - t.x) * 0.2, t.y + (b.y - t.y) * 0.2, { steps: 40 });
+  await page.mouse.move(t.x + (b.x - t.x) * 0.2, t.y + (b.y - t.y) * 0.2, { steps: 20 });
   measureFrames('ghost_drag', await page.evaluate(() => window.armlab.frameTimes()));
   await page.mouse.up();
   await settle(page);
