@@ -39,10 +39,12 @@ ensure_trunk() {
   fi
 }
 
-# binaryen's wasm-opt (v132, from npm: Debian's v108 breaks eframe pages) and
-# playwright-core, pinned by web/package-lock.json.
+# binaryen's wasm-opt (v132, from npm: Debian's v108 breaks eframe pages), esbuild (minifies
+# the page's JS glue: web/minify-build.mjs) and playwright-core, pinned by
+# web/package-lock.json.
 ensure_npm() {
-  if [ ! -x "$ROOT/web/node_modules/.bin/wasm-opt" ] || [ ! -d "$ROOT/web/node_modules/playwright-core" ]; then
+  if [ ! -x "$ROOT/web/node_modules/.bin/wasm-opt" ] || [ ! -d "$ROOT/web/node_modules/playwright-core" ] \
+    || [ ! -d "$ROOT/web/node_modules/esbuild" ]; then
     say "installing web/ npm packages"
     (cd "$ROOT/web" && npm ci --no-audit --no-fund)
   fi

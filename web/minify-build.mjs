@@ -1,0 +1,45 @@
+// Minifies a release build's JavaScript: trunk runs this as a post_build hook (Trunk.toml),
+// before the service worker's hook, in its staging directory ($TRUNK_STAGING_DIR).
+//
+// Trunk's own minifier (minify = "on_release") handles the HTML but gives up on the
+// wasm-bindgen glue ("Failed to minify JS: RequiredTokenNotFound(Identifier)", on its
+// `export default`), which then ships as written: about 2.6 kB gzip more of the first load.
+// esbuild (npm, pinned in web/package-lock.json) minifies it here instead, keeping it an ES
+// module with the same exports. Trunk has already written index.html with a Subresource
+// Integrity hash (sha384) for the glue it preloads, so that hash is written anew for the
+// minified file; a browser refuses a preload whose hash does not match.
+//
+// Only release builds (TRUNK_PROFILE=release): `trunk serve` keeps readable glue.
+// Run by hand on a built folder: TRUNK_PROFILE=release TRUNK_STAGING_DIR=dist node web/minify-build.mjs
+import crypto from 'node:crypto';
+import fs from 'node:fs';
+import path from 'node:path';
+import { transformSync } from 'esbuild';
+
+const dir = process.env.TRUNK_STAGING_DIR;
+if (!dir || !fs.existsSync(path.join(dir, 'index.html'))) {
+  console.error(`minify-build: TRUNK_STAGING_DIR (${dir}) must be a folder holding a built index.html`);
+  process.exit(1);
+}
+if ((process.env.TRUNK_PROFILE ?? 'release') !== 'release') process.exit(0);
+
+const sri = (data) => `sha384-${crypto.createHash('sha384').update(data).digest('base64')}`;
+const indexPath = path.join(dir, 'index.html');
+let index = fs.readFileSync(indexPath, 'utf8');
+// The page's glue (the first load). The URDF module's glue in urdf/ stays as wasm-bindgen
+// wrote it: it loads only when a URDF file is opened or saved.
+const glue = fs.readdirSync(dir).filter((f) => f.endsWith('.js') && f !== 'service-worker.js');
+let before = 0;
+let after = 0;
+for (const file of glue) {
+  const full = path.join(dir, file);
+  const source = fs.readFileSync(full, 'utf8');
+  const { code } = transformSync(source, { minify: true, format: 'esm', target: 'es2020', legalComments: 'none' });
+  fs.writeFileSync(full, code);
+  before += source.length;
+  after += code.length;
+  const old = sri(source);
+  if (index.includes(old)) index = index.split(old).join(sri(code));
+}
+fs.writeFileSync(indexPath, index);
+console.log(`minify-build: ${glue.length} JS files, ${before} → ${after} bytes`);
