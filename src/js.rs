@@ -116,5 +116,6 @@ fn mesh_visuals(urdf: &str) -> usize {
 /// numbers. A malformed request throws a sentence.
 #[wasm_bindgen]
 pub fn collide_parts(request: &[f64]) -> Result<Vec<f64>, JsError> {
-    crate::kinematics::collision_wire::check_request(request).map_err(|e| JsError::new(&e.to_string()))
+    crate::kinematics::collision_wire::check_request(request)
+        .map_err(|e| JsError::new(&e.to_string()))
 }

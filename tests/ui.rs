@@ -1282,7 +1282,11 @@ fn a_robot_file_brings_its_keep_out_boxes_and_a_bad_box_leaves_the_last_good_rob
     assert_eq!(boxes.len(), 1);
     assert_eq!(boxes[0].size, nalgebra::Vector3::new(200.0, 400.0, 800.0));
     model.set_collisions_on(true);
-    assert_eq!(model.motion().contact(), None, "the UR10 at home is clear of the box");
+    assert_eq!(
+        model.motion().contact(),
+        None,
+        "the UR10 at home is clear of the box"
+    );
 
     file["name"] = "bad".into();
     file["keep_out"][0]["size"] = serde_json::json!([200, -5, 800]);

@@ -528,7 +528,9 @@ fn install_collision_benchmark(obj: &js_sys::Object) {
             return JsValue::NULL;
         };
         let mut rng = crate::kinematics::rng::SplitMix64::new(7);
-        let qs: Vec<Vec<f64>> = (0..poses.max(1)).map(|_| rng.joint_vector(&robot)).collect();
+        let qs: Vec<Vec<f64>> = (0..poses.max(1))
+            .map(|_| rng.joint_vector(&robot))
+            .collect();
         let Ok(mut fk) = crate::kinematics::ForwardKinematics::new(&robot, &robot.home()) else {
             return JsValue::NULL;
         };
@@ -669,8 +671,8 @@ fn import_urdf_module() -> Result<js_sys::Promise, String> {
         .and_then(|w| w.document())
         .and_then(|d| d.base_uri().ok().flatten())
         .ok_or("no document")?;
-    let url = web_sys::Url::new_with_base(URDF_MODULE_PATH, &base)
-        .map_err(|e| js_error_text(&e))?;
+    let url =
+        web_sys::Url::new_with_base(URDF_MODULE_PATH, &base).map_err(|e| js_error_text(&e))?;
     // A browser may keep a failed import of an address for the visit: a later try asks
     // for another one.
     let failed = MODULE_FAILURES.with(Cell::get);

@@ -22,7 +22,9 @@
 
 use nalgebra::{Matrix3, Point3, Rotation3, Vector3};
 
-use super::collision::{CollisionChecker, CollisionReport, Contact, KeepOut, MAX_KEEP_OUTS, Obstacle};
+use super::collision::{
+    CollisionChecker, CollisionReport, Contact, KeepOut, MAX_KEEP_OUTS, Obstacle,
+};
 use super::parts::{Part, PartKind, PartShape};
 
 /// The encoding's version, the request's first number.
@@ -57,7 +59,9 @@ pub enum WireError {
         found: usize,
     },
     /// A number that must be a code, count or index is not one.
-    #[error("number {at} of the collision request or report ({value}) is not a valid code, count or index")]
+    #[error(
+        "number {at} of the collision request or report ({value}) is not a valid code, count or index"
+    )]
     Code {
         /// Its position in the list.
         at: usize,
@@ -78,7 +82,12 @@ fn push_rotation(out: &mut Vec<f64>, rotation: &Rotation3<f64>) {
 
 /// The request for checking `parts` (each shrunk by `tolerance`) against each other, the
 /// floor (when `floor`) and `keep_outs`.
-pub fn encode_request(parts: &[Part], tolerance: f64, floor: bool, keep_outs: &[KeepOut]) -> Vec<f64> {
+pub fn encode_request(
+    parts: &[Part],
+    tolerance: f64,
+    floor: bool,
+    keep_outs: &[KeepOut],
+) -> Vec<f64> {
     let mut out = Vec::with_capacity(HEAD_LEN + parts.len() * PART_LEN + keep_outs.len() * BOX_LEN);
     out.extend_from_slice(&[
         WIRE_VERSION,
@@ -134,10 +143,16 @@ pub fn decode_request(list: &[f64]) -> Result<(Vec<Part>, f64, CollisionChecker)
         });
     }
     if list[0] != WIRE_VERSION {
-        return Err(WireError::Code { at: 0, value: list[0] });
+        return Err(WireError::Code {
+            at: 0,
+            value: list[0],
+        });
     }
     let floor = index(list, 2, 1)? == 1;
-    let (n_parts, n_boxes) = (index(list, 3, MAX_WIRE_PARTS)?, index(list, 4, MAX_KEEP_OUTS)?);
+    let (n_parts, n_boxes) = (
+        index(list, 3, MAX_WIRE_PARTS)?,
+        index(list, 4, MAX_KEEP_OUTS)?,
+    );
     let expected = HEAD_LEN + n_parts * PART_LEN + n_boxes * BOX_LEN;
     if list.len() != expected {
         return Err(WireError::Length {
@@ -220,7 +235,10 @@ pub fn decode_report(list: &[f64], parts: usize) -> Result<CollisionReport, Wire
             _ => Obstacle::KeepOut(index(list, at + 2, MAX_KEEP_OUTS)?),
         };
         if parts == 0 {
-            return Err(WireError::Code { at, value: list[at] });
+            return Err(WireError::Code {
+                at,
+                value: list[at],
+            });
         }
         report.colliding[part] = true;
         if let Obstacle::Part(j) = other {

@@ -231,7 +231,8 @@ fn keep_outs_from_value(value: Option<&Value>) -> Result<Vec<KeepOut>, RobotErro
         let place = Place::KeepOut(i + 1);
         let obj = object(item, &place, Field::KeepOut, Expected::BoxList)?;
         check_fields(obj, &place, BOX_FIELDS)?;
-        let centre = triple(obj, &place, Field::Centre)?.ok_or_else(|| missing(&place, Field::Centre))?;
+        let centre =
+            triple(obj, &place, Field::Centre)?.ok_or_else(|| missing(&place, Field::Centre))?;
         let size = triple(obj, &place, Field::Size)?.ok_or_else(|| missing(&place, Field::Size))?;
         boxes.push(KeepOut {
             centre: nalgebra::Point3::from(centre),
