@@ -71,18 +71,18 @@ async function click(page, name) {
   await page.mouse.click(p.x, p.y);
 }
 
-// The UR10 (mm), its tool 538 mm from the target; the keep-out box (250 mm cube) around
-// the target, so the hand must enter it on the way.
-const Q = '0.4,-1.1,1.3,-1.6,-1.4,0.2';
-const OFFSET = [-300, 400, 200];
+// The UR10 (mm) at home (standing straight up, collision-free), its tool 500 mm from the
+// target; the keep-out box (250 mm cube) around the target, so the hand must enter it on
+// the way.
+const OFFSET = [400, 0, -300];
 
 test('checks on: the module loads once, the driving UR10 stops at a collision-free pose before a keep-out box, the panel names the parts', async () => {
-  const first = await open(`#robot=ur10&q=${Q}&panels=ik,motion`);
+  const first = await open('#robot=ur10&panels=ik,motion');
   const tool = (await state(first.page)).tool;
   await first.ctx.close();
   const target = tool.map((v, i) => v + OFFSET[i]);
   const box = `keepout=${target.map((v) => v.toFixed(3)).join(',')},250,250,250`;
-  const scene = `#robot=ur10&q=${Q}&target=${target.map((v) => v.toFixed(3)).join(',')},0,0,0&task=position&panels=ik,motion&${box}`;
+  const scene = `#robot=ur10&target=${target.map((v) => v.toFixed(3)).join(',')},0,0,0&task=position&panels=ik,motion&${box}`;
   const { page, ctx, requests, errors } = await open(`${scene}&move=on&ctrl=quintic`);
   let s = await until(page, (st) => st.frame > 3, 'a few frames');
   assert.equal(s.motion.keep_outs, 1, 'the link brought the box');
@@ -116,7 +116,7 @@ test('checks on: the module loads once, the driving UR10 stops at a collision-fr
   assert.deepEqual(s.q, stopped, 'the arm stays where it stopped');
 
   // The pose it stopped at, checked on its own (the same visit: no second fetch): free.
-  const back = scene.replace(`q=${Q}`, `q=${stopped.join(',')}`);
+  const back = `${scene}&q=${stopped.join(',')}`;
   await page.evaluate((h) => window.armlab.open(h), `${back}&collide=on`);
   s = await until(page, (st) => st.q.every((v, i) => v === stopped[i]) && st.motion.collisions, 'the stop pose');
   s = await until(page, (st) => st.frame > s.frame + 2, 'two more frames');
@@ -134,7 +134,7 @@ test('checks on: the module loads once, the driving UR10 stops at a collision-fr
 
 test('a module that cannot be loaded (offline, no cache): the checks say so; on again, it loads', async () => {
   let offline = true;
-  const { page, ctx, requests, errors } = await open(`#robot=ur10&q=${Q}&panels=motion&collide=on`, async (c) => {
+  const { page, ctx, requests, errors } = await open('#robot=ur10&panels=motion&collide=on', async (c) => {
     await c.route('**/urdf/**', (route) => (offline ? route.abort('internetdisconnected') : route.continue()));
   });
   let s = await until(page, (st) => st.motion.checker === 'failed', 'the failed import');
