@@ -368,9 +368,13 @@ fn check_parts(
     tolerance: f64,
 ) -> Option<CollisionReport> {
     #[cfg(target_arch = "wasm32")]
-    return super::web::collide_parts(checker, parts, tolerance);
+    {
+        super::web::collide_parts(checker, parts, tolerance)
+    }
     #[cfg(not(target_arch = "wasm32"))]
-    Some(checker.check_parts(parts, tolerance))
+    {
+        Some(checker.check_parts(parts, tolerance))
+    }
 }
 
 /// The state of the code that checks collisions: always ready natively; in the page the
@@ -388,7 +392,11 @@ pub enum CheckerState {
 /// The state of the code that checks collisions.
 pub fn checker_state() -> CheckerState {
     #[cfg(target_arch = "wasm32")]
-    return super::web::collision_module_state();
+    {
+        super::web::collision_module_state()
+    }
     #[cfg(not(target_arch = "wasm32"))]
-    CheckerState::Ready
+    {
+        CheckerState::Ready
+    }
 }

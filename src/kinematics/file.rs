@@ -16,7 +16,7 @@
 
 use serde_json::{Map, Value, json};
 
-use super::collision::{KeepOut, MAX_KEEP_OUTS};
+use super::collision::KeepOut;
 use super::error::{Expected, Field, Place, RobotError};
 use super::orientation::ZyxEuler;
 use super::robot::{
@@ -210,7 +210,8 @@ fn joint_from_value(n: usize, value: &Value) -> Result<Joint, RobotError> {
 }
 
 /// The optional `keep_out` list: boxes `{"centre": [x, y, z], "size": [x, y, z]}` in the
-/// world frame and the file's length unit (checked with the robot, [`Robot::validated`]).
+/// world frame and the file's length unit (their number and sizes are checked with the
+/// robot, [`Robot::validated`]).
 fn keep_outs_from_value(value: Option<&Value>) -> Result<Vec<KeepOut>, RobotError> {
     let Some(value) = value else {
         return Ok(Vec::new());
@@ -218,14 +219,6 @@ fn keep_outs_from_value(value: Option<&Value>) -> Result<Vec<KeepOut>, RobotErro
     let list = value
         .as_array()
         .ok_or_else(|| wrong(&Place::Robot, Field::KeepOut, Expected::BoxList))?;
-    if list.len() > MAX_KEEP_OUTS {
-        return Err(RobotError::TooLarge {
-            place: Place::Robot,
-            field: Field::KeepOut,
-            value: list.len() as f64,
-            limit: MAX_KEEP_OUTS as f64,
-        });
-    }
     let mut boxes = Vec::with_capacity(list.len());
     for (i, item) in list.iter().enumerate() {
         let place = Place::KeepOut(i + 1);
