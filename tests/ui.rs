@@ -1284,8 +1284,8 @@ fn a_robot_file_brings_its_keep_out_boxes_and_a_bad_box_leaves_the_last_good_rob
     model.set_collisions_on(true);
     assert_eq!(
         model.motion().contact(),
-        None,
-        "the UR10 at home is clear of the box"
+        Some("Contact: link 4 touches keep-out box 1."),
+        "the file's box is checked: the UR10's arm at home reaches into it"
     );
 
     file["name"] = "bad".into();
