@@ -109,3 +109,13 @@ fn mesh_visuals(urdf: &str) -> usize {
             .count()
     })
 }
+
+/// For the page's collision check (the page loads this module only once checks are on):
+/// a request of numbers as `kinematics::collision_wire` writes it (the posed parts, the
+/// floor switch and the keep-out boxes) checked with the collision library; the report's
+/// numbers. A malformed request throws a sentence.
+#[wasm_bindgen]
+pub fn collide_parts(request: &[f64]) -> Result<Vec<f64>, JsError> {
+    crate::kinematics::collision_wire::check_request(request)
+        .map_err(|e| JsError::new(&e.to_string()))
+}

@@ -212,3 +212,114 @@ fn parts_follow_the_robot_file_and_the_frames() {
     let along = fk.base_from_tool.rotation.matrix().column(2).into_owned();
     assert!((mid - tool).cross(&along).norm() < 1e-6);
 }
+
+/// The numbers the page sends to the collision module (`collision_wire`) give, checked on
+/// the module's side, the same report as the direct check: the UR10 folded onto its base,
+/// standing in a rotated keep-out box and reaching through the floor, and the Panda at 200
+/// random poses with the floor and two boxes; bad lists get an error, not a panic.
+#[test]
+fn the_collision_module_encoding_answers_as_the_direct_check() {
+    use armlab::kinematics::collision_wire::{
+        WireError, check_request, decode_report, decode_request, encode_report, encode_request,
+    };
+    use armlab::kinematics::rng::SplitMix64;
+    let mut tilted = KeepOut::new(
+        1,
+        Point3::new(400.0, 300.0, 500.0),
+        Vector3::new(300.0, 200.0, 900.0),
+    )
+    .unwrap();
+    tilted.rotation = nalgebra::Rotation3::from_euler_angles(0.3, -0.2, 0.9);
+    let low = KeepOut::new(
+        2,
+        Point3::new(-600.0, 0.0, 100.0),
+        Vector3::new(300.0, 300.0, 200.0),
+    )
+    .unwrap();
+    let mut cases: Vec<(Robot, Vec<f64>)> = Vec::new();
+    let ur10 = preset("ur10").unwrap();
+    let mut folded = ur10.home();
+    folded[1] = 0.0;
+    folded[2] = (-150f64).to_radians();
+    cases.push((ur10.clone(), folded));
+    cases.push((ur10.clone(), vec![0.0, 0.6, 1.4, 0.0, 0.0, 0.0]));
+    let panda = preset("panda").unwrap();
+    let mut rng = SplitMix64::new(14);
+    for _ in 0..200 {
+        cases.push((panda.clone(), rng.joint_vector(&panda)));
+    }
+    let (mut contacts, mut kinds) = (0, std::collections::HashSet::new());
+    for (robot, q) in &cases {
+        // The Panda is in metres: its boxes scaled down.
+        let scale = if robot.length_unit.symbol() == "m" {
+            1e-3
+        } else {
+            1.0
+        };
+        let boxes: Vec<KeepOut> = [tilted, low]
+            .iter()
+            .map(|k| KeepOut {
+                centre: k.centre * scale,
+                size: k.size * scale,
+                rotation: k.rotation,
+            })
+            .collect();
+        let parts = parts_at(robot, q);
+        let tolerance = TOUCH_TOLERANCE * robot.reach();
+        let direct = CollisionChecker::new(true, boxes.clone())
+            .unwrap()
+            .check_parts(&parts, tolerance);
+        let request = encode_request(&parts, tolerance, true, &boxes);
+        let (back, tol_back, checker) = decode_request(&request).unwrap();
+        assert_eq!(back, parts, "the parts come back bit for bit");
+        assert_eq!(tol_back, tolerance);
+        assert_eq!(checker.keep_outs(), &boxes[..]);
+        let answer = check_request(&request).unwrap();
+        assert_eq!(answer, encode_report(&direct));
+        assert_eq!(decode_report(&answer, parts.len()).unwrap(), direct);
+        contacts += direct.contacts.len();
+        kinds.extend(
+            direct
+                .contacts
+                .iter()
+                .map(|c| std::mem::discriminant(&c.other)),
+        );
+    }
+    assert!(contacts > 10, "the cases touch: {contacts} contacts");
+    assert_eq!(
+        kinds.len(),
+        3,
+        "parts, the floor and a box are among the contacts"
+    );
+
+    let parts = parts_at(&ur10, &ur10.home());
+    let good = encode_request(&parts, 1.0, false, &[low]);
+    assert!(matches!(
+        decode_request(&good[..good.len() - 1]),
+        Err(WireError::Length { .. })
+    ));
+    let mut bad = good.clone();
+    bad[20] = f64::NAN;
+    assert!(matches!(
+        decode_request(&bad),
+        Err(WireError::NotFinite { at: 20 })
+    ));
+    let mut bad = good.clone();
+    bad[5 + 1] = 9.0; // the first part's kind
+    assert!(matches!(
+        decode_request(&bad),
+        Err(WireError::Code { at: 6, .. })
+    ));
+    assert!(matches!(
+        decode_request(&[2.0, 0.0, 0.0, 0.0, 0.0]),
+        Err(WireError::Code { at: 0, .. })
+    ));
+    assert!(
+        decode_report(&[0.0, 1.0, 7.0, 1.0, 0.0], 3).is_err(),
+        "part 7 of 3"
+    );
+    assert!(
+        decode_report(&[0.0, 2.0, 0.0, 1.0, 0.0], 3).is_err(),
+        "two contacts announced, one given"
+    );
+}

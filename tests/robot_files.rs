@@ -360,3 +360,129 @@ fn json_api_answers_fk_and_jacobian_and_names_errors() {
     let list: serde_json::Value = serde_json::from_str(&api::presets()).unwrap();
     assert_eq!(list.as_array().unwrap().len(), 9);
 }
+
+/// A robot file may bring keep-out boxes (`keep_out`: centre and size in the file's unit,
+/// world frame): they load, round-trip, and every bad box gets its own typed error naming
+/// the box and the field, in English and Finnish.
+#[test]
+fn keep_out_boxes_load_round_trip_and_bad_ones_get_typed_errors() {
+    let boxes = r#", "keep_out": [ { "centre": [900, 0, 400], "size": [200, 400, 800] }, { "centre": [-1, 2.5, 3], "size": [1, 1, 1] } ]"#;
+    let robot = robot_from_json(&robot_text(boxes, GOOD_JOINT)).unwrap();
+    assert_eq!(robot.keep_outs.len(), 2);
+    assert_eq!(
+        robot.keep_outs[0].centre,
+        nalgebra::Point3::new(900.0, 0.0, 400.0)
+    );
+    assert_eq!(
+        robot.keep_outs[0].size,
+        nalgebra::Vector3::new(200.0, 400.0, 800.0)
+    );
+    assert_eq!(
+        robot.keep_outs[1].centre,
+        nalgebra::Point3::new(-1.0, 2.5, 3.0)
+    );
+    assert_eq!(robot_from_json(&robot_to_json(&robot)).unwrap(), robot);
+    assert!(
+        robot_from_json(&robot_text("", GOOD_JOINT))
+            .unwrap()
+            .keep_outs
+            .is_empty()
+    );
+    assert!(
+        !robot_to_json(&robot_from_json(&robot_text("", GOOD_JOINT)).unwrap()).contains("keep_out")
+    );
+
+    let one = |b: &str| {
+        robot_text(
+            &format!(r#", "keep_out": [ {{ "centre": [0, 0, 500], "size": [1, 1, 1] }}, {b} ]"#),
+            GOOD_JOINT,
+        )
+    };
+    let many = format!(
+        r#", "keep_out": [{}]"#,
+        vec![r#"{"centre": [0, 0, 0], "size": [1, 1, 1]}"#; 65].join(",")
+    );
+    let cases: Vec<(&str, String, &str)> = vec![
+        (
+            "negative size",
+            one(r#"{ "centre": [0, 0, 0], "size": [200, -5, 800] }"#),
+            "In keep-out box 2, the field \"size\" holds -5: a size cannot be negative.",
+        ),
+        (
+            "zero size",
+            one(r#"{ "centre": [0, 0, 0], "size": [200, 0, 800] }"#),
+            "In keep-out box 2, the field \"size\" holds 0: it must be above zero.",
+        ),
+        (
+            "absurd size",
+            one(r#"{ "centre": [0, 0, 0], "size": [1e7, 1, 1] }"#),
+            "In keep-out box 2, the field \"size\" is 10000000, larger in size than the limit 1000000.",
+        ),
+        (
+            "absurd centre",
+            one(r#"{ "centre": [0, -3e9, 0], "size": [1, 1, 1] }"#),
+            "In keep-out box 2, the field \"centre\" is -3000000000, larger in size than the limit 1000000.",
+        ),
+        (
+            "text for a number",
+            one(r#"{ "centre": [0, 0, 0], "size": ["NaN", 1, 1] }"#),
+            "In keep-out box 2, the field \"size\" must be a list of 3 numbers.",
+        ),
+        (
+            "two numbers",
+            one(r#"{ "centre": [0, 0], "size": [1, 1, 1] }"#),
+            "In keep-out box 2, the field \"centre\" must be a list of 3 numbers.",
+        ),
+        (
+            "no size",
+            one(r#"{ "centre": [0, 0, 0] }"#),
+            "In keep-out box 2, the field \"size\" is missing.",
+        ),
+        (
+            "a number for a box",
+            one("7"),
+            "In keep-out box 2, the field \"keep_out\" must be a list of boxes, each with \"centre\" and \"size\" (3 numbers each).",
+        ),
+        (
+            "not a list",
+            robot_text(r#", "keep_out": { "centre": [0, 0, 0] }"#, GOOD_JOINT),
+            "In the robot, the field \"keep_out\" must be a list of boxes, each with \"centre\" and \"size\" (3 numbers each).",
+        ),
+        (
+            "too many",
+            robot_text(&many, GOOD_JOINT),
+            "In the robot, the field \"keep_out\" is 65, larger in size than the limit 64.",
+        ),
+    ];
+    for (what, text, sentence) in &cases {
+        let err = robot_from_json(text).expect_err(what);
+        assert_eq!(&err.to_string(), sentence, "{what}");
+    }
+    let err = robot_from_json(&cases[0].1).unwrap_err();
+    assert!(matches!(
+        err,
+        RobotError::NegativeSize {
+            place: Place::KeepOut(2),
+            field: Field::Size,
+            ..
+        }
+    ));
+    assert_eq!(
+        err.sentence(armlab::i18n::Lang::Fi),
+        "Kieltoalueessa 2 kentässä \"size\" on -5: koko ei voi olla negatiivinen."
+    );
+    let err = robot_from_json(&one(
+        r#"{ "centre": [0, 0, 0], "size": [1, 1, 1], "colour": "red" }"#,
+    ))
+    .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            RobotError::UnknownField {
+                place: Place::KeepOut(2),
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+}

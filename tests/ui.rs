@@ -1263,3 +1263,43 @@ fn predict_then_reveal_hides_entries_until_a_click_and_the_link_keeps_them() {
     h.run_steps(2);
     assert_eq!(h.query_all_by_label("?").count(), 8);
 }
+
+/// A robot file with keep-out boxes sets the motion lab's boxes; a file with a bad box
+/// gets the file's sentence naming the box, and the last good robot and boxes stay.
+#[test]
+fn a_robot_file_brings_its_keep_out_boxes_and_a_bad_box_leaves_the_last_good_robot() {
+    use armlab::app::robot_panel::RobotPanel;
+    let mut model = Model::new(Session::for_preset("ur10").expect("a preset"));
+    let mut panel = RobotPanel::new(model.robot());
+    let ur10 = armlab::kinematics::preset("ur10").expect("the UR10");
+    let mut file: serde_json::Value =
+        serde_json::from_str(&armlab::kinematics::robot_to_json(&ur10)).expect("JSON");
+    file["name"] = "UR10 in a cell".into();
+    file["keep_out"] = serde_json::json!([{ "centre": [900, 0, 400], "size": [200, 400, 800] }]);
+    assert!(panel.load_robot_text(&mut model, &file.to_string()));
+    assert_eq!(model.robot().name, "UR10 in a cell");
+    let boxes = model.motion().keep_outs().to_vec();
+    assert_eq!(boxes.len(), 1);
+    assert_eq!(boxes[0].size, nalgebra::Vector3::new(200.0, 400.0, 800.0));
+    model.set_collisions_on(true);
+    assert_eq!(
+        model.motion().contact(),
+        Some("Contact: link 4 touches keep-out box 1."),
+        "the file's box is checked: the UR10's arm at home reaches into it"
+    );
+
+    file["name"] = "bad".into();
+    file["keep_out"][0]["size"] = serde_json::json!([200, -5, 800]);
+    assert!(!panel.load_robot_text(&mut model, &file.to_string()));
+    let message = model.message().expect("a message");
+    assert_eq!(message.kind, MessageKind::Error);
+    assert!(
+        message.text.ends_with(
+            "In keep-out box 1, the field \"size\" holds -5: a size cannot be negative."
+        ),
+        "{}",
+        message.text
+    );
+    assert_eq!(model.robot().name, "UR10 in a cell");
+    assert_eq!(model.motion().keep_outs(), &boxes[..]);
+}

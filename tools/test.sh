@@ -113,7 +113,7 @@ run js-api node --test web/api.test.mjs
 add js-api
 
 build_web
-run e2e node --test --test-concurrency=1 web/e2e.test.mjs web/offline.test.mjs web/urdf.test.mjs web/motion.test.mjs web/exercise.test.mjs
+run e2e node --test --test-concurrency=1 web/e2e.test.mjs web/offline.test.mjs web/urdf.test.mjs web/motion.test.mjs web/collision.test.mjs web/exercise.test.mjs
 add e2e
 
 say "the snapshots are unchanged"

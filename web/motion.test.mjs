@@ -116,7 +116,7 @@ test('with move on, the arm drives to the target with each controller', async ()
   await ctx.close();
 });
 
-test('driving with collide=on in the link: the page leaves the checks out; the cost per frame', async () => {
+test('driving with collide=on in the link: the checks run in the lazily loaded module; the cost per frame', async () => {
   const { page, ctx, errors } = await openPage('#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2&panels=ik,motion');
   const s0 = await state(page);
   const t = s0.tool;
@@ -134,9 +134,9 @@ test('driving with collide=on in the link: the page leaves the checks out; the c
   const frames = await page.evaluate(() => window.armlab.frameTimes());
   const moving = frames.filter((f) => f.motion > 0);
   assert.ok(moving.length >= 3, `frames while driving: ${moving.length}`);
-  // The page leaves the collision library out (its size budget): collide=on in a link
-  // stays off there, and the panel says so (the desktop app and the UI tests check them).
-  assert.equal(s.motion.collisions, false);
+  // collide=on in the link: the checks ran in the collision module (web/collision.test.mjs).
+  assert.equal(s.motion.collisions, true);
+  assert.equal(s.motion.checker, 'ready');
   measurements.ur10_collide = {
     frames: moving.length,
     motion_ms_p50: quantile(moving.map((f) => f.motion), 0.5),

@@ -158,6 +158,12 @@ fn motion_json(model: &super::model::Model) -> serde_json::Value {
         "goal": sim.map(|s| s.goal().to_vec()),
         "collisions": m.collisions_on(),
         "contact": m.contact(),
+        "checker": match super::motion_lab::checker_state() {
+            super::motion_lab::CheckerState::Ready => "ready",
+            super::motion_lab::CheckerState::Loading => "loading",
+            super::motion_lab::CheckerState::Failed(_) => "failed",
+        },
+        "colliding_parts": m.colliding().iter().filter(|c| **c).count(),
         "keep_outs": m.keep_outs().len(),
         "trail": m.trail().len(),
     })

@@ -676,8 +676,12 @@ impl Model {
 
     /// Loads a robot as a new start (a preset or a file): its home pose, its default task
     /// (position only below six joints) and method, the target on its tool, the view
-    /// framed anew.
+    /// framed anew; the keep-out boxes of a file that brings some.
     pub fn load_robot(&mut self, robot: Robot, source: RobotSource) {
+        if !robot.keep_outs.is_empty() {
+            // A robot file's keep-out boxes (checked with the file) replace the lab's.
+            let _ = self.motion.set_keep_outs(robot.keep_outs.clone());
+        }
         self.q = robot.home();
         self.task = Task::default_for(robot.dof());
         self.method = IkMethod::DampedLeastSquares;

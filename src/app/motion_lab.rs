@@ -9,13 +9,11 @@ use std::collections::VecDeque;
 use nalgebra::{IsometryMatrix3, Point3};
 
 use crate::i18n::Lang;
-use crate::kinematics::collision::{CollisionChecker, CollisionReport, KeepOut};
+use crate::kinematics::collision::{
+    CollisionChecker, CollisionReport, KeepOut, Obstacle, TOUCH_TOLERANCE,
+};
+use crate::kinematics::parts::{Part, robot_parts};
 
-/// Whether this build checks collisions. The page does not: parry3d adds about 15 kB
-/// gzip, which takes the page's first load over its 1.8 MB budget with this stop's
-/// features (loading it lazily, as the URDF module is, is the next step). The desktop
-/// app, the UI tests and the core (the JSON API, `tests/collision.rs`) check them.
-pub const COLLISIONS_IN_THIS_BUILD: bool = !cfg!(target_arch = "wasm32");
 use crate::kinematics::motion::{MotionError, MotionSettings, MotionSim, check_time_scale};
 use crate::kinematics::{ForwardKinematics, Robot};
 
@@ -245,10 +243,15 @@ impl MotionLab {
         self.collisions.on
     }
 
-    /// Checks collisions (or stops checking; the red parts go). In a build without them
-    /// ([`COLLISIONS_IN_THIS_BUILD`]: the page) they stay off.
+    /// Checks collisions (or stops checking; the red parts go). In the page the checks run
+    /// in the lazily loaded module, which the first check of the visit starts loading.
     pub fn set_collisions_on(&mut self, on: bool) {
-        self.collisions.on = on && COLLISIONS_IN_THIS_BUILD;
+        #[cfg(target_arch = "wasm32")]
+        if on && !self.collisions.on {
+            // A module that failed to load is fetched again when the checks go on again.
+            super::web::retry_collision_module();
+        }
+        self.collisions.on = on;
         self.collisions.checked_q.clear();
         self.collisions.report = CollisionReport::default();
         self.collisions.sentence = None;
@@ -285,8 +288,8 @@ impl MotionLab {
 
     /// Checks the pose `q` (its frames `fk`) when collisions are on and `q` was not the
     /// last pose checked; returns whether it is free. A free pose becomes the last
-    /// collision-free pose. The floor is left out for an arm that lies on it at home
-    /// (the planar 2R drawn in the plane z = 0).
+    /// collision-free pose. While the page's collision module loads (or when it could not
+    /// be loaded) nothing is checked and the pose counts as free.
     pub fn check(
         &mut self,
         robot: &Robot,
@@ -295,39 +298,20 @@ impl MotionLab {
         robot_changes: u64,
         lang: Lang,
     ) -> bool {
-        let c = &mut self.collisions;
-        // A constant: in the page the check below is dead code, so the linker leaves
-        // parry3d out.
-        if !c.on || !COLLISIONS_IN_THIS_BUILD {
+        if !self.collisions.on || !self.collisions.set_up(robot, robot_changes) {
             return true;
         }
-        if c.checker.is_none() || c.built_for != robot_changes {
-            let mut checker = CollisionChecker::new(true, c.keep_outs.clone()).ok();
-            if let (Some(ch), Ok(home)) = (
-                checker.as_mut(),
-                ForwardKinematics::new(robot, &robot.home()),
-            ) {
-                let report = ch.check_parts(
-                    &crate::kinematics::parts::robot_parts(robot, &home),
-                    crate::kinematics::collision::TOUCH_TOLERANCE * robot.reach(),
-                );
-                ch.floor = !report
-                    .contacts
-                    .iter()
-                    .any(|k| k.other == crate::kinematics::collision::Obstacle::Floor);
-            }
-            c.checker = checker;
-            c.built_for = robot_changes;
-            c.checked_q.clear();
-            c.last_free = None;
-        }
+        let c = &mut self.collisions;
         if c.checked_q == q {
             return c.report.is_free();
         }
         let Some(checker) = c.checker.as_mut() else {
             return true;
         };
-        c.report = checker.check(robot, fk);
+        let Some(report) = checker.check_with(robot, fk, check_parts) else {
+            return true;
+        };
+        c.report = report;
         c.sentence = c.report.sentence(checker.parts(), lang);
         c.checked_q = q.to_vec();
         let free = c.report.is_free();
@@ -346,5 +330,73 @@ impl MotionLab {
     /// until the arm moves again.
     pub fn keep_report_at(&mut self, q: &[f64]) {
         self.collisions.checked_q = q.to_vec();
+    }
+}
+
+impl Collisions {
+    /// Sets up the checker for the robot (once per robot change): the floor is left out
+    /// for an arm that lies on it at home (the planar 2R drawn in the plane z = 0).
+    /// Whether the checker is ready (not while the page's module loads).
+    fn set_up(&mut self, robot: &Robot, robot_changes: u64) -> bool {
+        if self.checker.is_some() && self.built_for == robot_changes {
+            return true;
+        }
+        let Ok(mut checker) = CollisionChecker::new(true, self.keep_outs.clone()) else {
+            return false;
+        };
+        if let Ok(home) = ForwardKinematics::new(robot, &robot.home()) {
+            let parts = robot_parts(robot, &home);
+            let Some(report) = check_parts(&checker, &parts, TOUCH_TOLERANCE * robot.reach())
+            else {
+                return false;
+            };
+            checker.floor = !report.contacts.iter().any(|k| k.other == Obstacle::Floor);
+        }
+        self.checker = Some(checker);
+        self.built_for = robot_changes;
+        self.checked_q.clear();
+        self.last_free = None;
+        true
+    }
+}
+
+/// Where the collision check runs: natively the core's; in the page the lazily loaded
+/// module's (`None` while it loads or when it could not be loaded, see [`checker_state`]).
+fn check_parts(
+    checker: &CollisionChecker,
+    parts: &[Part],
+    tolerance: f64,
+) -> Option<CollisionReport> {
+    #[cfg(target_arch = "wasm32")]
+    {
+        super::web::collide_parts(checker, parts, tolerance)
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        Some(checker.check_parts(parts, tolerance))
+    }
+}
+
+/// The state of the code that checks collisions: always ready natively; in the page the
+/// module that holds the collision library (dist/urdf/) loads once per visit.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum CheckerState {
+    /// Checks run.
+    Ready,
+    /// The module is being fetched.
+    Loading,
+    /// The module could not be loaded: the browser's words.
+    Failed(String),
+}
+
+/// The state of the code that checks collisions.
+pub fn checker_state() -> CheckerState {
+    #[cfg(target_arch = "wasm32")]
+    {
+        super::web::collision_module_state()
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        CheckerState::Ready
     }
 }

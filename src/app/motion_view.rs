@@ -214,6 +214,9 @@ pub struct MotionPanel {
     goal_error: Option<String>,
     /// The keep-out boxes' texts (`x, y, z, sx, sy, sz`) and sentences.
     boxes: Vec<Draft>,
+    /// The model's robot-load count the box texts were written for (a robot file may
+    /// bring other boxes).
+    boxes_for: u64,
 }
 
 impl Panel for MotionPanel {
@@ -431,26 +434,29 @@ impl MotionPanel {
     /// The collision switch, the contact, and the keep-out boxes.
     fn collision_ui(&mut self, model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
         let mut on = model.motion().collisions_on();
-        let available = super::motion_lab::COLLISIONS_IN_THIS_BUILD;
         let r = ui
-            .add_enabled(
-                available,
-                egui::Checkbox::new(&mut on, tr(model, Key::MotionCollisions)),
-            )
+            .checkbox(&mut on, tr(model, Key::MotionCollisions))
             .on_hover_text(tr(model, Key::MotionCollisionsHint));
         points.insert("motion-collisions", r.rect.center());
-        if !available {
-            ui.label(egui::RichText::new(tr(model, Key::MotionCollisionsNotInPage)).small());
-        }
         if r.changed() {
             model.set_collisions_on(on);
         }
         if on {
-            match model.motion().contact() {
-                Some(contact) => {
+            use super::motion_lab::{CheckerState, checker_state};
+            match (checker_state(), model.motion().contact()) {
+                (CheckerState::Loading, _) => {
+                    ui.label(tr(model, Key::MotionCollisionsLoading));
+                }
+                (CheckerState::Failed(why), _) => {
+                    let lang = model.settings().lang;
+                    let why = crate::i18n::echo::text_within(&why, 60);
+                    let sentence = crate::i18n::fill(lang, Key::MotionCollisionsFailed, &[&why]);
+                    ui.colored_label(style::ERROR, sentence);
+                }
+                (CheckerState::Ready, Some(contact)) => {
                     ui.colored_label(style::ERROR, contact);
                 }
-                None => {
+                (CheckerState::Ready, None) => {
                     ui.label(tr(model, Key::MotionNoContact));
                 }
             }
@@ -461,7 +467,8 @@ impl MotionPanel {
     /// The keep-out boxes: add one at the target, edit or remove each.
     fn keep_outs_ui(&mut self, model: &mut Model, ui: &mut egui::Ui) {
         let boxes = model.motion().keep_outs().to_vec();
-        if self.boxes.len() != boxes.len() {
+        if self.boxes.len() != boxes.len() || self.boxes_for != model.robot_loads() {
+            self.boxes_for = model.robot_loads();
             self.boxes = boxes
                 .iter()
                 .map(|b| Draft {

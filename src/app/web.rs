@@ -33,6 +33,10 @@ thread_local! {
     /// The URDF module's import: started by the first URDF file or download, kept for the
     /// visit, forgotten when it failed (a later try fetches it again).
     static URDF_MODULE: RefCell<Option<js_sys::Promise>> = const { RefCell::new(None) };
+    /// How many imports of the URDF module failed in this visit.
+    static MODULE_FAILURES: Cell<u32> = const { Cell::new(0) };
+    /// The collision check's side of the module: its `collide_parts` once loaded.
+    static COLLIDE: RefCell<CollideModule> = const { RefCell::new(CollideModule::Idle) };
     /// A hash the page asked the app to open (back/forward, `window.armlab.open`).
     static PENDING_HASH: RefCell<Option<String>> = const { RefCell::new(None) };
     /// The page's canvas, looked up once.
@@ -472,6 +476,7 @@ fn install_hook(window: &web_sys::Window) {
     });
     set_field(&obj, "memoryBytes", &memory.into_js_value());
     install_workspace_benchmark(&obj);
+    install_collision_benchmark(&obj);
     // For the browser test of the crash screen: the next frame panics.
     let panic = Closure::<dyn Fn()>::new(|| {
         PANIC_REQUESTED.with(|p| p.set(true));
@@ -506,6 +511,48 @@ fn install_workspace_benchmark(obj: &js_sys::Object) {
         o.into()
     });
     set_field(obj, "workspaceBenchmark", &bench.into_js_value());
+}
+
+/// `window.armlab.collisionBenchmark(robot, poses)`: the collision check's cost per pose
+/// in the page (printed by the browser test, not asserted), as the native `motionbench`
+/// measures it: `poses` random poses of a preset, each its frames, its parts and the
+/// check of the floor and the parts through the collision module (the numbers there and
+/// back included); `null` until the module is loaded.
+fn install_collision_benchmark(obj: &js_sys::Object) {
+    let bench = Closure::<dyn Fn(String, u32) -> JsValue>::new(|id: String, poses: u32| {
+        use crate::kinematics::collision::CollisionChecker;
+        let (Ok(robot), Ok(mut checker)) = (
+            crate::kinematics::preset(&id),
+            CollisionChecker::new(true, Vec::new()),
+        ) else {
+            return JsValue::NULL;
+        };
+        let mut rng = crate::kinematics::rng::SplitMix64::new(7);
+        let qs: Vec<Vec<f64>> = (0..poses.max(1))
+            .map(|_| rng.joint_vector(&robot))
+            .collect();
+        let Ok(mut fk) = crate::kinematics::ForwardKinematics::new(&robot, &robot.home()) else {
+            return JsValue::NULL;
+        };
+        let (mut colliding, start) = (0usize, super::hook::now_ms());
+        for q in &qs {
+            fk.update(&robot, q);
+            match checker.check_with(&robot, &fk, collide_parts) {
+                Some(report) => colliding += usize::from(!report.is_free()),
+                None => return JsValue::NULL,
+            }
+        }
+        let us = 1e3 * (super::hook::now_ms() - start) / qs.len() as f64;
+        let o = js_sys::Object::new();
+        set_field(&o, "robot", &id.into());
+        set_field(&o, "poses", &(qs.len() as f64).into());
+        set_field(&o, "parts", &(checker.parts().len() as f64).into());
+        set_field(&o, "us_per_pose_fk_parts_and_check", &us.into());
+        let share = colliding as f64 / qs.len() as f64;
+        set_field(&o, "colliding_fraction_of_random_poses", &share.into());
+        o.into()
+    });
+    set_field(obj, "collisionBenchmark", &bench.into_js_value());
 }
 
 /// Sets `object[key] = value`, logging a failure.
@@ -624,9 +671,15 @@ fn import_urdf_module() -> Result<js_sys::Promise, String> {
         .and_then(|w| w.document())
         .and_then(|d| d.base_uri().ok().flatten())
         .ok_or("no document")?;
-    let url = web_sys::Url::new_with_base(URDF_MODULE_PATH, &base)
-        .map_err(|e| js_error_text(&e))?
-        .href();
+    let url =
+        web_sys::Url::new_with_base(URDF_MODULE_PATH, &base).map_err(|e| js_error_text(&e))?;
+    // A browser may keep a failed import of an address for the visit: a later try asks
+    // for another one.
+    let failed = MODULE_FAILURES.with(Cell::get);
+    if failed > 0 {
+        url.set_search(&format!("try={failed}"));
+    }
+    let url = url.href();
     // A dynamic import, which a function body may hold; the absolute address leaves
     // nothing to resolve against the caller.
     let import = js_sys::Function::new_with_args(
@@ -640,13 +693,16 @@ fn import_urdf_module() -> Result<js_sys::Promise, String> {
         .map_err(|_| "the import gave no promise".to_string())
 }
 
-/// The URDF module, imported on the first call of the visit.
-async fn urdf_module() -> Result<JsValue, String> {
+/// The URDF module, imported on the first call of the visit (`announce`: the robot panel
+/// says that it loads).
+async fn urdf_module(announce: bool) -> Result<JsValue, String> {
     let started = URDF_MODULE.with(|m| m.borrow().clone());
     let promise = match started {
         Some(promise) => promise,
         None => {
-            push_file_event(FileEvent::UrdfLoading);
+            if announce {
+                push_file_event(FileEvent::UrdfLoading);
+            }
             let promise = import_urdf_module()?;
             URDF_MODULE.with(|m| *m.borrow_mut() = Some(promise.clone()));
             promise
@@ -655,6 +711,7 @@ async fn urdf_module() -> Result<JsValue, String> {
     let loaded = wasm_bindgen_futures::JsFuture::from(promise).await;
     loaded.map_err(|e| {
         URDF_MODULE.with(|m| *m.borrow_mut() = None);
+        MODULE_FAILURES.with(|f| f.set(f.get() + 1));
         js_error_text(&e)
     })
 }
@@ -678,7 +735,7 @@ fn call_urdf_module(module: &JsValue, name: &str, args: &[&str]) -> Result<Strin
 /// A URDF text through the URDF module, in the interface's language.
 async fn import_urdf(text: String) {
     let lang = LANG.with(Cell::get).id();
-    let event = match urdf_module().await {
+    let event = match urdf_module(true).await {
         Err(e) => FileEvent::UrdfUnavailable(e),
         Ok(module) => match call_urdf_module(&module, "urdf_import", &[&text, lang]) {
             Err(sentence) => FileEvent::UrdfRejected(sentence),
@@ -708,7 +765,7 @@ async fn import_urdf(text: String) {
 /// module is there; the outcome arrives as a [`FileEvent`].
 pub fn download_urdf(name: String, robot: String) {
     wasm_bindgen_futures::spawn_local(async move {
-        let event = match urdf_module().await {
+        let event = match urdf_module(true).await {
             Err(e) => FileEvent::UrdfUnavailable(e),
             Ok(module) => match call_urdf_module(&module, "robot_to_urdf", &[&robot])
                 .and_then(|text| download_typed(&name, &text, "application/xml"))
@@ -783,6 +840,88 @@ pub fn read_dropped_file(file: egui::DroppedFileHandle) {
         if let Ok(bytes) = file.bytes_async().await {
             let name = file.path().to_string_lossy().into_owned();
             receive_file(&name, String::from_utf8_lossy(&bytes).into_owned());
+        }
+    });
+}
+
+/// The collision check's use of the module (dist/urdf/, which holds the collision
+/// library; the page's own wasm does not).
+enum CollideModule {
+    /// Not asked for yet (or failed, and the checks went on again).
+    Idle,
+    /// Being fetched.
+    Loading,
+    /// Loaded: its `collide_parts`.
+    Ready(js_sys::Function),
+    /// Could not be loaded, or its check threw: the words.
+    Failed(String),
+}
+
+/// Starts loading the module for the collision check.
+fn load_collision_module() {
+    COLLIDE.with(|c| *c.borrow_mut() = CollideModule::Loading);
+    wasm_bindgen_futures::spawn_local(async {
+        let state = match urdf_module(false).await.and_then(|m| {
+            js_sys::Reflect::get(&m, &"collide_parts".into())
+                .ok()
+                .and_then(|f| f.dyn_into::<js_sys::Function>().ok())
+                .ok_or_else(|| "the module has no collide_parts".to_string())
+        }) {
+            Ok(f) => CollideModule::Ready(f),
+            Err(e) => CollideModule::Failed(e),
+        };
+        COLLIDE.with(|c| *c.borrow_mut() = state);
+        wake();
+    });
+}
+
+/// Checks `parts` in the module (synchronously once it is loaded; the first call of the
+/// visit starts loading it and answers `None`, as every call does until it is there).
+pub fn collide_parts(
+    checker: &crate::kinematics::collision::CollisionChecker,
+    parts: &[crate::kinematics::parts::Part],
+    tolerance: f64,
+) -> Option<crate::kinematics::collision::CollisionReport> {
+    use crate::kinematics::collision_wire::{decode_report, encode_request};
+    let function = COLLIDE.with(|c| match &*c.borrow() {
+        CollideModule::Ready(f) => Some(f.clone()),
+        _ => None,
+    });
+    let Some(function) = function else {
+        if COLLIDE.with(|c| matches!(*c.borrow(), CollideModule::Idle)) {
+            load_collision_module();
+        }
+        return None;
+    };
+    let request = encode_request(parts, tolerance, checker.floor, checker.keep_outs());
+    let answer = function
+        .call1(&JsValue::NULL, &js_sys::Float64Array::from(&request[..]))
+        .map_err(|e| js_error_text(&e))
+        .and_then(|a| {
+            let numbers = js_sys::Float64Array::new(&a).to_vec();
+            decode_report(&numbers, parts.len()).map_err(|e| e.to_string())
+        });
+    answer
+        .map_err(|e| COLLIDE.with(|c| *c.borrow_mut() = CollideModule::Failed(e)))
+        .ok()
+}
+
+/// The collision module's state for the Motion panel.
+pub fn collision_module_state() -> super::motion_lab::CheckerState {
+    use super::motion_lab::CheckerState;
+    COLLIDE.with(|c| match &*c.borrow() {
+        CollideModule::Ready(_) => CheckerState::Ready,
+        CollideModule::Idle | CollideModule::Loading => CheckerState::Loading,
+        CollideModule::Failed(e) => CheckerState::Failed(e.clone()),
+    })
+}
+
+/// After a failure: the next check fetches the module again.
+pub fn retry_collision_module() {
+    COLLIDE.with(|c| {
+        let mut c = c.borrow_mut();
+        if matches!(*c, CollideModule::Failed(_)) {
+            *c = CollideModule::Idle;
         }
     });
 }

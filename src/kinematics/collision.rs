@@ -245,9 +245,25 @@ impl CollisionChecker {
     /// Derives the parts of `robot` at the frames `fk` and checks them, with the
     /// tolerance [`TOUCH_TOLERANCE`] × the reach.
     pub fn check(&mut self, robot: &Robot, fk: &ForwardKinematics) -> CollisionReport {
+        self.check_with(robot, fk, |checker, parts, tolerance| {
+            Some(checker.check_parts(parts, tolerance))
+        })
+        .unwrap_or_default()
+    }
+
+    /// As [`CollisionChecker::check`], with the parts checked by `check` (given this
+    /// checker, the parts and the tolerance): the page sends them to the module that holds
+    /// the collision library ([`super::collision_wire`]), which may not be there yet
+    /// (`None`).
+    pub fn check_with(
+        &mut self,
+        robot: &Robot,
+        fk: &ForwardKinematics,
+        check: impl FnOnce(&CollisionChecker, &[Part], f64) -> Option<CollisionReport>,
+    ) -> Option<CollisionReport> {
         let mut parts = std::mem::take(&mut self.parts);
         robot_parts_into(robot, fk, &mut parts);
-        let report = self.check_parts(&parts, TOUCH_TOLERANCE * robot.reach());
+        let report = check(self, &parts, TOUCH_TOLERANCE * robot.reach());
         self.parts = parts;
         report
     }

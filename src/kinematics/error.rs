@@ -19,6 +19,8 @@ pub enum Place {
     Base,
     /// The tool transform.
     Tool,
+    /// Keep-out box `n` (1-based) of the robot file's `keep_out` list.
+    KeepOut(usize),
 }
 
 impl Place {
@@ -30,6 +32,7 @@ impl Place {
             Place::Joint(n) => fill(lang, Key::PlaceJoint, &[n]),
             Place::Base => text(lang, Key::PlaceBase).to_string(),
             Place::Tool => text(lang, Key::PlaceTool).to_string(),
+            Place::KeepOut(n) => fill(lang, Key::PlaceKeepOut, &[n]),
         }
     }
 }
@@ -55,6 +58,8 @@ pub enum Expected {
     Number,
     /// A list of three numbers.
     Triple,
+    /// The list of keep-out boxes.
+    BoxList,
 }
 
 impl Expected {
@@ -69,6 +74,7 @@ impl Expected {
                 Expected::Text => Key::ExpectedText,
                 Expected::Number => Key::ExpectedNumber,
                 Expected::Triple => Key::ExpectedTriple,
+                Expected::BoxList => Key::ExpectedBoxList,
             },
         )
     }
@@ -158,6 +164,12 @@ pub enum Field {
     Z,
     /// `rotation`: a rotation matrix entry.
     Rotation,
+    /// `keep_out`: the list of keep-out boxes.
+    KeepOut,
+    /// `centre`: a keep-out box's centre.
+    Centre,
+    /// `size`: a keep-out box's size.
+    Size,
 }
 
 impl Field {
@@ -201,6 +213,9 @@ impl Field {
             Field::Y => "y",
             Field::Z => "z",
             Field::Rotation => "rotation",
+            Field::KeepOut => "keep_out",
+            Field::Centre => "centre",
+            Field::Size => "size",
         }
     }
 

@@ -551,5 +551,6 @@ pub fn mystery_arm(seed: u64) -> Robot {
         world_from_base: IsometryMatrix3::identity(),
         flange_from_tool: IsometryMatrix3::identity(),
         parts: RobotParts::default(),
+        keep_outs: Vec::new(),
     }
 }

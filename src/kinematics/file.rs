@@ -16,6 +16,7 @@
 
 use serde_json::{Map, Value, json};
 
+use super::collision::KeepOut;
 use super::error::{Expected, Field, Place, RobotError};
 use super::orientation::ZyxEuler;
 use super::robot::{
@@ -34,7 +35,9 @@ const ROBOT_FIELDS: &[&str] = &[
     "tool",
     "base_size",
     "hand_size",
+    "keep_out",
 ];
+const BOX_FIELDS: &[&str] = &["centre", "size"];
 const JOINT_FIELDS: &[&str] = &[
     "name",
     "type",
@@ -116,6 +119,7 @@ pub fn robot_from_value(value: &Value) -> Result<Robot, RobotError> {
         world_from_base,
         flange_from_tool,
         parts,
+        keep_outs: keep_outs_from_value(obj.get(Field::KeepOut.name()))?,
     }
     .validated()
 }
@@ -205,6 +209,33 @@ fn joint_from_value(n: usize, value: &Value) -> Result<Joint, RobotError> {
     })
 }
 
+/// The optional `keep_out` list: boxes `{"centre": [x, y, z], "size": [x, y, z]}` in the
+/// world frame and the file's length unit (their number and sizes are checked with the
+/// robot, [`Robot::validated`]).
+fn keep_outs_from_value(value: Option<&Value>) -> Result<Vec<KeepOut>, RobotError> {
+    let Some(value) = value else {
+        return Ok(Vec::new());
+    };
+    let list = value
+        .as_array()
+        .ok_or_else(|| wrong(&Place::Robot, Field::KeepOut, Expected::BoxList))?;
+    let mut boxes = Vec::with_capacity(list.len());
+    for (i, item) in list.iter().enumerate() {
+        let place = Place::KeepOut(i + 1);
+        let obj = object(item, &place, Field::KeepOut, Expected::BoxList)?;
+        check_fields(obj, &place, BOX_FIELDS)?;
+        let centre =
+            triple(obj, &place, Field::Centre)?.ok_or_else(|| missing(&place, Field::Centre))?;
+        let size = triple(obj, &place, Field::Size)?.ok_or_else(|| missing(&place, Field::Size))?;
+        boxes.push(KeepOut {
+            centre: nalgebra::Point3::from(centre),
+            size: nalgebra::Vector3::from(size),
+            rotation: nalgebra::Rotation3::identity(),
+        });
+    }
+    Ok(boxes)
+}
+
 fn transform_from_value(
     value: Option<&Value>,
     place: Place,
@@ -292,6 +323,14 @@ pub fn robot_to_json(robot: &Robot) -> String {
         }
     }
     root.insert("joints".into(), Value::Array(joints));
+    if !robot.keep_outs.is_empty() {
+        let boxes: Vec<Value> = robot
+            .keep_outs
+            .iter()
+            .map(|b| json!({"centre": [b.centre.x, b.centre.y, b.centre.z], "size": [b.size.x, b.size.y, b.size.z]}))
+            .collect();
+        root.insert("keep_out".into(), Value::Array(boxes));
+    }
     for (key, iso) in [
         ("base", &robot.world_from_base),
         ("tool", &robot.flange_from_tool),

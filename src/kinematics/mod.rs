@@ -6,6 +6,7 @@
 
 pub mod angles;
 pub mod collision;
+pub mod collision_wire;
 pub mod convention;
 pub mod edit;
 pub mod error;

@@ -2,6 +2,7 @@
 //! Denavit–Hartenberg table in either convention, with limits, names, optional base and
 //! tool transforms and the length unit it is written in.
 
+use super::collision::{KeepOut, MAX_KEEP_OUTS};
 use nalgebra::{IsometryMatrix3, Rotation3, Translation3, Vector3};
 
 use super::angles;
@@ -234,6 +235,9 @@ pub struct Robot {
     pub flange_from_tool: IsometryMatrix3<f64>,
     /// Sizes of the base block and the hand, if given.
     pub parts: RobotParts,
+    /// Keep-out boxes the file brings for the motion lab's collision check, in the world
+    /// frame and the file's length unit (at most [`MAX_KEEP_OUTS`]).
+    pub keep_outs: Vec<KeepOut>,
 }
 
 impl Robot {
@@ -377,6 +381,7 @@ impl Robot {
                 check_value(&place, Field::Rotation, *v, 1.0 + 1e-6)?;
             }
         }
+        check_keep_outs(&self.keep_outs)?;
         Ok(self)
     }
 
@@ -440,6 +445,39 @@ pub(crate) fn check_value(
             value,
             limit,
         });
+    }
+    Ok(())
+}
+
+/// Keep-out boxes: at most [`MAX_KEEP_OUTS`], every centre coordinate finite and within
+/// [`MAX_LENGTH`], every size above zero and within it, every rotation a rotation.
+fn check_keep_outs(boxes: &[KeepOut]) -> Result<(), RobotError> {
+    if boxes.len() > MAX_KEEP_OUTS {
+        return Err(RobotError::TooLarge {
+            place: Place::Robot,
+            field: Field::KeepOut,
+            value: boxes.len() as f64,
+            limit: MAX_KEEP_OUTS as f64,
+        });
+    }
+    for (i, b) in boxes.iter().enumerate() {
+        let place = Place::KeepOut(i + 1);
+        for v in b.centre.iter() {
+            check_value(&place, Field::Centre, *v, MAX_LENGTH)?;
+        }
+        for v in b.size.iter() {
+            check_size(&place, Field::Size, *v)?;
+            if *v == 0.0 {
+                return Err(RobotError::NotPositive {
+                    place,
+                    field: Field::Size,
+                    value: *v,
+                });
+            }
+        }
+        for v in b.rotation.matrix().iter() {
+            check_value(&place, Field::Rotation, *v, 1.0 + 1e-6)?;
+        }
     }
     Ok(())
 }

@@ -418,6 +418,7 @@ pub fn robot_from_chain(chain: &UrdfChain) -> Result<Robot, UrdfError> {
         world_from_base: base,
         flange_from_tool: last.inverse() * leaf,
         parts: RobotParts::default(),
+        keep_outs: Vec::new(),
     };
     robot.validated().map_err(UrdfError::Robot)
 }

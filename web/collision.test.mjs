@@ -1,0 +1,151 @@
+// Collision checks in the built page (dist/) in headless Chromium. The page's own wasm
+// leaves the collision library out (its first-load budget); the checks run in the module
+// in dist/urdf/ (tools/setup.sh, build_urdf_module), which the page imports only when
+// checks go on. Here: the first load does not fetch it; turning checks on fetches it once;
+// the UR10 driving into a keep-out box stops at a collision-free pose and the panel names
+// the parts that touch; a module that cannot be loaded gets a sentence and a later try
+// loads it. Prints one JSON line of measurements (not asserted): the module's load time on
+// loopback and the check's cost per pose through the module boundary (UR10, Panda).
+//
+// The contexts block service workers: the worker precaches every file of the build after
+// the first load (urdf/ too), and those fetches are not the page's.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { serveDist, launchChromium } from './static-server.mjs';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', 'dist');
+const VIEW = { width: 1400, height: 860 };
+const measurements = {};
+
+let server;
+let base;
+let browser;
+
+before(async () => {
+  ({ server, base } = await serveDist(dist));
+  browser = await launchChromium();
+});
+
+after(async () => {
+  console.log(`ARMLAB_COLLISION_MEASUREMENTS ${JSON.stringify(measurements)}`);
+  await browser?.close();
+  server?.close();
+});
+
+const state = async (page) => JSON.parse(await page.evaluate(() => window.armlab.state()));
+const moduleRequests = (requests) => requests.filter((p) => p.includes('/urdf/'));
+
+async function open(hash, setup = async () => {}) {
+  const ctx = await browser.newContext({ viewport: VIEW, deviceScaleFactor: 1, serviceWorkers: 'block' });
+  await setup(ctx);
+  const requests = [];
+  ctx.on('request', (r) => requests.push(new URL(r.url()).pathname));
+  const page = await ctx.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.goto(base + hash, { waitUntil: 'load' });
+  await page.waitForFunction(() => {
+    const text = window.armlab?.state();
+    return Boolean(text) && JSON.parse(text).rendered;
+  }, null, { timeout: 120000 });
+  return { page, ctx, requests, errors };
+}
+
+/** Waits until `check(state)` holds, nudging the mouse so that egui draws frames. */
+async function until(page, check, what, tries = 600) {
+  for (let i = 0; i < tries; i++) {
+    const s = await state(page);
+    if (check(s)) return s;
+    await page.mouse.move(700 + (i % 2), 40);
+    await page.waitForTimeout(20);
+  }
+  throw new Error(`waited for ${what}: ${JSON.stringify((await state(page)).motion)}`);
+}
+
+async function click(page, name) {
+  const p = await page.evaluate((n) => window.armlab.screenPoint(n), name);
+  assert.ok(p, `screenPoint("${name}") is on screen`);
+  await page.mouse.click(p.x, p.y);
+}
+
+// The UR10 (mm) at home (standing straight up, collision-free), its tool 500 mm from the
+// target; the keep-out box (250 mm cube) around the target, so the hand must enter it on
+// the way.
+const OFFSET = [400, 0, -300];
+
+test('checks on: the module loads once, the driving UR10 stops at a collision-free pose before a keep-out box, the panel names the parts', async () => {
+  const first = await open('#robot=ur10&panels=ik,motion');
+  const tool = (await state(first.page)).tool;
+  await first.ctx.close();
+  const target = tool.map((v, i) => v + OFFSET[i]);
+  const box = `keepout=${target.map((v) => v.toFixed(3)).join(',')},250,250,250`;
+  const scene = `#robot=ur10&target=${target.map((v) => v.toFixed(3)).join(',')},0,0,0&task=position&panels=ik,motion&${box}`;
+  const { page, ctx, requests, errors } = await open(`${scene}&move=on&ctrl=quintic`);
+  let s = await until(page, (st) => st.frame > 3, 'a few frames');
+  assert.equal(s.motion.keep_outs, 1, 'the link brought the box');
+  assert.equal(s.motion.collisions, false);
+  assert.ok(requests.some((p) => p.endsWith('_bg.wasm')), 'the first load fetched the page\'s wasm');
+  assert.deepEqual(moduleRequests(requests), [], 'the first load does not fetch the collision module');
+
+  const clicked = Date.now();
+  await click(page, 'motion-collisions');
+  s = await until(page, (st) => st.motion.collisions && st.motion.checker === 'ready', 'the module');
+  measurements.module_load_ms_click_to_ready = Date.now() - clicked;
+  measurements.module_resources = await page.evaluate(() => performance.getEntriesByType('resource')
+    .filter((e) => e.name.includes('/urdf/'))
+    .map((e) => ({ file: e.name.replace(/.*\//, ''), ms: Math.round(e.responseEnd - e.startTime), bytes: e.encodedBodySize })));
+  const fetched = moduleRequests(requests);
+  assert.equal(fetched.length, 2, `the glue and the wasm, once: ${fetched}`);
+  s = await until(page, (st) => st.motion.colliding_parts === 0 && st.motion.contact === null, 'the start checked');
+
+  await click(page, 'ik-solve');
+  s = await until(page, (st) => st.motion.contact !== null && !st.motion.moving, 'the arm stopped at the box', 1500);
+  assert.match(s.motion.contact, /^Contact: (the hand|link \d|joint \d's housing) touches keep-out box 1\.$/);
+  assert.ok(s.motion.colliding_parts >= 1, 'a part is drawn red');
+  assert.match(s.message, /The arm stopped at the last collision-free pose\.$/);
+  assert.ok(s.position_error > 20, `the tool stopped short of the target (${s.position_error} mm off)`);
+  const stopped = s.q;
+  for (let i = 0; i < 10; i++) {
+    await page.mouse.move(700 + (i % 2), 40);
+    await page.waitForTimeout(30);
+  }
+  s = await state(page);
+  assert.deepEqual(s.q, stopped, 'the arm stays where it stopped');
+
+  // The pose it stopped at, checked on its own (the same visit: no second fetch): free.
+  const back = `${scene}&q=${stopped.join(',')}`;
+  await page.evaluate((h) => window.armlab.open(h), `${back}&collide=on`);
+  s = await until(page, (st) => st.q.every((v, i) => v === stopped[i]) && st.motion.collisions, 'the stop pose');
+  s = await until(page, (st) => st.frame > s.frame + 2, 'two more frames');
+  assert.equal(s.motion.contact, null, 'the pose it stopped at is collision-free');
+  assert.equal(s.motion.colliding_parts, 0);
+  assert.equal(moduleRequests(requests).length, 2, 'the module is not fetched again');
+
+  for (const robot of ['ur10', 'panda']) {
+    measurements[`${robot}_check`] = await page.evaluate((r) => window.armlab.collisionBenchmark(r, 4000), robot);
+    assert.ok(measurements[`${robot}_check`], `the benchmark ran for ${robot}`);
+  }
+  assert.deepEqual(errors, []);
+  await ctx.close();
+});
+
+test('a module that cannot be loaded (offline, no cache): the checks say so; on again, it loads', async () => {
+  let offline = true;
+  const { page, ctx, requests, errors } = await open('#robot=ur10&panels=motion&collide=on', async (c) => {
+    await c.route('**/urdf/**', (route) => (offline ? route.abort('internetdisconnected') : route.continue()));
+  });
+  let s = await until(page, (st) => st.motion.checker === 'failed', 'the failed import');
+  assert.equal(s.motion.collisions, true, 'collide=on in the link turned the checks on');
+  assert.equal(s.motion.contact, null);
+  offline = false;
+  await click(page, 'motion-collisions');
+  s = await until(page, (st) => !st.motion.collisions, 'checks off');
+  await click(page, 'motion-collisions');
+  s = await until(page, (st) => st.motion.collisions && st.motion.checker === 'ready', 'the module on the second try');
+  assert.ok(moduleRequests(requests).some((p) => p.endsWith('_bg.wasm')), 'the wasm came on the second try');
+  assert.ok(errors.every((e) => /urdf|import|fetch/i.test(e)), `only the failed import: ${errors}`);
+  await ctx.close();
+});
