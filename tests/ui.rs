@@ -1263,3 +1263,79 @@ fn predict_then_reveal_hides_entries_until_a_click_and_the_link_keeps_them() {
     h.run_steps(2);
     assert_eq!(h.query_all_by_label("?").count(), 8);
 }
+
+#[test]
+fn both_paths_are_drawn_side_by_side_the_line_says_where_it_fails_and_waypoints_are_visited() {
+    use armlab::kinematics::path::PathKind;
+    use armlab::kinematics::tool_pose;
+    let mut h = harness("#robot=ur10&q=0.3,-1.2,1.4,-1.8,-1.5,0&panels=motion");
+    h.get_by_label("Paths and waypoints").click();
+    h.run_steps(2);
+    // Two waypoints on either side of the base: the straight line between them passes by
+    // the base's axis, where the shoulder is singular or the line out of reach.
+    for q in [
+        [0.3, -1.2, 1.4, -1.8, -1.5, 0.0],
+        [0.3 + std::f64::consts::PI, -1.2, 1.4, -1.8, -1.5, 0.0],
+    ] {
+        let pose = tool_pose(h.state().model().robot(), &q);
+        h.state_mut().model_mut().set_target(pose);
+        h.get_by_label("Add waypoint").click();
+        h.run_steps(1);
+    }
+    assert_eq!(h.state().model().paths().waypoints().len(), 2);
+    h.get_by_label("Straight line").click();
+    h.get_by_label("Draw both paths").click();
+    h.run_steps(3);
+    let model = h.state().model();
+    assert_eq!(model.paths().kind(), PathKind::Cartesian);
+    let plan = model.paths().plan().expect("both paths are planned");
+    assert_eq!(plan.joint.points.len(), 201);
+    assert_eq!(plan.line.points.len(), 201);
+    let first = plan.line.problems.first().expect("the line has a problem");
+    let sentence = first.sentence(armlab::i18n::Lang::En);
+    assert!(
+        h.query_by_label(&sentence).is_some(),
+        "the panel says: {sentence}"
+    );
+    // Bad text in waypoint 1's x: a sentence, and the last good x stays.
+    let x0 = h.state().model().paths().waypoints().poses()[0].translation.x;
+    let inputs: Vec<_> = h
+        .query_all_by_role(Role::TextInput)
+        .filter(|n| n.accesskit_node().label().as_deref() == Some("Waypoint 1: x, y, z (mm)"))
+        .collect();
+    assert_eq!(inputs.len(), 3, "x, y and z of waypoint 1");
+    inputs[0].focus();
+    drop(inputs);
+    h.run_steps(1);
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.event(egui::Event::Text("12,5x".into()));
+    h.run_steps(2);
+    assert!(
+        h.query_by_label("\"12,5x\" is not a number.").is_some(),
+        "the sentence shows"
+    );
+    assert_eq!(
+        h.state().model().paths().waypoints().poses()[0].translation.x,
+        x0
+    );
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.event(egui::Event::Text(format!("{}", (x0 + 10.0).round())));
+    h.run_steps(2);
+    let x1 = h.state().model().paths().waypoints().poses()[0].translation.x;
+    assert_eq!(x1, (x0 + 10.0).round(), "a good value is taken");
+    // The panel with both paths drawn, the legend and the line's problem marked.
+    let mut settings = h.state().model().settings().clone();
+    settings.set_panel_open(armlab::app::settings::PanelKind::Motion, true);
+    h.state_mut().model_mut().set_settings(settings);
+    h.run_steps(2);
+    h.snapshot("motion_paths");
+    // Visit: move turns on and the arm sets off toward waypoint 1 along the line.
+    h.get_by_label("Joint space").click();
+    h.get_by_label("Visit").click();
+    h.run_steps(4);
+    let model = h.state().model();
+    assert!(model.motion().on(), "Visit turns Move on");
+    assert!(model.paths().visit().is_some(), "the visit is under way");
+    assert!(h.query_by_label("Visiting: waypoint 1 of 2.").is_some());
+    assert!(model.motion().trail().len() >= 2, "the trail draws");
+}

@@ -136,6 +136,7 @@ pub fn state_json(app: &ArmLabApp) -> String {
         "workspace_samples": model.workspace().map(|c| c.len()),
         "directions_reachable": model.directions().map(|d| d.near.iter().filter(|n| **n).count()),
         "motion": motion_json(model),
+        "paths": paths_json(model),
     })
     .to_string()
 }
@@ -160,5 +161,37 @@ fn motion_json(model: &super::model::Model) -> serde_json::Value {
         "contact": m.contact(),
         "keep_outs": m.keep_outs().len(),
         "trail": m.trail().len(),
+    })
+}
+
+/// The paths' part of the state: the path kind, the waypoints (position in the robot's
+/// unit and orientation as a quaternion), each drawn path's problems, the visit's
+/// progress and whether it is done (every waypoint visited and the arm at rest).
+fn paths_json(model: &super::model::Model) -> serde_json::Value {
+    let p = model.paths();
+    let issues = |path: &crate::kinematics::path::Path| {
+        path.problems
+            .iter()
+            .map(|i| json!({ "issue": i.issue.id(), "s": i.s, "index": i.index }))
+            .collect::<Vec<_>>()
+    };
+    json!({
+        "kind": p.kind().id(),
+        "waypoints": p.waypoints().poses().iter().map(|w| {
+            let t = w.translation.vector;
+            let e = crate::kinematics::EulerParameters::from_rotation(w.rotation.matrix());
+            json!({ "position": [t.x, t.y, t.z], "quaternion": [e.e1, e.e2, e.e3, e.e4] })
+        }).collect::<Vec<_>>(),
+        "shown": p.shown(),
+        "plan": p.plan().map(|plan| json!({
+            "joint_points": plan.joint.points.len(),
+            "line_points": plan.line.points.len(),
+            "joint_issues": issues(&plan.joint),
+            "line_issues": issues(&plan.line),
+        })),
+        "visiting": p.visit().is_some(),
+        "visit_issues": p.visit().map(|v| issues(&v.path)),
+        "visit_passed": p.visit().map(|v| v.passed()),
+        "visit_done": p.finished() && !model.motion().moving(),
     })
 }
