@@ -1298,7 +1298,9 @@ fn both_paths_are_drawn_side_by_side_the_line_says_where_it_fails_and_waypoints_
         "the panel says: {sentence}"
     );
     // Bad text in waypoint 1's x: a sentence, and the last good x stays.
-    let x0 = h.state().model().paths().waypoints().poses()[0].translation.x;
+    let x0 = h.state().model().paths().waypoints().poses()[0]
+        .translation
+        .x;
     let inputs: Vec<_> = h
         .query_all_by_role(Role::TextInput)
         .filter(|n| n.accesskit_node().label().as_deref() == Some("Waypoint 1: x, y, z (mm)"))
@@ -1315,13 +1317,17 @@ fn both_paths_are_drawn_side_by_side_the_line_says_where_it_fails_and_waypoints_
         "the sentence shows"
     );
     assert_eq!(
-        h.state().model().paths().waypoints().poses()[0].translation.x,
+        h.state().model().paths().waypoints().poses()[0]
+            .translation
+            .x,
         x0
     );
     h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
     h.event(egui::Event::Text(format!("{}", (x0 + 10.0).round())));
     h.run_steps(2);
-    let x1 = h.state().model().paths().waypoints().poses()[0].translation.x;
+    let x1 = h.state().model().paths().waypoints().poses()[0]
+        .translation
+        .x;
     assert_eq!(x1, (x0 + 10.0).round(), "a good value is taken");
     // The panel with both paths drawn, the legend and the line's problem marked.
     let mut settings = h.state().model().settings().clone();

@@ -981,9 +981,9 @@ impl Model {
     pub fn visit_waypoints(&mut self) -> Result<(), crate::kinematics::motion::MotionError> {
         self.set_motion_on(true);
         self.motion.sync(&self.robot, &self.q, self.robot_changes);
-        let goal = self
-            .paths
-            .start_visit(&self.robot, &self.q, self.robot_changes, &mut self.solver)?;
+        let goal =
+            self.paths
+                .start_visit(&self.robot, &self.q, self.robot_changes, &mut self.solver)?;
         if let Some(goal) = goal {
             self.motion.clear_trail();
             self.motion.set_goal(&goal, None)?;
@@ -1001,8 +1001,12 @@ impl Model {
             crate::kinematics::path::Waypoints::new(poses).unwrap_or_default();
         if !patch.dropped.is_empty() {
             let lang = self.settings.lang;
-            let mut reasons: Vec<String> =
-                patch.dropped.iter().take(3).map(|e| e.sentence(lang)).collect();
+            let mut reasons: Vec<String> = patch
+                .dropped
+                .iter()
+                .take(3)
+                .map(|e| e.sentence(lang))
+                .collect();
             if patch.dropped.len() > 3 {
                 reasons.push(crate::i18n::fill(
                     lang,

@@ -158,7 +158,10 @@ impl PathLab {
             let settings = CartesianSettings::for_robot(robot);
             waypoint_path(robot, q, &list, kind, &settings, solver)
         };
-        self.plan = match (plan(PathKind::Joint, solver), plan(PathKind::Cartesian, solver)) {
+        self.plan = match (
+            plan(PathKind::Joint, solver),
+            plan(PathKind::Cartesian, solver),
+        ) {
             (Ok(joint), Ok(line)) => Some(Plan {
                 joint,
                 line,
@@ -237,8 +240,7 @@ fn follow(robot: &Robot, visit: &mut Visit, q: &[f64], arrived: bool) -> Option<
     while !visit.at_end() {
         let here = &visit.path.points[visit.index].q;
         let stop = visit.stops.contains(&visit.index);
-        if (stop && !(arrived && visit.index == before)) || joint_gap(robot, q, here) > LOOKAHEAD
-        {
+        if (stop && !(arrived && visit.index == before)) || joint_gap(robot, q, here) > LOOKAHEAD {
             break;
         }
         visit.index += 1;
@@ -320,7 +322,10 @@ mod tests {
         for kind in [PathKind::Joint, PathKind::Cartesian] {
             let (mut model, poses) = ur10_with_waypoints(kind);
             let tool = run_visit(&mut model);
-            assert!(model.paths().finished(), "{kind:?}: the visit ran to its end");
+            assert!(
+                model.paths().finished(),
+                "{kind:?}: the visit ran to its end"
+            );
             assert!(model.paths().visit().is_none());
             let reach = model.robot().reach();
             let end = model.fk().base_from_tool;
@@ -337,10 +342,11 @@ mod tests {
                     .iter()
                     .map(|p| (p - pose.translation.vector).norm())
                     .collect();
-                let (at, closest) = gaps
-                    .iter()
-                    .enumerate()
-                    .fold((0, f64::MAX), |b, (k, g)| if *g < b.1 { (k, *g) } else { b });
+                let (at, closest) =
+                    gaps.iter().enumerate().fold(
+                        (0, f64::MAX),
+                        |b, (k, g)| if *g < b.1 { (k, *g) } else { b },
+                    );
                 assert!(
                     closest < 2e-3 * reach,
                     "{kind:?}: waypoint {} passed at {closest} mm",
@@ -355,7 +361,10 @@ mod tests {
     #[test]
     fn a_visit_along_the_line_keeps_the_tool_near_each_straight_segment() {
         let mut worst = [0.0; 2];
-        for (n, kind) in [PathKind::Cartesian, PathKind::Joint].into_iter().enumerate() {
+        for (n, kind) in [PathKind::Cartesian, PathKind::Joint]
+            .into_iter()
+            .enumerate()
+        {
             let (mut model, poses) = ur10_with_waypoints(kind);
             let mut ends = vec![model.fk().tool_position()];
             ends.extend(poses.iter().map(|p| p.translation.vector));
@@ -367,7 +376,8 @@ mod tests {
                     ends.windows(2)
                         .map(|w| {
                             let (a, b) = (w[0], w[1]);
-                            let t = ((p - a).dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
+                            let t =
+                                ((p - a).dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
                             (p - (a + (b - a) * t)).norm()
                         })
                         .fold(f64::MAX, f64::min)
@@ -412,14 +422,22 @@ mod tests {
         }
         // A bad path kind and a bad waypoint are left out with a sentence; the rest
         // (the robot, q, the good waypoint) applies.
-        let hash = "robot=ur10&q=0.1,-1,1,-1,-1.5,0&path=zigzag&wp=600,100,400,0,0,0;1,2,x,0,0,0;5,6";
+        let hash =
+            "robot=ur10&q=0.1,-1,1,-1,-1.5,0&path=zigzag&wp=600,100,400,0,0,0;1,2,x,0,0,0;5,6";
         let session = Session::from_hash(hash).expect("opens").expect("a session");
         let model = Model::new(session);
         assert_eq!(model.q()[0], 0.1);
         assert_eq!(model.paths().kind(), PathKind::Joint);
         assert_eq!(model.paths().waypoints().len(), 1);
         let text = model.message().map(|m| m.text.clone()).unwrap_or_default();
-        for part in ["zigzag", "joint or line", "waypoint 2", "\"x\"", "waypoint 3", "6"] {
+        for part in [
+            "zigzag",
+            "joint or line",
+            "waypoint 2",
+            "\"x\"",
+            "waypoint 3",
+            "6",
+        ] {
             assert!(text.contains(part), "{part} in: {text}");
         }
     }

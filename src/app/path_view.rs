@@ -89,33 +89,32 @@ impl PathPanel {
         for (i, (row, pose)) in self.rows.iter_mut().zip(&poses).enumerate() {
             let label = ui.label(trf(model, Key::PathWaypointRow, &[&(i + 1), &unit]));
             let p = pose.translation.vector;
-            let edited = ui
-                .horizontal(|ui| {
-                    let mut edited = None;
-                    for (c, draft) in row.iter_mut().enumerate() {
-                        let shown = number(p[c], 4);
-                        let parsed = draft.text.trim().parse::<f64>().ok();
-                        if draft.error.is_none() && parsed.map(|v| number(v, 4)) != Some(shown) {
-                            // Changed elsewhere (added, a link): show the value in force.
-                            draft.text = number(p[c], 4);
-                        }
-                        let r = ui
-                            .add(
-                                egui::TextEdit::singleline(&mut draft.text)
-                                    .id_salt(("path_wp", i, c))
-                                    .desired_width(56.0),
-                            )
-                            .labelled_by(label.id);
-                        if r.changed() {
-                            edited = Some(c);
-                        }
+            let edited = style::wrapped(ui, |ui| {
+                let mut edited = None;
+                for (c, draft) in row.iter_mut().enumerate() {
+                    let shown = number(p[c], 3);
+                    let parsed = draft.text.trim().parse::<f64>().ok();
+                    if draft.error.is_none() && parsed.map(|v| number(v, 3)) != Some(shown) {
+                        // Changed elsewhere (added, a link): show the value in force.
+                        draft.text = number(p[c], 3);
                     }
-                    if ui.small_button(tr(model, Key::MotionRemove)).clicked() {
-                        remove = Some(i);
+                    let r = ui
+                        .add(
+                            egui::TextEdit::singleline(&mut draft.text)
+                                .id_salt(("path_wp", i, c))
+                                .desired_width(72.0),
+                        )
+                        .labelled_by(label.id);
+                    if r.changed() {
+                        edited = Some(c);
                     }
-                    edited
-                })
-                .inner;
+                }
+                if ui.small_button(tr(model, Key::MotionRemove)).clicked() {
+                    remove = Some(i);
+                }
+                edited
+            })
+            .inner;
             if let Some(c) = edited {
                 let lang = model.settings().lang;
                 let draft = &mut row[c];
@@ -175,7 +174,8 @@ fn kind_ui(model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
                 (JOINT_COLOR, Key::PathLegendJoint),
                 (LINE_COLOR, Key::PathLegendLine),
             ] {
-                let (rect, _) = ui.allocate_exact_size(egui::vec2(20.0, 10.0), egui::Sense::hover());
+                let (rect, _) =
+                    ui.allocate_exact_size(egui::vec2(20.0, 10.0), egui::Sense::hover());
                 ui.painter().line_segment(
                     [rect.left_center(), rect.right_center()],
                     Stroke::new(3.0, color),
@@ -210,7 +210,11 @@ fn issues_ui(model: &Model, ui: &mut egui::Ui) {
         ui.colored_label(style::WARNING, p.sentence(lang));
     }
     if path.problems.len() > 3 {
-        ui.label(trf(model, Key::PathMoreIssues, &[&(path.problems.len() - 3)]));
+        ui.label(trf(
+            model,
+            Key::PathMoreIssues,
+            &[&(path.problems.len() - 3)],
+        ));
     }
 }
 
@@ -256,19 +260,27 @@ pub fn scene_parts(model: &Model, lines: &mut Vec<Line>, instances: &mut Vec<Ins
     }
 }
 
-/// Where the straight line's problems are, with their short names.
-fn problem_places(model: &Model) -> Vec<(Point3<f64>, &'static str)> {
+/// Where the straight line's problems are, with their short names (those of one step
+/// together: "out of reach, singular").
+fn problem_places(model: &Model) -> Vec<(Point3<f64>, String)> {
     let lang = model.settings().lang;
-    problem_path(model).map_or_else(Vec::new, |path| {
-        path.problems
-            .iter()
-            .filter_map(|p| {
-                let point = path.points.get(p.index)?;
-                let at = Point3::from(point.tool.translation.vector);
-                Some((at, issue_text(p.issue, lang)))
-            })
-            .collect()
-    })
+    let mut places: Vec<(usize, Point3<f64>, String)> = Vec::new();
+    for p in problem_path(model).map_or(&[][..], |path| &path.problems) {
+        let name = issue_text(p.issue, lang);
+        match places.last_mut() {
+            Some((index, _, names)) if *index == p.index => *names = format!("{names}, {name}"),
+            _ => {
+                if let Some(point) = problem_path(model).and_then(|path| path.points.get(p.index)) {
+                    let at = Point3::from(point.tool.translation.vector);
+                    places.push((p.index, at, name.to_string()));
+                }
+            }
+        }
+    }
+    places
+        .into_iter()
+        .map(|(_, at, names)| (at, names))
+        .collect()
 }
 
 /// The waypoints' numbers and the problems' names over the 3D picture.
@@ -289,7 +301,7 @@ pub fn draw_in_view(
         label(&at, format!("{}", i + 1), WAYPOINT_COLOR);
     }
     for (at, name) in problem_places(model) {
-        label(&at, name.to_string(), style::UNREACHABLE);
+        label(&at, name, style::UNREACHABLE);
     }
 }
 

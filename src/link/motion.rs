@@ -286,13 +286,13 @@ impl MotionPatch {
         let mut poses = Vec::new();
         for (i, text) in value.split(';').filter(|t| !t.is_empty()).enumerate() {
             let pose = numbers("wp", text).and_then(|v| {
-                let six: [f64; 6] = v.try_into().map_err(|v: Vec<f64>| {
-                    MotionLinkError::WrongCount {
-                        field: "wp",
-                        expected: 6,
-                        found: v.len(),
-                    }
-                })?;
+                let six: [f64; 6] =
+                    v.try_into()
+                        .map_err(|v: Vec<f64>| MotionLinkError::WrongCount {
+                            field: "wp",
+                            expected: 6,
+                            found: v.len(),
+                        })?;
                 if poses.len() == MAX_WAYPOINTS {
                     return Err(MotionLinkError::Value(MotionError::TooLarge {
                         setting: crate::kinematics::motion::Setting::Waypoint(i + 1),
@@ -304,7 +304,9 @@ impl MotionPatch {
             });
             match pose {
                 Ok(p) => poses.push(p),
-                Err(e) => self.dropped.push(MotionLinkError::Waypoint(i + 1, Box::new(e))),
+                Err(e) => self
+                    .dropped
+                    .push(MotionLinkError::Waypoint(i + 1, Box::new(e))),
             }
         }
         self.waypoints = Some(poses);
