@@ -11,11 +11,12 @@
 
 use nalgebra::IsometryMatrix3;
 
+use crate::kinematics::Robot;
 use crate::kinematics::ik::IkSolver;
 use crate::kinematics::motion::MotionError;
-use crate::kinematics::path::{CartesianSettings, Path, PathKind, Waypoints, waypoint_path};
-use crate::kinematics::profile::joint_distance_to;
-use crate::kinematics::{JointKind, Robot};
+use crate::kinematics::path::{
+    CartesianSettings, Path, PathKind, Waypoints, joint_gap, waypoint_path,
+};
 
 /// How far ahead of the arm (the largest joint distance, radians; a prismatic joint this
 /// fraction of π of its stroke) the goal of a visit runs along the path.
@@ -246,25 +247,6 @@ fn follow(robot: &Robot, visit: &mut Visit, q: &[f64], arrived: bool) -> Option<
         visit.index += 1;
     }
     (visit.index != before).then(|| visit.path.points[visit.index].q.clone())
-}
-
-/// The largest joint distance from `a` to `b` (a prismatic joint's as a fraction of π of
-/// its stroke).
-pub fn joint_gap(robot: &Robot, a: &[f64], b: &[f64]) -> f64 {
-    robot
-        .joints
-        .iter()
-        .zip(a.iter().zip(b))
-        .map(|(j, (x, y))| {
-            let d = joint_distance_to(j, *x, *y).abs();
-            match j.kind {
-                JointKind::Revolute => d,
-                JointKind::Prismatic => {
-                    d * std::f64::consts::PI / (j.limits.max - j.limits.min).max(1e-9)
-                }
-            }
-        })
-        .fold(0.0, f64::max)
 }
 
 #[cfg(test)]
