@@ -1345,3 +1345,45 @@ fn both_paths_are_drawn_side_by_side_the_line_says_where_it_fails_and_waypoints_
     assert!(h.query_by_label("Visiting: waypoint 1 of 2.").is_some());
     assert!(model.motion().trail().len() >= 2, "the trail draws");
 }
+
+#[test]
+fn the_paths_part_with_waypoints_fits_a_projector_and_a_phone() {
+    use armlab::app::settings::PanelKind;
+    let hash = "#robot=ur10&panels=motion&path=line&wp=900,100,300,0,0,0;700,-200,500,0,1,0";
+    for size in [
+        [1024.0, 768.0],
+        [1280.0, 720.0],
+        [1366.0, 768.0],
+        [390.0, 844.0],
+    ] {
+        let mut h = harness_at(hash, size);
+        if size[0] < 900.0 {
+            h.state_mut().set_sheet(Some(PanelKind::Motion));
+            h.run_steps(2);
+        }
+        h.get_by_label("Paths and waypoints").click();
+        h.run_steps(2);
+        h.get_by_label("Draw both paths").click();
+        h.run_steps(3);
+        assert!(
+            h.state().model().paths().plan().is_some(),
+            "{size:?}: planned"
+        );
+        let view = h.state().viewport().rect().expect("the view was laid out");
+        let bottom = h.ctx.content_rect().bottom();
+        let column = if size[0] < 900.0 {
+            egui::Rect::from_x_y_ranges(0.0..=size[0], view.bottom()..=bottom)
+        } else {
+            egui::Rect::from_x_y_ranges(30.0..=view.left(), view.top()..=bottom)
+        };
+        let clipped = clipped_controls(&h, column);
+        assert!(clipped.is_empty(), "{size:?}: {clipped:#?}");
+        for label in ["Add waypoint", "Visit", "Straight line", "Joint space"] {
+            let rect = h.get_by_label(label).rect();
+            assert!(
+                rect.min.x >= 0.0 && rect.max.x <= size[0],
+                "{size:?}: {label} at {rect:?}"
+            );
+        }
+    }
+}
