@@ -187,7 +187,7 @@ test('waypoints from a link and the Add waypoint button are visited along a stra
   s = await state(page);
   assert.equal(s.motion.on, true, 'Visit turns Move on');
   assert.ok(s.paths.visiting, 'the visit is under way');
-  assert.deepEqual(s.paths.visit_issues, [], 'the line between these waypoints has no problem');
+  assert.deepEqual(s.paths.issues, [], 'the line between these waypoints has no problem');
   const frames = [];
   for (let i = 0; i < 1200 && !s.paths.visit_done; i++) {
     await page.waitForTimeout(50);
@@ -195,7 +195,7 @@ test('waypoints from a link and the Add waypoint button are visited along a stra
     frames.push(...(await page.evaluate(() => window.armlab.frameTimes())));
   }
   assert.ok(s.paths.visit_done, `the visit ends (${s.motion.time} s simulated)`);
-  const last = s.paths.waypoints[2].position;
+  const last = s.paths.waypoints[2];
   const off = Math.hypot(...s.tool.map((v, i) => v - last[i]));
   // Reached: within 1e-5 m (0.01 mm) of the last waypoint, which is the target.
   assert.ok(off < 0.01, `the tool ends ${off} mm from the last waypoint`);

@@ -164,34 +164,23 @@ fn motion_json(model: &super::model::Model) -> serde_json::Value {
     })
 }
 
-/// The paths' part of the state: the path kind, the waypoints (position in the robot's
-/// unit and orientation as a quaternion), each drawn path's problems, the visit's
-/// progress and whether it is done (every waypoint visited and the arm at rest).
+/// The paths' part of the state: the path kind, the waypoints' positions (robot units),
+/// the problems of the path followed (the visit's, else the drawn straight line's), and
+/// whether a visit is under way or done (every waypoint visited and the arm at rest).
 fn paths_json(model: &super::model::Model) -> serde_json::Value {
     let p = model.paths();
-    let issues = |path: &crate::kinematics::path::Path| {
-        path.problems
-            .iter()
-            .map(|i| json!({ "issue": i.issue.id(), "s": i.s, "index": i.index }))
-            .collect::<Vec<_>>()
-    };
+    let path = p
+        .visit()
+        .map(|v| &v.path)
+        .or(p.plan().map(|plan| &plan.line));
     json!({
         "kind": p.kind().id(),
         "waypoints": p.waypoints().poses().iter().map(|w| {
             let t = w.translation.vector;
-            let e = crate::kinematics::EulerParameters::from_rotation(w.rotation.matrix());
-            json!({ "position": [t.x, t.y, t.z], "quaternion": [e.e1, e.e2, e.e3, e.e4] })
+            [t.x, t.y, t.z]
         }).collect::<Vec<_>>(),
-        "shown": p.shown(),
-        "plan": p.plan().map(|plan| json!({
-            "joint_points": plan.joint.points.len(),
-            "line_points": plan.line.points.len(),
-            "joint_issues": issues(&plan.joint),
-            "line_issues": issues(&plan.line),
-        })),
+        "issues": path.map(|path| path.problems.iter().map(|i| (i.issue.id(), i.s)).collect::<Vec<_>>()),
         "visiting": p.visit().is_some(),
-        "visit_issues": p.visit().map(|v| issues(&v.path)),
-        "visit_passed": p.visit().map(|v| v.passed()),
         "visit_done": p.finished() && !model.motion().moving(),
     })
 }
