@@ -1303,3 +1303,127 @@ fn a_robot_file_brings_its_keep_out_boxes_and_a_bad_box_leaves_the_last_good_rob
     assert_eq!(model.robot().name, "UR10 in a cell");
     assert_eq!(model.motion().keep_outs(), &boxes[..]);
 }
+
+#[test]
+fn both_paths_are_drawn_side_by_side_the_line_says_where_it_fails_and_waypoints_are_visited() {
+    use armlab::kinematics::path::PathKind;
+    use armlab::kinematics::tool_pose;
+    let mut h = harness("#robot=ur10&q=0.3,-1.2,1.4,-1.8,-1.5,0&panels=motion");
+    h.get_by_label("Paths and waypoints").click();
+    h.run_steps(2);
+    // Two waypoints on either side of the base: the straight line between them passes by
+    // the base's axis, where the shoulder is singular or the line out of reach.
+    for q in [
+        [0.3, -1.2, 1.4, -1.8, -1.5, 0.0],
+        [0.3 + std::f64::consts::PI, -1.2, 1.4, -1.8, -1.5, 0.0],
+    ] {
+        let pose = tool_pose(h.state().model().robot(), &q);
+        h.state_mut().model_mut().set_target(pose);
+        h.get_by_label("Add waypoint").click();
+        h.run_steps(1);
+    }
+    assert_eq!(h.state().model().paths().waypoints().len(), 2);
+    h.get_by_label("Straight line").click();
+    h.get_by_label("Draw both paths").click();
+    h.run_steps(3);
+    let model = h.state().model();
+    assert_eq!(model.paths().kind(), PathKind::Cartesian);
+    let plan = model.paths().plan().expect("both paths are planned");
+    assert_eq!(plan.joint.points.len(), 201);
+    assert_eq!(plan.line.points.len(), 201);
+    let first = plan.line.problems.first().expect("the line has a problem");
+    let sentence = first.sentence(armlab::i18n::Lang::En);
+    assert!(
+        h.query_by_label(&sentence).is_some(),
+        "the panel says: {sentence}"
+    );
+    // Bad text in waypoint 1's x: a sentence, and the last good x stays.
+    let x0 = h.state().model().paths().waypoints().poses()[0]
+        .translation
+        .x;
+    let inputs: Vec<_> = h
+        .query_all_by_role(Role::TextInput)
+        .filter(|n| n.accesskit_node().label().as_deref() == Some("Waypoint 1: x, y, z (mm)"))
+        .collect();
+    assert_eq!(inputs.len(), 3, "x, y and z of waypoint 1");
+    inputs[0].focus();
+    drop(inputs);
+    h.run_steps(1);
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.event(egui::Event::Text("12,5x".into()));
+    h.run_steps(2);
+    assert!(
+        h.query_by_label("\"12,5x\" is not a number.").is_some(),
+        "the sentence shows"
+    );
+    assert_eq!(
+        h.state().model().paths().waypoints().poses()[0]
+            .translation
+            .x,
+        x0
+    );
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.event(egui::Event::Text(format!("{}", (x0 + 10.0).round())));
+    h.run_steps(2);
+    let x1 = h.state().model().paths().waypoints().poses()[0]
+        .translation
+        .x;
+    assert_eq!(x1, (x0 + 10.0).round(), "a good value is taken");
+    // The panel with both paths drawn, the legend and the line's problem marked.
+    let mut settings = h.state().model().settings().clone();
+    settings.set_panel_open(armlab::app::settings::PanelKind::Motion, true);
+    h.state_mut().model_mut().set_settings(settings);
+    h.run_steps(2);
+    h.snapshot("motion_paths");
+    // Visit: move turns on and the arm sets off toward waypoint 1 along the line.
+    h.get_by_label("Joint space").click();
+    h.get_by_label("Visit").click();
+    h.run_steps(4);
+    let model = h.state().model();
+    assert!(model.motion().on(), "Visit turns Move on");
+    assert!(model.paths().visit().is_some(), "the visit is under way");
+    assert!(h.query_by_label("Visiting: waypoint 1 of 2.").is_some());
+    assert!(model.motion().trail().len() >= 2, "the trail draws");
+}
+
+#[test]
+fn the_paths_part_with_waypoints_fits_a_projector_and_a_phone() {
+    use armlab::app::settings::PanelKind;
+    let hash = "#robot=ur10&panels=motion&path=line&wp=900,100,300,0,0,0;700,-200,500,0,1,0";
+    for size in [
+        [1024.0, 768.0],
+        [1280.0, 720.0],
+        [1366.0, 768.0],
+        [390.0, 844.0],
+    ] {
+        let mut h = harness_at(hash, size);
+        if size[0] < 900.0 {
+            h.state_mut().set_sheet(Some(PanelKind::Motion));
+            h.run_steps(2);
+        }
+        h.get_by_label("Paths and waypoints").click();
+        h.run_steps(2);
+        h.get_by_label("Draw both paths").click();
+        h.run_steps(3);
+        assert!(
+            h.state().model().paths().plan().is_some(),
+            "{size:?}: planned"
+        );
+        let view = h.state().viewport().rect().expect("the view was laid out");
+        let bottom = h.ctx.content_rect().bottom();
+        let column = if size[0] < 900.0 {
+            egui::Rect::from_x_y_ranges(0.0..=size[0], view.bottom()..=bottom)
+        } else {
+            egui::Rect::from_x_y_ranges(30.0..=view.left(), view.top()..=bottom)
+        };
+        let clipped = clipped_controls(&h, column);
+        assert!(clipped.is_empty(), "{size:?}: {clipped:#?}");
+        for label in ["Add waypoint", "Visit", "Straight line", "Joint space"] {
+            let rect = h.get_by_label(label).rect();
+            assert!(
+                rect.min.x >= 0.0 && rect.max.x <= size[0],
+                "{size:?}: {label} at {rect:?}"
+            );
+        }
+    }
+}

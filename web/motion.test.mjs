@@ -149,3 +149,70 @@ test('driving with collide=on in the link: the checks run in the lazily loaded m
   assert.deepEqual(errors, []);
   await ctx.close();
 });
+
+test('waypoints from a link and the Add waypoint button are visited along a straight line', async () => {
+  const start = '0.3,-1.2,1.4,-1.8,-1.5,0';
+  const { page, ctx, errors } = await openPage(`#robot=ur10&q=${start}&panels=motion`);
+  // Each waypoint: the tool's pose at a joint vector (a link without target= puts the
+  // target on the tool; the written hash gives it as x,y,z,α,β,γ).
+  const poses = [];
+  for (const q of ['0.6,-1.0,1.2,-1.7,-1.5,0.3', '0.9,-1.4,1.6,-1.9,-1.3,0.1', '0.4,-0.9,1.0,-1.5,-1.6,-0.4']) {
+    await openHash(page, `#robot=ur10&q=${q}&panels=motion`);
+    const hash = (await state(page)).hash;
+    poses.push(hash.split('&').find((p) => p.startsWith('target=')).slice('target='.length));
+  }
+  // Two waypoints by the link, the third is the target added with the button.
+  await openHash(page, `#robot=ur10&q=${start}&target=${poses[2]}&panels=motion&path=line&timescale=2&wp=${poses[0]};${poses[1]}`);
+  let s = await state(page);
+  assert.equal(s.paths.kind, 'line');
+  assert.equal(s.paths.waypoints.length, 2);
+  const click = async (name) => {
+    const p = await page.evaluate((n) => window.armlab.screenPoint(n), name);
+    assert.ok(p, `${name} is on screen`);
+    // egui draws on input only: a move first draws the frame the click lands in.
+    await page.mouse.move(p.x, p.y);
+    await page.waitForTimeout(100);
+    await page.mouse.click(p.x, p.y);
+    await page.waitForTimeout(100);
+    await page.mouse.move(p.x + 1, p.y);
+    await page.waitForTimeout(100);
+  };
+  await click('path-fold');
+  await click('path-add-waypoint');
+  s = await state(page);
+  assert.equal(s.paths.waypoints.length, 3, 'Add waypoint stored the target');
+  assert.ok(s.position_error > 10, `the arm starts away from the last waypoint (${s.position_error} mm)`);
+  await page.evaluate(() => window.armlab.frameTimes());
+  await click('path-visit');
+  s = await state(page);
+  assert.equal(s.motion.on, true, 'Visit turns Move on');
+  assert.ok(s.paths.visiting, 'the visit is under way');
+  assert.deepEqual(s.paths.issues, [], 'the line between these waypoints has no problem');
+  const frames = [];
+  for (let i = 0; i < 1200 && !s.paths.visit_done; i++) {
+    await page.waitForTimeout(50);
+    s = await state(page);
+    frames.push(...(await page.evaluate(() => window.armlab.frameTimes())));
+  }
+  assert.ok(s.paths.visit_done, `the visit ends (${s.motion.time} s simulated)`);
+  const last = s.paths.waypoints[2];
+  const off = Math.hypot(...s.tool.map((v, i) => v - last[i]));
+  // Reached: within 1e-5 m (0.01 mm) of the last waypoint, which is the target.
+  assert.ok(off < 0.01, `the tool ends ${off} mm from the last waypoint`);
+  assert.ok(s.reached, 'the target (the last waypoint) is reached');
+  assert.ok(s.motion.trail > 20, `the tool's path was drawn (${s.motion.trail} points)`);
+  // Frames that ran simulation steps (the motion's milliseconds round to 0 on fast frames).
+  const moving = frames.filter((f) => f.motion_steps > 0);
+  assert.ok(moving.length >= 10, `frames while driving: ${moving.length}`);
+  measurements.cartesian_visit = {
+    final_error_mm: off,
+    position_error: s.position_error,
+    simulated_s: s.motion.time,
+    frames: moving.length,
+    frame_ms_p50: quantile(moving.map((f) => f.app + f.render), 0.5),
+    frame_ms_p95: quantile(moving.map((f) => f.app + f.render), 0.95),
+    motion_ms_p95: quantile(moving.map((f) => f.motion), 0.95),
+  };
+  assert.deepEqual(errors, []);
+  await ctx.close();
+});

@@ -136,6 +136,7 @@ pub fn state_json(app: &ArmLabApp) -> String {
         "workspace_samples": model.workspace().map(|c| c.len()),
         "directions_reachable": model.directions().map(|d| d.near.iter().filter(|n| **n).count()),
         "motion": motion_json(model),
+        "paths": paths_json(model),
     })
     .to_string()
 }
@@ -166,5 +167,26 @@ fn motion_json(model: &super::model::Model) -> serde_json::Value {
         "colliding_parts": m.colliding().iter().filter(|c| **c).count(),
         "keep_outs": m.keep_outs().len(),
         "trail": m.trail().len(),
+    })
+}
+
+/// The paths' part of the state: the path kind, the waypoints' positions (robot units),
+/// the problems of the path followed (the visit's, else the drawn straight line's), and
+/// whether a visit is under way or done (every waypoint visited and the arm at rest).
+fn paths_json(model: &super::model::Model) -> serde_json::Value {
+    let p = model.paths();
+    let path = p
+        .visit()
+        .map(|v| &v.path)
+        .or(p.plan().map(|plan| &plan.line));
+    json!({
+        "kind": p.kind().id(),
+        "waypoints": p.waypoints().poses().iter().map(|w| {
+            let t = w.translation.vector;
+            [t.x, t.y, t.z]
+        }).collect::<Vec<_>>(),
+        "issues": path.map(|path| path.problems.iter().map(|i| (i.issue.id(), i.s)).collect::<Vec<_>>()),
+        "visiting": p.visit().is_some(),
+        "visit_done": p.finished() && !model.motion().moving(),
     })
 }

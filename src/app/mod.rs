@@ -30,6 +30,8 @@ pub mod model;
 pub mod motion_lab;
 pub mod motion_view;
 pub mod notebook;
+pub mod path_lab;
+pub mod path_view;
 pub mod plot;
 pub mod robot_panel;
 pub mod scene;

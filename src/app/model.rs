@@ -22,6 +22,7 @@ use crate::kinematics::{
 };
 
 use super::motion_lab::MotionLab;
+use super::path_lab::PathLab;
 use super::session::{RobotSource, Session};
 pub use super::settings::Settings;
 use super::settings::{CameraPose, DisplayPatch};
@@ -218,6 +219,7 @@ pub struct Model {
     /// The tool directions reached at the target's position, when asked for.
     directions: Option<DirectionSphere>,
     motion: MotionLab,
+    paths: PathLab,
     exercise: Option<ExerciseState>,
 }
 
@@ -264,6 +266,7 @@ impl Model {
             rescue: None,
             directions: None,
             motion: MotionLab::default(),
+            paths: PathLab::default(),
             exercise: None,
         };
         model.open(session);
@@ -436,6 +439,15 @@ impl Model {
 
     /// What a link carries, as a session.
     pub fn session(&self) -> Session {
+        let mut motion = crate::link::motion::MotionPatch::of(
+            self.motion.on(),
+            self.motion.settings(),
+            self.motion.time_scale(),
+            self.motion.collisions_on(),
+            self.motion.keep_outs(),
+        );
+        motion.path_kind = Some(self.paths.kind());
+        motion.waypoints = Some(self.paths.waypoints().poses().to_vec());
         Session {
             robot: self.robot.clone(),
             source: self.source.clone(),
@@ -445,13 +457,7 @@ impl Model {
             method: self.method,
             display: DisplayPatch::of(&self.settings),
             camera: self.camera,
-            motion: crate::link::motion::MotionPatch::of(
-                self.motion.on(),
-                self.motion.settings(),
-                self.motion.time_scale(),
-                self.motion.collisions_on(),
-                self.motion.keep_outs(),
-            ),
+            motion,
             exercise: self.exercise.as_ref().map(|e| e.id.clone()),
         }
     }
@@ -926,6 +932,137 @@ impl Model {
         }
     }
 
+    // --- Paths and waypoints (issue 14; docs/kinematics.md §19) ---------------------------
+
+    /// The path kind, the waypoints, the planned paths and the visit.
+    pub fn paths(&self) -> &PathLab {
+        &self.paths
+    }
+
+    /// Chooses how the arm goes from one pose to the next.
+    pub fn set_path_kind(&mut self, kind: crate::kinematics::path::PathKind) {
+        self.paths.set_kind(kind);
+    }
+
+    /// Draws both planned paths in 3D, or stops.
+    pub fn set_paths_shown(&mut self, shown: bool) {
+        self.paths.set_shown(shown);
+    }
+
+    /// Stores the target's pose as the last waypoint.
+    pub fn add_waypoint(&mut self) -> Result<(), crate::kinematics::motion::MotionError> {
+        self.paths.waypoints_mut().push(self.target)
+    }
+
+    /// Replaces waypoint `index` (0-based); on an error the old pose stays.
+    pub fn set_waypoint(
+        &mut self,
+        index: usize,
+        pose: IsometryMatrix3<f64>,
+    ) -> Result<(), crate::kinematics::motion::MotionError> {
+        self.paths.waypoints_mut().set(index, pose).map(|_| ())
+    }
+
+    /// Removes waypoint `index` (0-based); a visit under way ends.
+    pub fn remove_waypoint(&mut self, index: usize) {
+        self.paths.stop_visit();
+        self.paths.waypoints_mut().remove(index);
+    }
+
+    /// Plans the drawn paths anew when the arm, the target or the waypoints changed.
+    pub fn update_path_plan(&mut self) {
+        self.paths.update_plan(
+            &self.robot,
+            &self.q,
+            &self.target,
+            self.robot_changes,
+            &mut self.solver,
+        );
+    }
+
+    /// Turns "move" on and drives the arm through every waypoint in order along the
+    /// chosen path kind.
+    pub fn visit_waypoints(&mut self) -> Result<(), crate::kinematics::motion::MotionError> {
+        self.set_motion_on(true);
+        self.motion.sync(&self.robot, &self.q, self.robot_changes);
+        let goal =
+            self.paths
+                .start_visit(&self.robot, &self.q, self.robot_changes, &mut self.solver)?;
+        if let Some(goal) = goal {
+            self.motion.clear_trail();
+            self.motion.set_goal(&goal, None)?;
+        }
+        Ok(())
+    }
+
+    /// Takes the link's path kind and waypoints (a link without them has none, and goes
+    /// in joint space); the values it left out get a sentence.
+    fn open_paths(&mut self, patch: &crate::link::motion::MotionPatch) {
+        self.paths.stop_visit();
+        self.paths.set_kind(patch.path_kind.unwrap_or_default());
+        let poses = patch.waypoints.clone().unwrap_or_default();
+        *self.paths.waypoints_mut() =
+            crate::kinematics::path::Waypoints::new(poses).unwrap_or_default();
+        if !patch.dropped.is_empty() {
+            let lang = self.settings.lang;
+            let mut reasons: Vec<String> = patch
+                .dropped
+                .iter()
+                .take(3)
+                .map(|e| e.sentence(lang))
+                .collect();
+            if patch.dropped.len() > 3 {
+                reasons.push(crate::i18n::fill(
+                    lang,
+                    crate::i18n::Key::PathMoreIssues,
+                    &[&(patch.dropped.len() - 3)],
+                ));
+            }
+            self.message = Some(Message::warning(crate::i18n::fill(
+                lang,
+                crate::i18n::Key::LinkPartDropped,
+                &[&reasons.join("; ")],
+            )));
+        }
+    }
+
+    /// A frame of a visit: the simulation runs in slices of 5 ms of real time, and after
+    /// each the goal moves on along the visit's path; the arm takes the frame's end.
+    fn advance_visit(&mut self, real_dt: f64) -> usize {
+        let mut steps = 0;
+        let mut left = real_dt;
+        let mut moved = None;
+        while left > 1e-9 {
+            let dt = left.min(0.005);
+            left -= dt;
+            if let Some(q) = self.motion.advance(dt) {
+                steps += self.motion.steps_last_frame();
+                self.follow_visit(&q);
+                moved = Some(q);
+            }
+        }
+        if let Some(q) = moved {
+            self.take_motion_q(q);
+        }
+        steps
+    }
+
+    /// Moves the visit's goal on once the arm is at `q`.
+    fn follow_visit(&mut self, q: &[f64]) {
+        let Some(sim) = self.motion.sim() else {
+            return;
+        };
+        let band = match sim.settings().controller {
+            crate::kinematics::motion::Controller::OnOff { dead_band } => dead_band,
+            _ => 0.0,
+        }
+        .max(super::path_lab::STOP_ERROR);
+        let arrived = sim.error().iter().all(|e| e.abs() <= band);
+        if let Some(goal) = self.paths.follow(&self.robot, q, arrived) {
+            let _ = self.motion.set_goal(&goal, None);
+        }
+    }
+
     // --- The motion lab (issue 14) -------------------------------------------------------
 
     /// The motion lab: "move", its controller, the simulation and the tool's trail.
@@ -964,6 +1101,7 @@ impl Model {
         &mut self,
         goal: &[f64],
     ) -> Result<(), crate::kinematics::motion::MotionError> {
+        self.paths.stop_visit();
         self.motion.sync(&self.robot, &self.q, self.robot_changes);
         self.motion.set_goal(goal, None)
     }
@@ -985,10 +1123,12 @@ impl Model {
         if let Some(on) = patch.move_on {
             self.set_motion_on(on);
         }
+        self.open_paths(patch);
     }
 
     /// Sets the simulation's goal to an IK answer of the target.
     fn drive_to(&mut self, mut goal: Vec<f64>, unreachable: bool) {
+        self.paths.stop_visit();
         self.motion.sync(&self.robot, &self.q, self.robot_changes);
         goal.resize(self.robot.dof(), 0.0);
         self.robot.keep_q(&mut goal, &self.q);
@@ -1041,7 +1181,13 @@ impl Model {
         if !self.motion.on() {
             return 0;
         }
+        if !self.paths.visiting_at(&self.q, self.robot_changes) {
+            self.paths.stop_visit();
+        }
         self.motion.sync(&self.robot, &self.q, self.robot_changes);
+        if self.paths.visit().is_some() {
+            return self.advance_visit(real_dt);
+        }
         if let Some(q) = self.motion.advance(real_dt) {
             self.take_motion_q(q);
         }
@@ -1055,6 +1201,7 @@ impl Model {
         }
         self.motion.sync(&self.robot, &self.q, self.robot_changes);
         if let Some(q) = self.motion.single_step() {
+            self.follow_visit(&q);
             self.take_motion_q(q);
         }
     }

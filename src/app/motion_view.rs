@@ -201,9 +201,9 @@ impl Field {
 
 /// A field's text while it is typed, and its sentence when the text is refused.
 #[derive(Debug, Clone, Default)]
-struct Draft {
-    text: String,
-    error: Option<String>,
+pub(super) struct Draft {
+    pub(super) text: String,
+    pub(super) error: Option<String>,
 }
 
 /// The Motion panel; it owns the typed texts and their sentences.
@@ -217,6 +217,8 @@ pub struct MotionPanel {
     /// The model's robot-load count the box texts were written for (a robot file may
     /// bring other boxes).
     boxes_for: u64,
+    /// The paths and waypoints part.
+    paths: super::path_view::PathPanel,
 }
 
 impl Panel for MotionPanel {
@@ -246,6 +248,7 @@ impl Panel for MotionPanel {
                 }
             });
         self.goal_ui(model, ui);
+        self.paths.ui(model, ui, points);
         self.collision_ui(model, ui, points);
         measures_ui(model, ui);
         plots_ui(model, ui);

@@ -393,20 +393,7 @@ fn append_cartesian_segment(
                 .solve(robot, &pose, settings.task, &q, settings.method, &ik)
                 .map_err(MotionError::Ik)?;
             issues[0] = !result.success;
-            issues[2] = robot
-                .joints
-                .iter()
-                .zip(q.iter().zip(&result.q))
-                .any(|(j, (a, b))| {
-                    let change = joint_distance_to(j, *a, *b).abs();
-                    match j.kind {
-                        JointKind::Revolute => change > JUMP_LIMIT,
-                        JointKind::Prismatic => {
-                            change
-                                > JUMP_LIMIT / std::f64::consts::PI * (j.limits.max - j.limits.min)
-                        }
-                    }
-                });
+            issues[2] = joint_gap(robot, &q, &result.q) > JUMP_LIMIT;
             q = result.q;
         }
         fk.update(robot, &q);
@@ -494,6 +481,25 @@ pub fn waypoint_path(
         });
     }
     Ok(path)
+}
+
+/// The largest joint distance from `a` to `b` (a prismatic joint's as a fraction of π of
+/// its stroke).
+pub fn joint_gap(robot: &Robot, a: &[f64], b: &[f64]) -> f64 {
+    robot
+        .joints
+        .iter()
+        .zip(a.iter().zip(b))
+        .map(|(j, (x, y))| {
+            let d = joint_distance_to(j, *x, *y).abs();
+            match j.kind {
+                JointKind::Revolute => d,
+                JointKind::Prismatic => {
+                    d * std::f64::consts::PI / (j.limits.max - j.limits.min).max(1e-9)
+                }
+            }
+        })
+        .fold(0.0, f64::max)
 }
 
 /// The short name of an issue in `lang` (a legend, a list).

@@ -6,13 +6,18 @@
 //! - `plant=τ,I,b,L`: the motor's lag, the joint's inertia, friction and load;
 //! - `timescale=0..10`;
 //! - `collide=on|off`: the collision check;
-//! - `keepout=x,y,z,sx,sy,sz;…`: keep-out boxes (centre and size in the robot's unit).
+//! - `keepout=x,y,z,sx,sy,sz;…`: keep-out boxes (centre and size in the robot's unit);
+//! - `path=joint|line`: how the arm goes from one pose to the next;
+//! - `wp=x,y,z,α,β,γ;…`: the waypoints (as `target=`: position in the robot's unit, Z-Y-X
+//!   Euler angles in radians).
 //!
 //! Every field is optional; a link writes only what differs from the defaults, so a link
 //! without the motion lab reads as before. Values go through the core's own checks
 //! ([`MotionSettings::check`], [`KeepOut::new`]): a bad one is a typed [`MotionLinkError`].
+//! A bad `path=` or waypoint is left out with its error in [`MotionPatch::dropped`] and
+//! the rest of the link applies.
 
-use nalgebra::{Point3, Vector3};
+use nalgebra::{IsometryMatrix3, Point3, Vector3};
 
 use crate::i18n::echo::Text;
 use crate::i18n::{Key, Lang, fill};
@@ -20,9 +25,11 @@ use crate::kinematics::collision::{KeepOut, MAX_KEEP_OUTS};
 use crate::kinematics::motion::{
     Controller, MotionError, MotionSettings, PidGains, Plant, check_time_scale,
 };
+use crate::kinematics::path::{MAX_WAYPOINTS, PathKind};
 use crate::kinematics::profile::ProfileShape;
 
 use super::format::number_list;
+use super::session::{target_from_array, target_to_array};
 
 /// Decimals of the numbers the motion fields write.
 const DECIMALS: usize = 6;
@@ -57,6 +64,10 @@ pub enum MotionLinkError {
     },
     /// A value the core refuses (a negative gain, an unstable one, a flat box).
     Value(MotionError),
+    /// `path=` names no path kind.
+    UnknownPathKind(String),
+    /// Waypoint N (1-based) of `wp=`: what is wrong with it.
+    Waypoint(usize, Box<MotionLinkError>),
 }
 
 impl MotionLinkError {
@@ -84,6 +95,20 @@ impl MotionLinkError {
                 ],
             ),
             MotionLinkError::Value(e) => e.sentence(lang),
+            MotionLinkError::UnknownPathKind(kind) => fill(
+                lang,
+                Key::LinkBadValue,
+                &[
+                    &"path",
+                    &Text(kind),
+                    &crate::i18n::text(lang, Key::PathAllowedKinds),
+                ],
+            ),
+            MotionLinkError::Waypoint(n, e) => format!(
+                "{}: {}",
+                crate::kinematics::motion::Setting::Waypoint(*n).name(lang),
+                e.sentence(lang)
+            ),
         }
     }
 }
@@ -101,6 +126,12 @@ pub struct MotionPatch {
     pub collisions: Option<bool>,
     /// `keepout=`.
     pub keep_outs: Option<Vec<KeepOut>>,
+    /// `path=`.
+    pub path_kind: Option<PathKind>,
+    /// `wp=`: the waypoints that read well.
+    pub waypoints: Option<Vec<IsometryMatrix3<f64>>>,
+    /// The errors of the values left out (a bad `path=`, bad waypoints).
+    pub dropped: Vec<MotionLinkError>,
     ctrl: Option<String>,
     gains: Option<Vec<f64>>,
     plant: Option<Vec<f64>>,
@@ -171,6 +202,16 @@ impl MotionPatch {
                 .collect();
             parts.push(format!("keepout={}", text.join(";")));
         }
+        if let Some(kind) = self.path_kind.filter(|k| *k != PathKind::Joint) {
+            parts.push(format!("path={}", kind.id()));
+        }
+        if let Some(poses) = self.waypoints.as_ref().filter(|w| !w.is_empty()) {
+            let text: Vec<String> = poses
+                .iter()
+                .map(|p| number_list(&target_to_array(p), DECIMALS))
+                .collect();
+            parts.push(format!("wp={}", text.join(";")));
+        }
         parts
     }
 
@@ -227,9 +268,48 @@ impl MotionPatch {
                 }
                 self.keep_outs = Some(boxes);
             }
+            "path" => match PathKind::from_id(value) {
+                Some(kind) => self.path_kind = Some(kind),
+                None => self
+                    .dropped
+                    .push(MotionLinkError::UnknownPathKind(value.to_string())),
+            },
+            "wp" => self.read_waypoints(value),
             _ => return Ok(false),
         }
         Ok(true)
+    }
+
+    /// Reads `wp=`: each waypoint that is six finite numbers is kept (at most
+    /// [`MAX_WAYPOINTS`]); each other one is dropped with its error.
+    fn read_waypoints(&mut self, value: &str) {
+        let mut poses = Vec::new();
+        for (i, text) in value.split(';').filter(|t| !t.is_empty()).enumerate() {
+            let pose = numbers("wp", text).and_then(|v| {
+                let six: [f64; 6] =
+                    v.try_into()
+                        .map_err(|v: Vec<f64>| MotionLinkError::WrongCount {
+                            field: "wp",
+                            expected: 6,
+                            found: v.len(),
+                        })?;
+                if poses.len() == MAX_WAYPOINTS {
+                    return Err(MotionLinkError::Value(MotionError::TooLarge {
+                        setting: crate::kinematics::motion::Setting::Waypoint(i + 1),
+                        value: (i + 1) as f64,
+                        max: MAX_WAYPOINTS as f64,
+                    }));
+                }
+                Ok(target_from_array(&six))
+            });
+            match pose {
+                Ok(p) => poses.push(p),
+                Err(e) => self
+                    .dropped
+                    .push(MotionLinkError::Waypoint(i + 1, Box::new(e))),
+            }
+        }
+        self.waypoints = Some(poses);
     }
 
     /// Once every part is read: builds and checks the settings from `ctrl`, `gains` and
@@ -394,6 +474,22 @@ mod tests {
             assert_eq!(back.collisions, Some(true));
             assert_eq!(back.keep_outs, Some(boxes.clone()));
         }
+        // The path kind and the waypoints.
+        let pose = target_from_array(&[512.5, -120.25, 300.0, 0.3, -0.2, 1.1]);
+        let patch = MotionPatch {
+            path_kind: Some(PathKind::Cartesian),
+            waypoints: Some(vec![pose, IsometryMatrix3::identity()]),
+            ..MotionPatch::default()
+        };
+        let parts = patch.to_parts();
+        assert_eq!(parts[0], "path=line");
+        let back = read_all(&parts).expect("reads back");
+        assert_eq!(back.path_kind, Some(PathKind::Cartesian));
+        let poses = back.waypoints.expect("the waypoints");
+        assert_eq!(poses.len(), 2);
+        assert!((poses[0].translation.vector - pose.translation.vector).norm() < 1e-9);
+        assert!((poses[0].rotation.inverse() * pose.rotation).angle() < 1e-6);
+        assert!(back.dropped.is_empty());
         // The defaults write nothing.
         let none = MotionPatch::of(false, &MotionSettings::default(), 1.0, false, &[]);
         assert!(none.to_parts().is_empty());
@@ -452,6 +548,33 @@ mod tests {
             })
         );
         assert_eq!(patch.read("q", "1"), Ok(false));
+        // Path fields never fail the link: a bad value is dropped with its error.
+        assert_eq!(patch.read("path", "curvy"), Ok(true));
+        assert_eq!(patch.read("wp", "1,2,3,0,0,0;1,2;4,5,6,0,0,NaN"), Ok(true));
+        assert_eq!(patch.waypoints.as_ref().map(Vec::len), Some(1));
+        assert_eq!(
+            patch.dropped,
+            vec![
+                MotionLinkError::UnknownPathKind("curvy".into()),
+                MotionLinkError::Waypoint(
+                    2,
+                    Box::new(MotionLinkError::WrongCount {
+                        field: "wp",
+                        expected: 6,
+                        found: 2
+                    })
+                ),
+                MotionLinkError::Waypoint(
+                    3,
+                    Box::new(MotionLinkError::NotANumber {
+                        field: "wp",
+                        text: "NaN".into()
+                    })
+                ),
+            ]
+        );
+        let fi = patch.dropped[1].sentence(Lang::Fi);
+        assert!(fi.contains("välipiste 2"), "{fi}");
         let sentence = MotionLinkError::UnknownController("bang".into()).sentence(Lang::En);
         assert!(sentence.contains("bang"), "{sentence}");
     }

@@ -167,15 +167,16 @@ impl Viewport {
         self.draw_scene(model, ui, rect, render_state, &axes, timing);
         let touch = ui.spacing().interact_size.y >= style::TOUCH_TARGET;
         overlay::draw(model, &ui.painter_at(rect), rect, self.grid_step, touch);
+        let view = view_geometry(&self.camera, model, rect);
+        let project = |p: &Point3<f64>| {
+            view.project(p)
+                .map(|s| egui::pos2(s[0] as f32, s[1] as f32))
+        };
         if model.exercise().is_some() {
             // The exercise's joint axes and dimensions, over the picture.
-            let view = view_geometry(&self.camera, model, rect);
-            let project = |p: &Point3<f64>| {
-                view.project(p)
-                    .map(|s| egui::pos2(s[0] as f32, s[1] as f32))
-            };
             super::exercise_view::draw_in_view(model, &ui.painter_at(rect), &project);
         }
+        super::path_view::draw_in_view(model, &ui.painter_at(rect), &project);
         self.publish_points(model, rect, &axes, points);
         if response.hovered() && self.hover.is_some() {
             ui.ctx().set_cursor_icon(egui::CursorIcon::Grab);
@@ -420,6 +421,7 @@ impl Viewport {
         ghosts::instances(model, &mut scene.instances);
         super::motion_view::trail_lines(model, &mut scene.lines);
         super::motion_view::keep_out_instances(model, &mut scene.instances);
+        super::path_view::scene_parts(model, &mut scene.lines, &mut scene.instances);
         // The arm's parts come first in the scene, in the core's part order.
         for (instance, red) in scene.instances.iter_mut().zip(model.motion().colliding()) {
             if *red {
@@ -471,6 +473,7 @@ impl Viewport {
             }
         }
         ghosts::points(model, &mut add);
+        super::path_view::points(model, &mut add);
         add("tool".into(), &Point3::from(model.fk().tool_position()));
         let base = model.robot().world_from_base.translation.vector;
         add("base".into(), &Point3::from(base));
@@ -574,7 +577,7 @@ fn advance_motion(model: &mut Model, ui: &egui::Ui, timing: &mut FrameTime) {
         let t0 = hook::now_ms();
         timing.motion_steps += model.advance_motion(dt) as f64;
         timing.motion_ms += hook::now_ms() - t0;
-        if model.motion().moving() {
+        if model.motion().moving() || model.paths().visit().is_some() {
             ui.ctx().request_repaint();
         }
     }
@@ -595,5 +598,10 @@ fn fill_overlays(model: &mut Model, ui: &egui::Ui, timing: &mut FrameTime) {
     }
     if model.settings().overlays.contains(Overlay::Directions) {
         timing.workspace_ms += model.fill_directions(hook::now_ms);
+    }
+    if model.paths().shown() {
+        let t0 = hook::now_ms();
+        model.update_path_plan();
+        timing.motion_ms += hook::now_ms() - t0;
     }
 }
