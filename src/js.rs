@@ -59,6 +59,21 @@ pub fn ik_benchmark(request: &str) -> Result<String, JsError> {
     crate::bench::ik::run_json(request, &now).map_err(|e| JsError::new(&e.to_string()))
 }
 
+/// The workspace benchmark (UR10, FK + manipulability, σ_min apart; docs/kinematics.md
+/// §12) timed with `performance.now()`; the same JSON as the native `workspacebench`.
+/// Arguments: samples per run and runs per measure.
+#[wasm_bindgen]
+pub fn workspace_benchmark(samples: u32, repeats: u32) -> String {
+    let now = || performance_now() * 1e-3;
+    let report = crate::bench::workspace::workspace_report(
+        (samples as usize).clamp(1, 10_000_000),
+        (repeats as usize).clamp(1, 100),
+        &now,
+        None,
+    );
+    report.to_string()
+}
+
 /// A URDF text (one serial chain) as an ArmLab robot file (JSON): a standard DH table
 /// with base and tool transforms, in metres (docs/kinematics.md §14.2). Feature `urdf`.
 #[cfg(feature = "urdf")]

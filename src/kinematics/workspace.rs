@@ -5,9 +5,10 @@
 
 use nalgebra::{Matrix3, Vector3};
 
+use super::angles::sin_cos;
 use super::fk::ForwardKinematics;
 use super::rng::SplitMix64;
-use super::robot::{JointKind, Robot};
+use super::robot::{Convention, JointKind, Robot};
 
 /// The measure each sample carries.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -48,9 +49,8 @@ pub struct WorkspaceCloud {
     robot: Robot,
     measure: WorkspaceMeasure,
     rng: SplitMix64,
-    fk: ForwardKinematics,
+    chain: Chain,
     q: Vec<f64>,
-    inv_len: f64,
     target: usize,
     /// Tool positions in the world frame (robot units), in sampling order.
     pub positions: Vec<Vector3<f64>>,
@@ -60,8 +60,8 @@ pub struct WorkspaceCloud {
     /// ([`WorkspaceCloud::keep_joint_vectors`]).
     pub joint_vectors: Vec<Vec<f64>>,
     keep_q: bool,
-    min: Vector3<f64>,
-    max: Vector3<f64>,
+    min: [f64; 3],
+    max: [f64; 3],
     largest_value: f64,
     farthest: f64,
 }
@@ -74,16 +74,15 @@ impl WorkspaceCloud {
             robot: robot.clone(),
             measure,
             rng: SplitMix64::new(seed),
-            fk: ForwardKinematics::default(),
+            chain: Chain::new(robot),
             q: vec![0.0; robot.dof()],
-            inv_len: 1.0 / robot.length_scale(),
             target: samples,
             positions: Vec::with_capacity(samples),
             values: Vec::with_capacity(samples),
             joint_vectors: Vec::new(),
             keep_q: false,
-            min: Vector3::repeat(f64::INFINITY),
-            max: Vector3::repeat(f64::NEG_INFINITY),
+            min: [f64::INFINITY; 3],
+            max: [f64::NEG_INFINITY; 3],
             largest_value: 0.0,
             farthest: 0.0,
         }
@@ -107,22 +106,24 @@ impl WorkspaceCloud {
     /// frame with a slice sized to its time budget.
     pub fn fill(&mut self, max_samples: usize) -> usize {
         let count = max_samples.min(self.target - self.positions.len());
+        let base = self.robot.world_from_base.translation.vector;
         for _ in 0..count {
-            for (v, joint) in self.q.iter_mut().zip(&self.robot.joints) {
-                *v = self.rng.uniform(joint.limits.min, joint.limits.max);
+            for (v, link) in self.q.iter_mut().zip(&self.chain.links) {
+                *v = self.rng.uniform(link.lo, link.hi);
             }
-            self.fk.update(&self.robot, &self.q);
-            let p = self.fk.base_from_tool.translation.vector;
+            let tool = self.chain.sample(&self.q);
             let value = match self.measure {
-                WorkspaceMeasure::Manipulability => linear_manipulability(&self.fk, self.inv_len),
-                WorkspaceMeasure::SigmaMin => linear_sigma_min(&self.fk, self.inv_len),
+                WorkspaceMeasure::Manipulability => self.chain.gram.manipulability(),
+                WorkspaceMeasure::SigmaMin => self.chain.gram.sigma_min(),
             };
-            self.min = self.min.inf(&p);
-            self.max = self.max.sup(&p);
+            for k in 0..3 {
+                self.min[k] = self.min[k].min(tool[k]);
+                self.max[k] = self.max[k].max(tool[k]);
+            }
             self.largest_value = self.largest_value.max(value);
-            let base = self.robot.world_from_base.translation.vector;
-            self.farthest = self.farthest.max((p - base).norm());
-            self.positions.push(p);
+            let d = [tool[0] - base.x, tool[1] - base.y, tool[2] - base.z];
+            self.farthest = self.farthest.max(dot(&d, &d).sqrt());
+            self.positions.push(Vector3::from(tool));
             self.values.push(value);
             if self.keep_q {
                 self.joint_vectors.push(self.q.clone());
@@ -167,7 +168,7 @@ impl WorkspaceCloud {
 
     /// The corners of the box around the samples, `None` when empty.
     pub fn bounds(&self) -> Option<(Vector3<f64>, Vector3<f64>)> {
-        (!self.is_empty()).then_some((self.min, self.max))
+        (!self.is_empty()).then_some((self.min.into(), self.max.into()))
     }
 
     /// A typical distance between neighbouring samples: the edge of the cube holding one
@@ -211,63 +212,249 @@ impl WorkspaceCloud {
     }
 }
 
-/// The linear rows' Gram matrix `J̃v·J̃vᵀ = Σ_i v_i·v_iᵀ` (3×3) with `v_i` joint i's
-/// linear column divided by the reach, and the columns for the n×n `J̃vᵀ·J̃v` when n < 3.
-fn linear_columns(fk: &ForwardKinematics, inv_len: f64) -> (Matrix3<f64>, [Vector3<f64>; 2]) {
-    let tool = fk.tool_position();
-    let mut m = Matrix3::zeros();
-    let mut first = [Vector3::zeros(); 2];
+/// One joint's constants for the sampler: the DH row with sin and cos of α computed
+/// once, the kind, and the limits the joint values are drawn from.
+#[derive(Debug, Clone, Copy)]
+struct Link {
+    revolute: bool,
+    theta: f64,
+    d: f64,
+    a: f64,
+    sa: f64,
+    ca: f64,
+    lo: f64,
+    hi: f64,
+}
+
+/// The sampler's forward kinematics over plain arrays (docs/kinematics.md §12): the
+/// recurrence of `fk::advance` (the frame's columns, no 4×4 products), one sine and
+/// cosine per joint, the linear Jacobian columns from the frames already computed, and
+/// nothing allocated per sample. Written without nalgebra's generic layers so that the
+/// page's size-optimised build (opt-level "z") has no small functions to leave
+/// un-inlined in the hot loop. Numbers as [`ForwardKinematics::update`] gives them.
+#[derive(Debug, Clone)]
+struct Chain {
+    modified: bool,
+    links: Vec<Link>,
+    /// The base rotation's columns and the base origin.
+    base_r: [[f64; 3]; 3],
+    base_o: [f64; 3],
+    /// The tool's offset in the flange frame.
+    flange_t: [f64; 3],
+    inv_len: f64,
+    /// Per joint, overwritten by each sample: its axis and a point on it (base frame).
+    axes: Vec<([f64; 3], [f64; 3])>,
+    /// The last sample's Gram matrix of the linear rows.
+    gram: Gram,
+}
+
+impl Chain {
+    fn new(robot: &Robot) -> Self {
+        let links = robot
+            .joints
+            .iter()
+            .map(|j| {
+                let (sa, ca) = sin_cos(j.dh.alpha);
+                Link {
+                    revolute: j.kind == JointKind::Revolute,
+                    theta: j.dh.theta,
+                    d: j.dh.d,
+                    a: j.dh.a,
+                    sa,
+                    ca,
+                    lo: j.limits.min,
+                    hi: j.limits.max,
+                }
+            })
+            .collect();
+        let r = robot.world_from_base.rotation.matrix();
+        let column = |k: usize| [r[(0, k)], r[(1, k)], r[(2, k)]];
+        Chain {
+            modified: robot.convention == Convention::Modified,
+            links,
+            base_r: [column(0), column(1), column(2)],
+            base_o: robot.world_from_base.translation.vector.into(),
+            flange_t: robot.flange_from_tool.translation.vector.into(),
+            inv_len: 1.0 / robot.length_scale(),
+            axes: vec![([0.0; 3], [0.0; 3]); robot.dof()],
+            gram: Gram::default(),
+        }
+    }
+
+    /// The tool position at `q` (one entry per joint); fills [`Chain::gram`].
+    fn sample(&mut self, q: &[f64]) -> [f64; 3] {
+        let [mut c0, mut c1, mut c2] = self.base_r;
+        let mut o = self.base_o;
+        for ((link, &qi), slot) in self.links.iter().zip(q).zip(&mut self.axes) {
+            let (theta, d) = if link.revolute {
+                (link.theta + qi, link.d)
+            } else {
+                (link.theta, link.d + qi)
+            };
+            let (st, ct) = sin_cos(theta);
+            let (sa, ca, a) = (link.sa, link.ca, link.a);
+            if self.modified {
+                let y1 = lin(&c1, ca, &c2, sa);
+                let z = lin(&c2, ca, &c1, -sa);
+                let x = lin(&c0, ct, &y1, st);
+                c1 = lin(&y1, ct, &c0, -st);
+                o = lin(&lin(&o, 1.0, &c0, a), 1.0, &z, d);
+                (c0, c2) = (x, z);
+                *slot = (z, o);
+            } else {
+                *slot = (c2, o);
+                let x = lin(&c0, ct, &c1, st);
+                let y0 = lin(&c1, ct, &c0, -st);
+                let z = lin(&c2, ca, &y0, -sa);
+                c1 = lin(&y0, ca, &c2, sa);
+                o = lin(&lin(&o, 1.0, &x, a), 1.0, &c2, d);
+                (c0, c2) = (x, z);
+            }
+        }
+        let t = self.flange_t;
+        let shift = lin(&lin(&c0, t[0], &c1, t[1]), 1.0, &c2, t[2]);
+        let tool = lin(&o, 1.0, &shift, 1.0);
+        self.gram = Gram::default();
+        for ((z, origin), link) in self.axes.iter().zip(&self.links) {
+            let v = if link.revolute {
+                cross(z, &lin(&tool, 1.0, origin, -1.0))
+            } else {
+                *z
+            };
+            self.gram.add(&scaled(&v, self.inv_len));
+        }
+        tool
+    }
+}
+
+/// `a·x + b·y` per component (with x = 1 exactly `a + b·y`, as nalgebra's `a + b * y`).
+#[inline(always)]
+fn lin(a: &[f64; 3], x: f64, b: &[f64; 3], y: f64) -> [f64; 3] {
+    [
+        a[0] * x + b[0] * y,
+        a[1] * x + b[1] * y,
+        a[2] * x + b[2] * y,
+    ]
+}
+
+#[inline(always)]
+fn scaled(a: &[f64; 3], x: f64) -> [f64; 3] {
+    [a[0] * x, a[1] * x, a[2] * x]
+}
+
+#[inline(always)]
+fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+#[inline(always)]
+fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// The linear rows' Gram matrix `G = J̃v·J̃vᵀ = Σ_i v_i·v_iᵀ` (symmetric 3×3, stored as
+/// its upper triangle xx, xy, xz, yy, yz, zz), with `v_i` joint i's linear column
+/// divided by the reach; the first two columns are kept for the n×n `J̃vᵀ·J̃v` when n < 3.
+#[derive(Debug, Clone, Copy, Default)]
+struct Gram {
+    m: [f64; 6],
+    first: [[f64; 3]; 2],
+    n: usize,
+}
+
+impl Gram {
+    #[inline(always)]
+    fn add(&mut self, v: &[f64; 3]) {
+        if let Some(slot) = self.first.get_mut(self.n) {
+            *slot = *v;
+        }
+        self.n += 1;
+        let m = &mut self.m;
+        m[0] += v[0] * v[0];
+        m[1] += v[0] * v[1];
+        m[2] += v[0] * v[2];
+        m[3] += v[1] * v[1];
+        m[4] += v[1] * v[2];
+        m[5] += v[2] * v[2];
+    }
+
+    /// `√det G`, or `√det(J̃vᵀ·J̃v)` with fewer than three joints.
+    fn manipulability(&self) -> f64 {
+        let [a, b] = &self.first;
+        let det = match self.n {
+            0 => 0.0,
+            1 => dot(a, a),
+            2 => dot(a, a) * dot(b, b) - dot(a, b).powi(2),
+            _ => symmetric_determinant(&self.m),
+        };
+        det.max(0.0).sqrt()
+    }
+
+    /// σ_min: the square root of the smallest eigenvalue of G (of the n×n Gram matrix
+    /// with fewer than three joints).
+    fn sigma_min(&self) -> f64 {
+        let [a, b] = &self.first;
+        let smallest = match self.n {
+            0 => 0.0,
+            1 => dot(a, a),
+            2 => {
+                let (aa, bb) = (dot(a, a), dot(b, b));
+                let c = dot(a, b);
+                let mean = 0.5 * (aa + bb);
+                let half = (0.25 * (aa - bb) * (aa - bb) + c * c).sqrt();
+                mean - half
+            }
+            _ => smallest_eigenvalue_upper(&self.m),
+        };
+        smallest.max(0.0).sqrt()
+    }
+}
+
+/// The Gram matrix of the linear rows at `fk`'s pose.
+fn gram_of(fk: &ForwardKinematics, inv_len: f64) -> Gram {
+    let tool: [f64; 3] = fk.tool_position().into();
+    let mut gram = Gram::default();
     let joints = fk
         .joint_axes
         .iter()
         .zip(&fk.joint_origins)
         .zip(&fk.joint_kinds);
-    for (i, ((z, o), kind)) in joints.enumerate() {
+    for ((z, o), kind) in joints {
+        let z: [f64; 3] = (*z).into();
         let v = match kind {
-            JointKind::Revolute => z.cross(&(tool - o)),
-            JointKind::Prismatic => *z,
-        } * inv_len;
-        if let Some(slot) = first.get_mut(i) {
-            *slot = v;
-        }
-        m += v * v.transpose();
+            JointKind::Revolute => cross(&z, &lin(&tool, 1.0, &(*o).into(), -1.0)),
+            JointKind::Prismatic => z,
+        };
+        gram.add(&scaled(&v, inv_len));
     }
-    (m, first)
+    gram
 }
 
 /// `√det(J̃v·J̃vᵀ)`, or `√det(J̃vᵀ·J̃v)` with fewer than three joints (docs/kinematics.md
 /// §12.1).
 pub fn linear_manipulability(fk: &ForwardKinematics, inv_len: f64) -> f64 {
-    let (m, cols) = linear_columns(fk, inv_len);
-    let det = match fk.dof() {
-        0 => 0.0,
-        1 => cols[0].norm_squared(),
-        2 => {
-            let (a, b) = (cols[0], cols[1]);
-            a.norm_squared() * b.norm_squared() - a.dot(&b).powi(2)
-        }
-        _ => m.determinant(),
-    };
-    det.max(0.0).sqrt()
+    gram_of(fk, inv_len).manipulability()
 }
 
 /// The smallest singular value of J̃v (the smallest of min(3, n)), from the eigenvalues
 /// of the symmetric 3×3 (or n×n) Gram matrix in closed form (docs/kinematics.md §12.1).
 pub fn linear_sigma_min(fk: &ForwardKinematics, inv_len: f64) -> f64 {
-    let (m, cols) = linear_columns(fk, inv_len);
-    let smallest = match fk.dof() {
-        0 => 0.0,
-        1 => cols[0].norm_squared(),
-        2 => {
-            let (a, b) = (cols[0].norm_squared(), cols[1].norm_squared());
-            let c = cols[0].dot(&cols[1]);
-            let mean = 0.5 * (a + b);
-            let half = (0.25 * (a - b) * (a - b) + c * c).sqrt();
-            mean - half
-        }
-        _ => smallest_symmetric_eigenvalue(&m),
-    };
-    smallest.max(0.0).sqrt()
+    gram_of(fk, inv_len).sigma_min()
+}
+
+/// The determinant of a symmetric 3×3 given by its upper triangle (xx, xy, xz, yy, yz,
+/// zz), expanded along the first row as nalgebra's `Matrix3::determinant` does.
+#[inline(always)]
+fn symmetric_determinant(m: &[f64; 6]) -> f64 {
+    let [m11, m12, m13, m22, m23, m33] = *m;
+    let minor_m12_m23 = m22 * m33 - m23 * m23;
+    let minor_m11_m23 = m12 * m33 - m13 * m23;
+    let minor_m11_m22 = m12 * m23 - m13 * m22;
+    m11 * minor_m12_m23 - m12 * minor_m11_m23 + m13 * minor_m11_m22
 }
 
 /// The smallest eigenvalue of a symmetric 3×3 matrix by the trigonometric solution of
@@ -275,16 +462,30 @@ pub fn linear_sigma_min(fk: &ForwardKinematics, inv_len: f64) -> f64 {
 /// `r = det((A − qI)/p)/2`, the eigenvalues are `q + 2p·cos(φ + 2πk/3)`,
 /// `φ = acos(r)/3`; the smallest is k = 1.
 pub fn smallest_symmetric_eigenvalue(a: &Matrix3<f64>) -> f64 {
-    let off = a[(0, 1)].powi(2) + a[(0, 2)].powi(2) + a[(1, 2)].powi(2);
-    let q = a.trace() / 3.0;
-    let d = Vector3::new(a[(0, 0)] - q, a[(1, 1)] - q, a[(2, 2)] - q);
-    let p2 = (d.norm_squared() + 2.0 * off) / 6.0;
+    smallest_eigenvalue_upper(&[
+        a[(0, 0)],
+        a[(0, 1)],
+        a[(0, 2)],
+        a[(1, 1)],
+        a[(1, 2)],
+        a[(2, 2)],
+    ])
+}
+
+/// [`smallest_symmetric_eigenvalue`] of the matrix with upper triangle `a` (xx, xy, xz,
+/// yy, yz, zz).
+fn smallest_eigenvalue_upper(a: &[f64; 6]) -> f64 {
+    let [a00, a01, a02, a11, a12, a22] = *a;
+    let off = a01 * a01 + a02 * a02 + a12 * a12;
+    let q = (a00 + a11 + a22) / 3.0;
+    let d = [a00 - q, a11 - q, a22 - q];
+    let p2 = (dot(&d, &d) + 2.0 * off) / 6.0;
     if p2 <= 1e-300 {
         return q;
     }
     let p = p2.sqrt();
-    let b = (a - Matrix3::identity() * q) / p;
-    let r = (0.5 * b.determinant()).clamp(-1.0, 1.0);
+    let b = [d[0] / p, a01 / p, a02 / p, d[1] / p, a12 / p, d[2] / p];
+    let r = (0.5 * symmetric_determinant(&b)).clamp(-1.0, 1.0);
     let phi = r.acos() / 3.0;
     q + 2.0 * p * (phi + 2.0 * std::f64::consts::PI / 3.0).cos()
 }
