@@ -117,11 +117,11 @@ test('with move on, the arm drives to the target with each controller', async ()
 });
 
 test('driving with collide=on in the link: the checks run in the lazily loaded module; the cost per frame', async () => {
-  const { page, ctx, errors } = await openPage('#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2&panels=ik,motion');
+  const { page, ctx, errors } = await openPage('#robot=ur10&q=0.4,1.1,-1.3,1.6,1.4,0.2&panels=ik,motion');
   const s0 = await state(page);
   const t = s0.tool;
   const target = `target=${(t[0] - 300).toFixed(3)},${(t[1] + 400).toFixed(3)},${(t[2] + 200).toFixed(3)},0,0,0`;
-  await openHash(page, `#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2&${target}&task=position&panels=ik,motion&move=on&ctrl=quintic&collide=on`);
+  await openHash(page, `#robot=ur10&q=0.4,1.1,-1.3,1.6,1.4,0.2&${target}&task=position&panels=ik,motion&move=on&ctrl=quintic&collide=on`);
   await page.evaluate(() => window.armlab.frameTimes());
   const solve = await page.evaluate(() => window.armlab.screenPoint('ik-solve'));
   await page.mouse.click(solve.x, solve.y);
@@ -150,19 +150,21 @@ test('driving with collide=on in the link: the checks run in the lazily loaded m
   await ctx.close();
 });
 
-test('waypoints from a link and the Add waypoint button are visited along a straight line', async () => {
-  const start = '0.3,-1.2,1.4,-1.8,-1.5,0';
+test('waypoints from a link and the Add waypoint button are visited along a straight line, with collision checks on', async () => {
+  // Poses on the same side as the UR10's home (q2 > 0, q3 < 0 in SPEC's table), where no
+  // part touches another: with q2 < 0 the forearm reaches into the base's cylinder.
+  const start = '0.3,1.2,-1.4,1.8,1.5,0';
   const { page, ctx, errors } = await openPage(`#robot=ur10&q=${start}&panels=motion`);
   // Each waypoint: the tool's pose at a joint vector (a link without target= puts the
   // target on the tool; the written hash gives it as x,y,z,α,β,γ).
   const poses = [];
-  for (const q of ['0.6,-1.0,1.2,-1.7,-1.5,0.3', '0.9,-1.4,1.6,-1.9,-1.3,0.1', '0.4,-0.9,1.0,-1.5,-1.6,-0.4']) {
+  for (const q of ['0.6,1.0,-1.2,1.7,1.5,0.3', '0.9,1.4,-1.6,1.9,1.3,0.1', '0.4,0.9,-1.0,1.5,1.6,-0.4']) {
     await openHash(page, `#robot=ur10&q=${q}&panels=motion`);
     const hash = (await state(page)).hash;
     poses.push(hash.split('&').find((p) => p.startsWith('target=')).slice('target='.length));
   }
   // Two waypoints by the link, the third is the target added with the button.
-  await openHash(page, `#robot=ur10&q=${start}&target=${poses[2]}&panels=motion&path=line&timescale=2&wp=${poses[0]};${poses[1]}`);
+  await openHash(page, `#robot=ur10&q=${start}&target=${poses[2]}&panels=motion&path=line&timescale=2&collide=on&wp=${poses[0]};${poses[1]}`);
   let s = await state(page);
   assert.equal(s.paths.kind, 'line');
   assert.equal(s.paths.waypoints.length, 2);
@@ -195,6 +197,11 @@ test('waypoints from a link and the Add waypoint button are visited along a stra
     frames.push(...(await page.evaluate(() => window.armlab.frameTimes())));
   }
   assert.ok(s.paths.visit_done, `the visit ends (${s.motion.time} s simulated)`);
+  // The frames below are measured with collision checks on (collide=on: every simulation
+  // step's pose goes through the lazily loaded module), and no part touched on the way.
+  assert.equal(s.motion.collisions, true);
+  assert.equal(s.motion.checker, 'ready');
+  assert.equal(s.motion.contact, null, `no contact on the way: ${s.motion.contact}`);
   const last = s.paths.waypoints[2];
   const off = Math.hypot(...s.tool.map((v, i) => v - last[i]));
   // Reached: within 1e-5 m (0.01 mm) of the last waypoint, which is the target.
