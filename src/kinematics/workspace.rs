@@ -116,9 +116,9 @@ impl WorkspaceCloud {
                 WorkspaceMeasure::Manipulability => self.chain.gram.manipulability(),
                 WorkspaceMeasure::SigmaMin => self.chain.gram.sigma_min(),
             };
-            for k in 0..3 {
-                self.min[k] = self.min[k].min(tool[k]);
-                self.max[k] = self.max[k].max(tool[k]);
+            for ((lo, hi), &t) in self.min.iter_mut().zip(self.max.iter_mut()).zip(&tool) {
+                *lo = lo.min(t);
+                *hi = hi.max(t);
             }
             self.largest_value = self.largest_value.max(value);
             let d = [tool[0] - base.x, tool[1] - base.y, tool[2] - base.z];
