@@ -861,16 +861,33 @@ fn the_workspace_cloud_fills_over_frames_and_says_where_the_target_lies() {
     use armlab::app::workspace_view::{SAMPLES, measure};
     let mut h = harness("#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2&show=cloud&panels=ik");
     h.get_by_label("Reachable workspace").click();
-    // A few milliseconds a frame: it grows over frames and is not full at once.
+    h.run_steps(1);
+    assert!(h.state().model().workspace().is_some_and(|c| !c.is_empty()));
+    // A time budget a frame: slices of 256 samples until it is spent. With a clock that
+    // advances 1 ms per reading and a 4 ms budget, each frame adds exactly 3 slices, so
+    // the cloud grows over frames and is not full at once (the sampler is fast enough to
+    // fill all 20 000 samples within one real frame's budget on some machines).
+    // The other measure starts a new cloud.
+    use armlab::kinematics::WorkspaceMeasure;
+    let m = measure(h.state().model());
+    let other = match m {
+        WorkspaceMeasure::Manipulability => WorkspaceMeasure::SigmaMin,
+        WorkspaceMeasure::SigmaMin => WorkspaceMeasure::Manipulability,
+    };
+    let ticks = std::cell::Cell::new(0.0);
+    let clock = || {
+        ticks.set(ticks.get() + 1.0);
+        ticks.get()
+    };
     let mut counts = Vec::new();
     for _ in 0..3 {
-        h.run_steps(1);
+        h.state_mut()
+            .model_mut()
+            .fill_workspace(other, SAMPLES, 4.0, clock);
         counts.push(h.state().model().workspace().map_or(0, |c| c.len()));
     }
-    assert!(counts[0] > 0 && counts[2] > counts[0], "{counts:?}");
-    assert!(counts[2] < SAMPLES, "{counts:?}");
-    // The rest at once (a debug build's frames are slow), then the panel reads it.
-    let m = measure(h.state().model());
+    assert_eq!(counts, [768, 1536, 2304], "three slices of 256 a frame");
+    // The rest at once, then the panel reads it.
     h.state_mut()
         .model_mut()
         .fill_workspace(m, SAMPLES, f64::INFINITY, armlab::app::hook::now_ms);
