@@ -12,7 +12,7 @@ import { serveDist, launchChromium } from './static-server.mjs';
 const here = path.dirname(fileURLToPath(import.meta.url));
 const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', 'dist');
 const shots = path.resolve(here, 'screenshots');
-const VIEW = { width: 1400, height: 860 };
+const VIEW = { width: 1280, height: 720 }; // a lecture-hall projector
 
 let server;
 let base;

@@ -11,7 +11,7 @@ import { serveDist, launchChromium } from './static-server.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', 'dist');
-const VIEW = { width: 1400, height: 860 };
+const VIEW = { width: 1024, height: 768 }; // the lecture-hall projector
 const measurements = {};
 
 let server;
