@@ -166,10 +166,10 @@ struct Outcome {
 
 // Damped least squares: λ² = μ·(½‖e‖² + DLS_FLOOR), μ adapted in [DLS_MU_MIN, DLS_MU_MAX].
 const DLS_FLOOR: f64 = 1e-6;
-const DLS_MU_START: f64 = 1.0;
+const DLS_MU_START: f64 = 0.3;
 const DLS_MU_MIN: f64 = 1e-3;
 const DLS_MU_MAX: f64 = 1e8;
-const DLS_MU_DOWN: f64 = 0.3;
+const DLS_MU_DOWN: f64 = 0.6;
 const DLS_MU_UP: f64 = 10.0;
 /// An accepted step lowering the cost by less than this fraction means a minimum.
 const DLS_STATIONARY: f64 = 1e-9;
