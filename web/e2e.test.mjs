@@ -314,8 +314,8 @@ test('dragging the target with the mouse moves the arm; far out of reach it stre
   await page.mouse.move(t2.x, t2.y);
   await page.mouse.down();
   await page.evaluate(() => window.armlab.frameTimes());
-  await page.mouse.move(40 + 340, 80, { steps: 10 });
-  for (let i = 0; i < 14; i++) await page.mouse.move(380 + (i % 2), 80);
+  await page.mouse.move(40 + 340, 80, { steps: 8 });
+  for (let i = 0; i < 10; i++) await page.mouse.move(380 + (i % 2), 80);
   // The page's second drag: its code is warm, and the IK runs all its iterations every
   // frame without reaching the target.
   measureFrames('stretch_drag', await page.evaluate(() => window.armlab.frameTimes()));
@@ -729,7 +729,7 @@ test('dragging with the ghosts shown: the frame times are measured', async () =>
   await page.mouse.move(t.x, t.y);
   await page.mouse.down();
   await page.evaluate(() => window.armlab.frameTimes());
-  await page.mouse.move(t.x + (b.x - t.x) * 0.2, t.y + (b.y - t.y) * 0.2, { steps: 20 });
+  await page.mouse.move(t.x + (b.x - t.x) * 0.2, t.y + (b.y - t.y) * 0.2, { steps: 14 });
   measureFrames('ghost_drag', await page.evaluate(() => window.armlab.frameTimes()));
   await page.mouse.up();
   await settle(page);

@@ -55,11 +55,14 @@ async function click(page, name) {
   await settle(page);
 }
 
-/** Clicks an answer cell, selects its text and types over it. */
+/** Clicks an answer cell, selects its text and replaces it. The text arrives as one input
+ * event (as a paste or an on-screen keyboard's word does), not a key press per character:
+ * each frame costs the software renderer a few hundred milliseconds. The keys themselves
+ * are tested in web/e2e.test.mjs (a bad DH cell typed with the keyboard). */
 async function type(page, cell, text) {
   await click(page, cell);
   await page.keyboard.press('Control+A');
-  await page.keyboard.type(text);
+  await page.keyboard.insertText(text);
   await settle(page, 4);
 }
 
