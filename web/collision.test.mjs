@@ -9,44 +9,31 @@
 //
 // The contexts block service workers: the worker precaches every file of the build after
 // the first load (urdf/ too), and those fetches are not the page's.
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { serveDist, launchChromium } from './static-server.mjs';
+import { browserSuite } from './browser-suite.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', 'dist');
 const VIEW = { width: 1024, height: 768 }; // the lecture-hall projector
 const measurements = {};
 
-let server;
-let base;
-let browser;
-
-before(async () => {
-  ({ server, base } = await serveDist(dist));
-  browser = await launchChromium();
-});
-
-after(async () => {
-  console.log(`ARMLAB_COLLISION_MEASUREMENTS ${JSON.stringify(measurements)}`);
-  await browser?.close();
-  server?.close();
-});
+const suite = browserSuite(dist, { label: 'ARMLAB_COLLISION_MEASUREMENTS', measurements });
 
 const state = async (page) => JSON.parse(await page.evaluate(() => window.armlab.state()));
 const moduleRequests = (requests) => requests.filter((p) => p.includes('/urdf/'));
 
 async function open(hash, setup = async () => {}) {
-  const ctx = await browser.newContext({ viewport: VIEW, deviceScaleFactor: 1, serviceWorkers: 'block' });
+  const ctx = await suite.browser.newContext({ viewport: VIEW, deviceScaleFactor: 1, serviceWorkers: 'block' });
   await setup(ctx);
   const requests = [];
   ctx.on('request', (r) => requests.push(new URL(r.url()).pathname));
   const page = await ctx.newPage();
   const errors = [];
   page.on('pageerror', (e) => errors.push(String(e)));
-  await page.goto(base + hash, { waitUntil: 'load' });
+  await page.goto(suite.base + hash, { waitUntil: 'load' });
   await page.waitForFunction(() => {
     const text = window.armlab?.state();
     return Boolean(text) && JSON.parse(text).rendered;

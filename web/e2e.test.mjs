@@ -6,12 +6,11 @@
 // main-thread milliseconds per frame while dragging the UR10 target, the wasm size.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import http from 'node:http';
 import fs from 'node:fs';
 import path from 'node:path';
 import zlib from 'node:zlib';
 import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { browserSuite } from './browser-suite.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', 'dist');
@@ -22,51 +21,22 @@ const VIEW = { width: 1400, height: 860 };
 const SNAPSHOT_HASH = '#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2';
 const measurements = {};
 
-let server;
-let base;
-let browser;
+const suite = browserSuite(dist, { label: 'ARMLAB_E2E_MEASUREMENTS', measurements });
 
-const types = { '.html': 'text/html', '.js': 'text/javascript', '.wasm': 'application/wasm', '.css': 'text/css', '.json': 'application/json', '.png': 'image/png' };
-
-before(async () => {
-  assert.ok(fs.existsSync(path.join(dist, 'index.html')), 'dist/ holds the built page (trunk build --release)');
+before(() => {
   fs.mkdirSync(shots, { recursive: true });
-  server = http.createServer((req, res) => {
-    const url = new URL(req.url, 'http://localhost');
-    let file = path.join(dist, decodeURIComponent(url.pathname));
-    if (!file.startsWith(dist)) { res.writeHead(403); res.end(); return; }
-    if (file.endsWith('/')) file = path.join(file, 'index.html');
-    fs.readFile(file, (err, data) => {
-      if (err) { res.writeHead(404); res.end('not found'); return; }
-      res.writeHead(200, { 'content-type': types[path.extname(file)] ?? 'application/octet-stream' });
-      res.end(data);
-    });
-  });
-  await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
-  base = `http://127.0.0.1:${server.address().port}/`;
-  browser = await chromium.launch({
-    executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking',
-      '--disable-component-update', '--disable-sync', '--no-first-run', '--disable-quic'],
-  });
-});
-
-after(async () => {
   const wasm = fs.readdirSync(dist).find((f) => f.endsWith('.wasm'));
   if (wasm) {
     const bytes = fs.readFileSync(path.join(dist, wasm));
     measurements.wasm_bytes = bytes.length;
     measurements.wasm_gzip_bytes = zlib.gzipSync(bytes, { level: 9 }).length;
   }
-  console.log(`ARMLAB_E2E_MEASUREMENTS ${JSON.stringify(measurements)}`);
-  fs.writeFileSync(path.join(shots, 'measurements.json'), JSON.stringify(measurements, null, 2));
-  await browser?.close();
-  server?.close();
 });
+after(() => fs.writeFileSync(path.join(shots, 'measurements.json'), JSON.stringify(measurements, null, 2)));
 
 /** A fresh page (own storage) with console errors collected. */
 async function open(hash = '', { context, slowWasm = false } = {}) {
-  const ctx = context ?? await browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
+  const ctx = context ?? await suite.browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
   if (slowWasm) {
     // Hold the wasm back a moment so the page's loading text can be seen, as on slow Wi-Fi.
     await ctx.route('**/*.wasm', async (route) => { await new Promise((r) => setTimeout(r, 1500)); await route.continue(); });
@@ -76,7 +46,7 @@ async function open(hash = '', { context, slowWasm = false } = {}) {
   page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
   page.on('pageerror', (e) => errors.push(String(e)));
   const started = Date.now();
-  await page.goto(base + hash, { waitUntil: 'domcontentloaded' });
+  await page.goto(suite.base + hash, { waitUntil: 'domcontentloaded' });
   const loading = await page.textContent('#armlab_message');
   await ready(page);
   return { page, ctx, errors, loading, started };
@@ -218,7 +188,7 @@ test('WebGL2 colours match the native (lavapipe) snapshot', async () => {
 });
 
 test('a browser without WebAssembly SIMD gets a sentence, not an endless loading text', async () => {
-  const ctx = await browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
+  const ctx = await suite.browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
   // Such a browser rejects SIMD modules: it neither validates nor compiles the page's wasm.
   await ctx.addInitScript(() => {
     WebAssembly.validate = () => false;
@@ -229,7 +199,7 @@ test('a browser without WebAssembly SIMD gets a sentence, not an endless loading
     WebAssembly.compile = refuse;
   });
   const page = await ctx.newPage();
-  await page.goto(base, { waitUntil: 'load' });
+  await page.goto(suite.base, { waitUntil: 'load' });
   await page.waitForTimeout(500);
   const text = await page.textContent('#armlab_message');
   assert.match(text, /needs a browser with WebAssembly SIMD/);
@@ -402,7 +372,7 @@ test('a garbage link shows a message and the default robot', async () => {
 });
 
 test('a reload restores the last session', async () => {
-  const context = await browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
+  const context = await suite.browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
   const { page } = await open('#robot=scara&q=0.3,-0.5,0.1,0.7&task=position', { context });
   const lo = await point(page, 'slider-1-min');
   const hi = await point(page, 'slider-1-max');
@@ -415,7 +385,7 @@ test('a reload restores the last session', async () => {
   assert.equal(reloaded.robot, before.robot);
   assert.deepEqual(reloaded.q.map((v) => +v.toFixed(5)), before.q.map((v) => +v.toFixed(5)));
   // Without any hash, the stored session returns too.
-  await page.goto(base, { waitUntil: 'domcontentloaded' });
+  await page.goto(suite.base, { waitUntil: 'domcontentloaded' });
   await ready(page);
   const fresh = await state(page);
   assert.equal(fresh.robot, before.robot);
@@ -439,7 +409,7 @@ const SCREENS = [
 const LAYOUT_HASH = '#robot=ur10&q=0,1.0472,-1.5708,2.0944,1.5708,0&target=685.77,-163.9,915.19,1.5708,0,0&task=position';
 
 async function openAt(screen, hash, extra = {}) {
-  const context = await browser.newContext({
+  const context = await suite.browser.newContext({
     viewport: { width: screen.width, height: screen.height },
     deviceScaleFactor: screen.dpr ?? 1,
     hasTouch: Boolean(screen.touch),

@@ -2,33 +2,21 @@
 // lecturer's link opens the RRR as an exercise with its table hidden; a student types a
 // table with the keyboard, presses Check, and reads the verdict (window.armlab.state()).
 // Run as tools/test.sh runs web/e2e.test.mjs (after build_web).
-import { test, before, after } from 'node:test';
+import { test, before } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { serveDist, launchChromium } from './static-server.mjs';
+import { browserSuite } from './browser-suite.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', 'dist');
 const shots = path.resolve(here, 'screenshots');
 const VIEW = { width: 1280, height: 720 }; // a lecture-hall projector
 
-let server;
-let base;
-let browser;
+const suite = browserSuite(dist);
 
-before(async () => {
-  assert.ok(fs.existsSync(path.join(dist, 'index.html')), 'dist/ holds the built page (trunk build --release)');
-  fs.mkdirSync(shots, { recursive: true });
-  ({ server, base } = await serveDist(dist));
-  browser = await launchChromium();
-});
-
-after(async () => {
-  await browser?.close();
-  server?.close();
-});
+before(() => fs.mkdirSync(shots, { recursive: true }));
 
 const state = async (page) => JSON.parse(await page.evaluate(() => window.armlab.state()));
 
@@ -67,11 +55,11 @@ async function type(page, cell, text) {
 }
 
 test('an exercise link hides the table; a wrong table is named by joint, a right one is correct', async () => {
-  const ctx = await browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
+  const ctx = await suite.browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
   const page = await ctx.newPage();
   const errors = [];
   page.on('pageerror', (e) => errors.push(String(e)));
-  await page.goto(`${base}#exercise=rrr&panels=robot,matrices`, { waitUntil: 'domcontentloaded' });
+  await page.goto(`${suite.base}#exercise=rrr&panels=robot,matrices`, { waitUntil: 'domcontentloaded' });
   await page.waitForFunction(() => {
     const text = window.armlab?.state();
     return Boolean(text) && JSON.parse(text).rendered;
@@ -110,9 +98,9 @@ test('an exercise link hides the table; a wrong table is named by joint, a right
 });
 
 test('a broken exercise link says why and opens the default robot', async () => {
-  const ctx = await browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
+  const ctx = await suite.browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
   const page = await ctx.newPage();
-  await page.goto(`${base}#exercise=mystery-x`, { waitUntil: 'domcontentloaded' });
+  await page.goto(`${suite.base}#exercise=mystery-x`, { waitUntil: 'domcontentloaded' });
   await page.waitForFunction(() => {
     const text = window.armlab?.state();
     return Boolean(text) && JSON.parse(text).rendered;

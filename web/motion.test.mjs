@@ -3,40 +3,27 @@
 // window.armlab.state().motion. Prints one JSON line of measurements (not asserted): the
 // simulation's milliseconds per frame (frameTimes()'s `motion` part, steps and collision
 // checks) and the frame's p95 while driving with collision checks on.
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { serveDist, launchChromium } from './static-server.mjs';
+import { browserSuite } from './browser-suite.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', 'dist');
 const VIEW = { width: 1024, height: 768 }; // the lecture-hall projector
 const measurements = {};
 
-let server;
-let base;
-let browser;
-
-before(async () => {
-  ({ server, base } = await serveDist(dist));
-  browser = await launchChromium();
-});
-
-after(async () => {
-  console.log(`ARMLAB_MOTION_MEASUREMENTS ${JSON.stringify(measurements)}`);
-  await browser?.close();
-  server?.close();
-});
+const suite = browserSuite(dist, { label: 'ARMLAB_MOTION_MEASUREMENTS', measurements });
 
 const state = async (page) => JSON.parse(await page.evaluate(() => window.armlab.state()));
 
 async function openPage(hash) {
-  const ctx = await browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
+  const ctx = await suite.browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
   const page = await ctx.newPage();
   const errors = [];
   page.on('pageerror', (e) => errors.push(String(e)));
-  await page.goto(base + hash, { waitUntil: 'domcontentloaded' });
+  await page.goto(suite.base + hash, { waitUntil: 'domcontentloaded' });
   await page.waitForFunction(() => {
     const text = window.armlab?.state();
     return Boolean(text) && JSON.parse(text).rendered;

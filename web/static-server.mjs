@@ -1,12 +1,13 @@
 // The built page (dist/) served on loopback, and headless Chromium, for the scripts that
-// drive the page outside the test command (web/frametimes.mjs, web/soak.mjs).
+// drive the page: the browser tests (through web/browser-suite.mjs) and the scripts outside
+// the test command (web/frametimes.mjs, web/soak.mjs).
 import http from 'node:http';
 import fs from 'node:fs';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
 
 const types = {
-  '.html': 'text/html', '.js': 'text/javascript', '.wasm': 'application/wasm',
+  '.html': 'text/html', '.js': 'text/javascript', '.wasm': 'application/wasm', '.css': 'text/css',
   '.json': 'application/json', '.png': 'image/png', '.svg': 'image/svg+xml',
 };
 

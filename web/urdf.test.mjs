@@ -8,12 +8,12 @@
 // The contexts block service workers: the worker precaches every file of the build after
 // the page has loaded (urdf/ too, for offline use; web/offline.test.mjs checks its list),
 // and those fetches are the worker's, not the page's first load.
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { serveDist, launchChromium } from './static-server.mjs';
+import { browserSuite } from './browser-suite.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', 'dist');
@@ -99,20 +99,7 @@ const BROKEN_URDF = `<?xml version="1.0"?>
 const READY = [0, -Math.PI / 4, 0, -3 * Math.PI / 4, 0, Math.PI / 2, Math.PI / 4];
 const READY_FLANGE = [0.3069, 0, 0.5903];
 
-let server;
-let base;
-let browser;
-
-before(async () => {
-  assert.ok(fs.existsSync(path.join(dist, 'index.html')), 'dist/ holds the built page (trunk build --release)');
-  ({ server, base } = await serveDist(dist));
-  browser = await launchChromium();
-});
-
-after(async () => {
-  await browser?.close();
-  server?.close();
-});
+const suite = browserSuite(dist);
 
 const state = async (page) => JSON.parse(await page.evaluate(() => window.armlab.state()));
 const point = async (page, name) => {
@@ -135,7 +122,7 @@ async function settle(page, frames = 3) {
 /** A fresh page on `hash` (own storage, no service worker), every request's URL and the
  * console errors recorded. */
 async function open(hash) {
-  const ctx = await browser.newContext({ viewport: VIEW, deviceScaleFactor: 1, serviceWorkers: 'block' });
+  const ctx = await suite.browser.newContext({ viewport: VIEW, deviceScaleFactor: 1, serviceWorkers: 'block' });
   const requests = [];
   ctx.on('request', (r) => requests.push(new URL(r.url()).pathname));
   const page = await ctx.newPage();
@@ -145,7 +132,7 @@ async function open(hash) {
   // Playwright intercepts file choosers once the page has a listener, and turning that on
   // takes a round trip: a listener added just before the click can miss the chooser.
   page.on('filechooser', () => {});
-  await page.goto(base + hash, { waitUntil: 'load' });
+  await page.goto(suite.base + hash, { waitUntil: 'load' });
   await page.waitForFunction(() => {
     const text = window.armlab?.state();
     return Boolean(text) && JSON.parse(text).rendered;
