@@ -406,63 +406,14 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
 fn install_hook(window: &web_sys::Window) {
     let obj = js_sys::Object::new();
     let state = Closure::<dyn Fn() -> String>::new(|| HOOK.with(|h| h.borrow().state.clone()));
-    let point = Closure::<dyn Fn(String) -> JsValue>::new(|name: String| {
-        HOOK.with(|h| {
-            let h = h.borrow();
-            match h.points.iter().find(|(n, _)| *n == name) {
-                Some((_, p)) => {
-                    let o = js_sys::Object::new();
-                    let k = h.css_per_point;
-                    set_field(&o, "x", &((p[0] * k) as f64).into());
-                    set_field(&o, "y", &((p[1] * k) as f64).into());
-                    o.into()
-                }
-                None => JsValue::NULL,
-            }
-        })
-    });
-    let frames = Closure::<dyn Fn() -> js_sys::Array>::new(|| {
-        let taken = FRAMES.with(|f| std::mem::take(&mut *f.borrow_mut()));
-        taken
-            .iter()
-            .map(|t| {
-                let o = js_sys::Object::new();
-                for (key, ms) in [
-                    ("app", t.app_ms),
-                    ("ik", t.ik_ms),
-                    ("scene", t.scene_ms),
-                    ("render", t.render_ms),
-                    ("workspace", t.workspace_ms),
-                    ("motion", t.motion_ms),
-                    ("motion_steps", t.motion_steps),
-                ] {
-                    set_field(&o, key, &ms.into());
-                }
-                JsValue::from(o)
-            })
-            .collect()
-    });
+    set_field(&obj, "state", &state.into_js_value());
+    set_field(&obj, "screenPoint", &screen_point_fn());
+    set_field(&obj, "frameTimes", &frame_times_fn());
+    set_field(&obj, "viewRect", &view_rect_fn());
     let open = Closure::<dyn Fn(String)>::new(|hash: String| {
         PENDING_HASH.with(|p| *p.borrow_mut() = Some(hash));
         wake();
     });
-    set_field(&obj, "state", &state.into_js_value());
-    set_field(&obj, "screenPoint", &point.into_js_value());
-    set_field(&obj, "frameTimes", &frames.into_js_value());
-    let view_rect = Closure::<dyn Fn() -> JsValue>::new(|| {
-        HOOK.with(|h| {
-            let h = h.borrow();
-            let Some(r) = h.view_rect else {
-                return JsValue::NULL;
-            };
-            let o = js_sys::Object::new();
-            for (key, v) in ["x", "y", "width", "height"].into_iter().zip(r) {
-                set_field(&o, key, &f64::from(v * h.css_per_point).into());
-            }
-            o.into()
-        })
-    });
-    set_field(&obj, "viewRect", &view_rect.into_js_value());
     set_field(&obj, "open", &open.into_js_value());
     let first = Closure::<dyn Fn() -> JsValue>::new(|| {
         FIRST_FRAME.with(|f| f.borrow().map_or(JsValue::NULL, JsValue::from))
@@ -484,6 +435,70 @@ fn install_hook(window: &web_sys::Window) {
     });
     set_field(&obj, "panicForTest", &panic.into_js_value());
     set_field(window, "armlab", &obj);
+}
+
+/// `window.armlab.screenPoint(name)`: the named point's CSS position `{x, y}`, or null.
+fn screen_point_fn() -> JsValue {
+    Closure::<dyn Fn(String) -> JsValue>::new(|name: String| {
+        HOOK.with(|h| {
+            let h = h.borrow();
+            match h.points.iter().find(|(n, _)| *n == name) {
+                Some((_, p)) => {
+                    let o = js_sys::Object::new();
+                    let k = h.css_per_point;
+                    set_field(&o, "x", &((p[0] * k) as f64).into());
+                    set_field(&o, "y", &((p[1] * k) as f64).into());
+                    o.into()
+                }
+                None => JsValue::NULL,
+            }
+        })
+    })
+    .into_js_value()
+}
+
+/// `window.armlab.frameTimes()`: the frames' times since the last call (and forgets them).
+fn frame_times_fn() -> JsValue {
+    Closure::<dyn Fn() -> js_sys::Array>::new(|| {
+        let taken = FRAMES.with(|f| std::mem::take(&mut *f.borrow_mut()));
+        taken
+            .iter()
+            .map(|t| {
+                let o = js_sys::Object::new();
+                for (key, ms) in [
+                    ("app", t.app_ms),
+                    ("ik", t.ik_ms),
+                    ("scene", t.scene_ms),
+                    ("render", t.render_ms),
+                    ("workspace", t.workspace_ms),
+                    ("motion", t.motion_ms),
+                    ("motion_steps", t.motion_steps),
+                ] {
+                    set_field(&o, key, &ms.into());
+                }
+                JsValue::from(o)
+            })
+            .collect()
+    })
+    .into_js_value()
+}
+
+/// `window.armlab.viewRect()`: the 3D view's rectangle in CSS pixels, or null.
+fn view_rect_fn() -> JsValue {
+    Closure::<dyn Fn() -> JsValue>::new(|| {
+        HOOK.with(|h| {
+            let h = h.borrow();
+            let Some(r) = h.view_rect else {
+                return JsValue::NULL;
+            };
+            let o = js_sys::Object::new();
+            for (key, v) in ["x", "y", "width", "height"].into_iter().zip(r) {
+                set_field(&o, key, &f64::from(v * h.css_per_point).into());
+            }
+            o.into()
+        })
+    })
+    .into_js_value()
 }
 
 /// `window.armlab.workspaceBenchmark(samples)`: the workspace benchmark in the page
