@@ -33,10 +33,11 @@ pub struct Plan {
     pub joint: Path,
     /// The straight line with slerped orientation, by IK at every step.
     pub line: Path,
-    /// What the plan was made from: q, the waypoints (the target when none), the robot's
-    /// change count.
-    made_from: (Vec<f64>, Vec<IsometryMatrix3<f64>>, u64),
 }
+
+/// What a plan is made from: q, the waypoints (the target when none), the robot's change
+/// count.
+type PlanInputs = (Vec<f64>, Vec<IsometryMatrix3<f64>>, u64);
 
 /// A visit under way: its path, the index of the path point that is the goal now, and
 /// the indices of the waypoints (where the visit waits for the arm).
@@ -73,6 +74,9 @@ pub struct PathLab {
     waypoints: Waypoints,
     shown: bool,
     plan: Option<Plan>,
+    /// The inputs of the last planning, whether it gave a plan or not (a list that cannot
+    /// be planned is not planned again every frame).
+    planned_from: Option<PlanInputs>,
     visit: Option<Visit>,
     /// The last visit ran to its end (kept until the next one or a change).
     finished: bool,
@@ -110,6 +114,7 @@ impl PathLab {
         self.shown = shown;
         if !shown {
             self.plan = None;
+            self.planned_from = None;
         }
     }
 
@@ -151,7 +156,7 @@ impl PathLab {
             return;
         }
         let made_from = (q.to_vec(), self.goals(target), robot_changes);
-        if self.plan.as_ref().is_some_and(|p| p.made_from == made_from) {
+        if self.planned_from.as_ref() == Some(&made_from) {
             return;
         }
         let plan = |kind, solver: &mut IkSolver| -> Result<Path, MotionError> {
@@ -163,13 +168,10 @@ impl PathLab {
             plan(PathKind::Joint, solver),
             plan(PathKind::Cartesian, solver),
         ) {
-            (Ok(joint), Ok(line)) => Some(Plan {
-                joint,
-                line,
-                made_from,
-            }),
+            (Ok(joint), Ok(line)) => Some(Plan { joint, line }),
             _ => None,
         };
+        self.planned_from = Some(made_from);
     }
 
     /// Plans a visit of every waypoint from `q` along the chosen kind; returns the first
