@@ -8,7 +8,8 @@
 // Each run opens the page at 1400×860 with the arm, the target and the DH frames shown,
 // grabs the target ball and drags it in small steps, holding the button, until the app
 // has drawn at least `frames` frames, then prints the median, p95 and max of the app's
-// own main-thread milliseconds (`app`, `render` and their sum) from
+// own main-thread milliseconds (`app` with its `ik` and `scene` parts and the rest,
+// `render`, and app + render) from
 // window.armlab.frameTimes(), one JSON line per run and one for all runs together.
 import path from 'node:path';
 import { serveDist, launchChromium } from './static-server.mjs';
@@ -38,6 +39,10 @@ function report(label, frames) {
     label,
     frames: frames.length,
     app_ms: summary(frames.map((f) => f.app)),
+    ik_ms: summary(frames.map((f) => f.ik)),
+    scene_ms: summary(frames.map((f) => f.scene)),
+    // The app's time outside the IK and the scene: egui's layout of the panels.
+    panels_ms: summary(frames.map((f) => f.app - f.ik - f.scene)),
     render_ms: summary(frames.map((f) => f.render)),
     app_plus_render_ms: summary(frames.map((f) => f.app + f.render)),
   };

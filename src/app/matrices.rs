@@ -78,7 +78,8 @@ fn clean(v: f64, decimals: usize) -> f64 {
 
 /// A matrix with copy buttons; returns true when it is hovered.
 ///
-/// Blocks scrolled out of sight keep their last size without drawing their numbers.
+/// Blocks scrolled out of sight keep their last size without being laid out
+/// ([`style::unless_out_of_sight`]).
 #[allow(clippy::too_many_arguments)]
 fn matrix_block(
     ui: &mut egui::Ui,
@@ -90,18 +91,23 @@ fn matrix_block(
     highlighted: bool,
     (target, hiding): (Target, &mut Hiding),
 ) -> bool {
-    let mut hovered = false;
     let frame = egui::Frame::group(ui.style()).stroke(if highlighted {
         egui::Stroke::new(2.0, style::HIGHLIGHT)
     } else {
         ui.visuals().widgets.noninteractive.bg_stroke
     });
-    frame.show(ui, |ui| {
-        let over_header = matrix_header(ui, lang, (title, hover), m, decimals, target, hiding);
-        let over_body = matrix_body(ui, lang, title, m, decimals, (target, hiding));
-        hovered = over_header || over_body;
-    });
-    hovered
+    let id = ui.make_persistent_id(("matrix block", title));
+    style::unless_out_of_sight(ui, id, |ui| {
+        frame
+            .show(ui, |ui| {
+                let over_header =
+                    matrix_header(ui, lang, (title, hover), m, decimals, target, hiding);
+                let over_body = matrix_body(ui, lang, title, m, decimals, (target, hiding));
+                over_header || over_body
+            })
+            .inner
+    })
+    .unwrap_or(false)
 }
 
 /// A matrix block's title, copy buttons and (while choosing what to hide) its "?"
@@ -166,29 +172,20 @@ fn matrix_body(
     (target, hiding): (Target, &mut Hiding),
 ) -> bool {
     let id = ui.make_persistent_id(("matrix body", title));
-    let known: Option<egui::Vec2> = ui.data(|d| d.get_temp(id));
-    let out_of_sight =
-        known.filter(|size| !ui.is_rect_visible(egui::Rect::from_min_size(ui.cursor().min, *size)));
-    let (size, over) = match out_of_sight {
-        Some(size) => {
-            let body = ui.allocate_exact_size(size, egui::Sense::hover()).1;
-            (size, body.hovered())
-        }
-        None => {
-            let out = egui::ScrollArea::horizontal()
-                .id_salt(("matrix scroll", title))
-                .show(ui, |ui| {
-                    if hiding.interactive(target) {
-                        hiding_table(ui, lang, m, decimals, target, hiding)
-                    } else {
-                        number_table(ui, m, decimals)
-                    }
-                });
-            (out.inner_rect.size(), out.inner.hovered())
-        }
-    };
-    ui.data_mut(|d| d.insert_temp(id, size));
-    over
+    style::unless_out_of_sight(ui, id, |ui| {
+        egui::ScrollArea::horizontal()
+            .id_salt(("matrix scroll", title))
+            .show(ui, |ui| {
+                if hiding.interactive(target) {
+                    hiding_table(ui, lang, m, decimals, target, hiding)
+                } else {
+                    number_table(ui, m, decimals)
+                }
+            })
+            .inner
+            .hovered()
+    })
+    .unwrap_or(false)
 }
 
 /// The characters a formatted number can hold.

@@ -158,6 +158,33 @@ pub fn room(ui: &egui::Ui) -> f32 {
     ui.available_width().min(visible).max(0.0)
 }
 
+/// Lays out `add` unless it would be out of sight: a side panel scrolls, and its blocks
+/// below the fold (the A_i and T_0i of a six-joint arm, about twelve framed matrices) cost
+/// egui's layout and text shaping in every frame while the arm moves, unseen. The size
+/// the content took the last time it was laid out at this width is kept under `id`; when
+/// that rect at the cursor is wholly outside the visible (clipped) area, the space is
+/// allocated empty and `add` is not called (`None`). Scrolled or resized into sight, it is
+/// laid out again in the same frame, so nothing on screen is ever missing.
+pub fn unless_out_of_sight<R>(
+    ui: &mut egui::Ui,
+    id: egui::Id,
+    add: impl FnOnce(&mut egui::Ui) -> R,
+) -> Option<R> {
+    let width = ui.available_width();
+    let known: Option<(f32, egui::Vec2)> = ui.data(|d| d.get_temp(id));
+    if let Some((_, size)) = known.filter(|(w, _)| *w == width) {
+        let rect = egui::Rect::from_min_size(ui.cursor().min, size);
+        if !ui.is_rect_visible(rect) {
+            ui.allocate_exact_size(size, egui::Sense::hover());
+            return None;
+        }
+    }
+    let shown = ui.scope(add);
+    let size = shown.response.rect.size();
+    ui.data_mut(|d| d.insert_temp(id, (width, size)));
+    Some(shown.inner)
+}
+
 /// [`egui::Ui::horizontal_wrapped`] that wraps at the visible [`room`] instead of the
 /// layout's (possibly widened) right edge.
 pub fn wrapped<R>(
@@ -183,8 +210,15 @@ pub struct NameRow {
 /// Names and their values as a grid (a header row over the value columns when `headers`
 /// is not empty) where the grid fits the visible [`room`]; on a narrow column (a projector's
 /// side column, a phone) each name stands over its values instead, indented and labelled
-/// with their column's header, so no number runs out of sight.
+/// with their column's header, so no number runs out of sight. Scrolled out of sight, the
+/// rows keep their space without being laid out ([`unless_out_of_sight`]).
 pub fn fold_rows(ui: &mut egui::Ui, id: &str, headers: &[(String, String)], rows: &[NameRow]) {
+    let key = ui.make_persistent_id(("fold rows", id));
+    unless_out_of_sight(ui, key, |ui| lay_out_rows(ui, id, headers, rows));
+}
+
+/// [`fold_rows`]' layout: measures every text, then the grid or the folded rows.
+fn lay_out_rows(ui: &mut egui::Ui, id: &str, headers: &[(String, String)], rows: &[NameRow]) {
     let body = egui::TextStyle::Body.resolve(ui.style());
     let mono = egui::TextStyle::Monospace.resolve(ui.style());
     let width = |text: &str, font: &egui::FontId| {

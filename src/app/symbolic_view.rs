@@ -48,26 +48,31 @@ pub fn symbolic_block(
         ui.visuals().widgets.noninteractive.bg_stroke
     };
     let frame = egui::Frame::group(ui.style()).stroke(stroke);
-    let response = frame.show(ui, |ui| {
-        super::style::wrapped(ui, |ui| {
-            ui.strong(title);
-            if ui
-                .small_button(text(lang, Key::CopyLatex))
-                .on_hover_text(text(lang, Key::CopyAsLatex))
-                .clicked()
-            {
-                ui.ctx().copy_text(m.latex());
-            }
-        });
-        // Sideways in its own scroll area, as the numeric matrices: entries never wrap,
-        // and the column does not grow to the widest T_0i.
-        egui::ScrollArea::horizontal()
-            .id_salt(("symbolic scroll", title))
-            .show(ui, |ui| {
-                symbolic_grid(ui, lang, title, m, joint);
+    let id = ui.make_persistent_id(("symbolic block", title));
+    // Out of sight (below the fold of the side panel), the block keeps its space unlaid.
+    style::unless_out_of_sight(ui, id, |ui| {
+        let response = frame.show(ui, |ui| {
+            super::style::wrapped(ui, |ui| {
+                ui.strong(title);
+                if ui
+                    .small_button(text(lang, Key::CopyLatex))
+                    .on_hover_text(text(lang, Key::CopyAsLatex))
+                    .clicked()
+                {
+                    ui.ctx().copy_text(m.latex());
+                }
             });
-    });
-    response.response.hovered() || ui.rect_contains_pointer(response.response.rect)
+            // Sideways in its own scroll area, as the numeric matrices: entries never wrap,
+            // and the column does not grow to the widest T_0i.
+            egui::ScrollArea::horizontal()
+                .id_salt(("symbolic scroll", title))
+                .show(ui, |ui| {
+                    symbolic_grid(ui, lang, title, m, joint);
+                });
+        });
+        response.response.hovered() || ui.rect_contains_pointer(response.response.rect)
+    })
+    .unwrap_or(false)
 }
 
 /// The 4 × 4 entries of [`symbolic_block`], each on one line.
