@@ -38,6 +38,39 @@ fn visible_texts(h: &Harness<'_, ArmLabApp>) -> Vec<String> {
     texts
 }
 
+/// [`visible_texts`] gathered while the panel holding the `label` is scrolled down in
+/// steps of 300 points to its end, and the panel scrolled back to the top.
+fn scrolled_texts(h: &mut Harness<'_, ArmLabApp>, label: &str) -> Vec<String> {
+    let over = h.get_by_label(label).rect().center();
+    let wheel = |h: &mut Harness<'_, ArmLabApp>, dy: f32| {
+        h.event(egui::Event::PointerMoved(over));
+        h.event(egui::Event::MouseWheel {
+            unit: egui::MouseWheelUnit::Point,
+            delta: egui::vec2(0.0, dy),
+            phase: egui::TouchPhase::Move,
+            source: egui::MouseWheelSource::Unknown,
+            modifiers: egui::Modifiers::NONE,
+        });
+        h.run_steps(20);
+    };
+    let mut texts = visible_texts(h);
+    let mut steps = 0;
+    loop {
+        let before = texts.len();
+        wheel(h, -300.0);
+        texts.extend(visible_texts(h));
+        texts.sort();
+        texts.dedup();
+        steps += 1;
+        // The end: a step that shows nothing new (after the first few).
+        if (texts.len() == before && steps > 3) || steps == 40 {
+            break;
+        }
+    }
+    wheel(h, 1e5);
+    texts
+}
+
 /// The fixed parts of a text with places: `"a {0} b {1}"` → `["a ", " b ", ""]`. Braces
 /// that are not places (`α_{i−1}`) belong to the fixed parts.
 fn fixed_parts(text: &str) -> Vec<String> {
@@ -143,13 +176,18 @@ fn with_every_panel_open_no_text_is_english() {
     // The DH table, and the file dialog over everything.
     h.get_by_label(text(Lang::Fi, Key::DhTable)).click();
     h.run_steps(2);
+    // Blocks below the fold are not laid out: the matrices panel is read while it is
+    // scrolled through to its end, as a person would, then back at the top.
+    let mut texts = scrolled_texts(&mut h, text(Lang::Fi, Key::ToolOrientation));
     let here = std::env::temp_dir();
     h.state_mut()
         .robot_panel_mut()
         .open_file_dialog(FileDialog::new(Mode::Save, "ur10", here));
     h.run_steps(3);
 
-    let texts = visible_texts(&h);
+    texts.extend(visible_texts(&h));
+    texts.sort();
+    texts.dedup();
     for finnish in [
         Key::PanelJoints,
         Key::PanelIk,
