@@ -814,28 +814,17 @@ fn the_rrr_symbolic_t03_reads_like_the_lecture_and_highlights_the_hovered_joint(
     // T_03 is below the fold, where blocks are not laid out: the panel is scrolled to it,
     // as a person would, and back to the top.
     let panel = h.get_by_label("symbolic").rect().center();
-    let wheel = |h: &mut Harness<'_, ArmLabApp>, dy: f32| {
-        h.event(egui::Event::PointerMoved(panel));
-        h.event(egui::Event::MouseWheel {
-            unit: egui::MouseWheelUnit::Point,
-            delta: egui::vec2(0.0, dy),
-            phase: egui::TouchPhase::Move,
-            source: egui::MouseWheelSource::Unknown,
-            modifiers: egui::Modifiers::NONE,
-        });
-        h.run_steps(20);
-    };
     assert!(
         h.query_by_label("c1(222.1 c2 + 136.2 c23)").is_none(),
         "T_03 out of sight is not laid out"
     );
-    wheel(&mut h, -2000.0);
+    app_harness::wheel(&mut h, panel, -2000.0);
     // SPEC §1.4: x = c1(222.1 c2 + 136.2 c23).
     assert!(
         h.query_by_label("c1(222.1 c2 + 136.2 c23)").is_some(),
         "T_03's x entry"
     );
-    wheel(&mut h, 4000.0);
+    app_harness::wheel(&mut h, panel, 4000.0);
     // The pointer over θ2's slider: its link (2) is the one under the pointer.
     let slider = h.get_by_role_and_label(Role::Slider, "θ2").rect().center();
     h.event(egui::Event::PointerMoved(slider));

@@ -42,22 +42,11 @@ fn visible_texts(h: &Harness<'_, ArmLabApp>) -> Vec<String> {
 /// steps of 300 points to its end, and the panel scrolled back to the top.
 fn scrolled_texts(h: &mut Harness<'_, ArmLabApp>, label: &str) -> Vec<String> {
     let over = h.get_by_label(label).rect().center();
-    let wheel = |h: &mut Harness<'_, ArmLabApp>, dy: f32| {
-        h.event(egui::Event::PointerMoved(over));
-        h.event(egui::Event::MouseWheel {
-            unit: egui::MouseWheelUnit::Point,
-            delta: egui::vec2(0.0, dy),
-            phase: egui::TouchPhase::Move,
-            source: egui::MouseWheelSource::Unknown,
-            modifiers: egui::Modifiers::NONE,
-        });
-        h.run_steps(20);
-    };
     let mut texts = visible_texts(h);
     let mut steps = 0;
     loop {
         let before = texts.len();
-        wheel(h, -300.0);
+        app_harness::wheel(h, over, -300.0);
         texts.extend(visible_texts(h));
         texts.sort();
         texts.dedup();
@@ -67,7 +56,7 @@ fn scrolled_texts(h: &mut Harness<'_, ArmLabApp>, label: &str) -> Vec<String> {
             break;
         }
     }
-    wheel(h, 1e5);
+    app_harness::wheel(h, over, 1e5);
     texts
 }
 
