@@ -156,7 +156,8 @@ impl Chain {
     }
 
     /// The task rows of the geometric Jacobian at the last update into `jt` (linear rows
-    /// times `inv_len`; unused rows zero), and `m = jt·jtᵀ`.
+    /// times `inv_len`, a prismatic joint's column per step unit of `1/inv_len` so that
+    /// it is its unit axis; unused rows zero), and `m = jt·jtᵀ`.
     pub fn task_jacobian(
         &self,
         task: Task,
@@ -184,12 +185,13 @@ impl Chain {
             .zip(self.axes.iter().zip(&self.origins))
             .zip(jt.column_iter_mut())
         {
+            // A prismatic joint's value is in step units of 1/inv_len (docs/kinematics.md
+            // §8): its column, axis · inv_len per unit of q, is the axis per step unit.
             let (v, w) = if link.prismatic {
                 (*z, Vector3::zeros())
             } else {
-                (z.cross(&(p - o)), *z)
+                (z.cross(&(p - o)) * inv_len, *z)
             };
-            let v = v * inv_len;
             let c: [f64; 6] = match task {
                 Task::Position => [v.x, v.y, v.z, 0.0, 0.0, 0.0],
                 Task::FullPose => [v.x, v.y, v.z, w.x, w.y, w.z],

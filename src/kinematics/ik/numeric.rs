@@ -202,6 +202,9 @@ pub(crate) struct Workspace {
     scratch: Vec<f64>,
     /// Joints held at a limit in the current step ([`Workspace::damped_step`]).
     locked: Vec<bool>,
+    /// Joint units per step unit: L/4 for a prismatic joint, whose value the solver
+    /// measures in the length of the linear rows (docs/kinematics.md §8), 1 for a revolute.
+    unit: Vec<f64>,
 }
 
 impl Default for Workspace {
@@ -218,6 +221,7 @@ impl Default for Workspace {
             best: Vec::new(),
             scratch: Vec::new(),
             locked: Vec::new(),
+            unit: Vec::new(),
         }
     }
 }
@@ -256,6 +260,7 @@ impl Workspace {
             v.resize(n, 0.0);
         }
         self.locked.resize(n, false);
+        self.unit.resize(n, 1.0);
         if self.jt.ncols() != n {
             self.jt = Matrix6xX::zeros(n);
         }
@@ -278,6 +283,13 @@ impl Workspace {
             IkMethod::JacobianTranspose { alpha: Some(_) } => 1.0,
             _ => LINEAR_WEIGHT / self.chain.reach(),
         };
+        for (unit, joint) in self.unit.iter_mut().zip(&robot.joints) {
+            *unit = if joint.kind == JointKind::Prismatic {
+                1.0 / inv_len
+            } else {
+                1.0
+            };
+        }
         let ctx = Ctx {
             robot,
             tt: TaskTarget::new(target, task),
@@ -379,7 +391,8 @@ impl Workspace {
                 let mut m = Matrix6::zeros();
                 for i in 0..n {
                     let col = self.j.column(i);
-                    let v = col.fixed_rows::<3>(0) * ctx.inv_len;
+                    // A prismatic column in step units (§8): inv_len · (L/4) = 1.
+                    let v = col.fixed_rows::<3>(0) * (ctx.inv_len * self.unit[i]);
                     let w = col.fixed_rows::<3>(3).into_owned();
                     let c = match ctx.tt.task {
                         Task::Position => Vector6::new(v.x, v.y, v.z, 0.0, 0.0, 0.0),
@@ -447,23 +460,29 @@ impl Workspace {
         }
         let y = Vector6::from(solve_spd6(reduced.as_ref().unwrap_or(&self.m), lambda2, e)?);
         let mut norm2 = 0.0;
-        for ((d, c), &lock) in self
+        for (((d, c), &lock), unit) in self
             .dq
             .iter_mut()
             .zip(self.jt.column_iter())
             .zip(&self.locked)
+            .zip(&self.unit)
         {
-            *d = if lock { 0.0 } else { c.dot(&y) };
+            *d = if lock { 0.0 } else { c.dot(&y) * unit };
             norm2 += *d * *d;
         }
         Some(norm2.sqrt())
     }
 
-    /// `dq = jtᵀ·y`; returns ‖dq‖.
+    /// `dq = jtᵀ·y` in joint units; returns ‖dq‖.
     fn back_substitute(&mut self, y: &Vector6<f64>) -> f64 {
         let mut norm2 = 0.0;
-        for (i, d) in self.dq.iter_mut().enumerate() {
-            *d = self.jt.column(i).dot(y);
+        for ((d, c), unit) in self
+            .dq
+            .iter_mut()
+            .zip(self.jt.column_iter())
+            .zip(&self.unit)
+        {
+            *d = c.dot(y) * unit;
             norm2 += *d * *d;
         }
         norm2.sqrt()
