@@ -105,7 +105,7 @@ fn gantry() -> Robot {
         joint(-90.0),
         joint(0.0)
     ))
-    .unwrap()
+    .expect("the gantry's robot file is valid")
 }
 
 /// docs/kinematics.md §8: a prismatic joint's value is measured in the linear rows' length
