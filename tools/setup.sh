@@ -19,6 +19,10 @@ ensure_wasm_target() {
     || { say "adding the wasm32 target"; rustup target add wasm32-unknown-unknown; }
 }
 
+# The installs build in cargo's own temporary folder, not in CARGO_TARGET_DIR (which
+# cargo install would use): the tests' builds there would wait on its lock while one runs
+# in the background.
+
 # wasm-bindgen-cli must equal the wasm-bindgen version in Cargo.lock.
 wasm_bindgen_version() {
   awk '/^name = "wasm-bindgen"$/ { getline; gsub(/version = |"/, ""); print; exit }' "$ROOT/Cargo.lock"
@@ -28,14 +32,14 @@ ensure_wasm_bindgen() {
   local want; want="$(wasm_bindgen_version)"
   if ! wasm-bindgen --version 2>/dev/null | grep -q " $want\$"; then
     say "installing wasm-bindgen-cli $want (about 10 minutes)"
-    cargo install wasm-bindgen-cli --version "$want"
+    env -u CARGO_TARGET_DIR cargo install wasm-bindgen-cli --version "$want"
   fi
 }
 
 ensure_trunk() {
   if ! trunk --version 2>/dev/null | grep -q " $TRUNK_VERSION\$"; then
     say "installing trunk $TRUNK_VERSION (about 10 minutes)"
-    cargo install trunk --version "$TRUNK_VERSION" --locked
+    env -u CARGO_TARGET_DIR cargo install trunk --version "$TRUNK_VERSION" --locked
   fi
 }
 
@@ -48,6 +52,44 @@ ensure_npm() {
     say "installing web/ npm packages"
     (cd "$ROOT/web" && npm ci --no-audit --no-fund)
   fi
+}
+
+# A slow install in the background at the lowest CPU priority, so that it takes the time the
+# foreground leaves idle (a single-threaded compile of the crate, a test run, a download)
+# instead of running before everything: `in_background NAME CMD...` starts CMD with its
+# output kept in a log, `await_background NAME` waits for it and shows that log (and fails
+# with it when CMD failed). On exit, unfinished ones are stopped (`stop_background`).
+declare -A BG_PID=() BG_LOG=()
+in_background() {
+  local name="$1"; shift
+  BG_LOG[$name]="$(mktemp)"
+  (renice -n 19 -p "$BASHPID" >/dev/null 2>&1 || true; "$@") >"${BG_LOG[$name]}" 2>&1 &
+  BG_PID[$name]=$!
+}
+await_background() {
+  local name="$1" status=0
+  kill -0 "${BG_PID[$name]}" 2>/dev/null && say "waiting for $name (installing in the background)"
+  wait "${BG_PID[$name]}" || status=$?
+  unset "BG_PID[$name]"
+  cat "${BG_LOG[$name]}" && rm -f "${BG_LOG[$name]}"
+  [ $status -eq 0 ] || { echo "FAILED: $name (in the background) ended with status $status"; return 1; }
+}
+stop_background() {
+  local name
+  for name in "${!BG_PID[@]}"; do
+    kill_tree "${BG_PID[$name]}"
+    rm -f "${BG_LOG[$name]}"
+  done
+}
+kill_tree() { # a process and everything it started (cargo's rustc processes too)
+  local child
+  for child in $(pgrep -P "$1" 2>/dev/null); do kill_tree "$child"; done
+  kill "$1" 2>/dev/null || true
+}
+
+# Whether ensure_apt can install without asking for a password (as root, or sudo -n).
+apt_unattended() {
+  [ "$(id -u)" = 0 ] || sudo -n true 2>/dev/null
 }
 
 APT_UPDATED=0

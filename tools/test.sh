@@ -10,10 +10,19 @@ source "$(dirname "$0")/setup.sh"
 cd "$ROOT"
 START=$SECONDS
 ensure_wasm_target
-ensure_wasm_bindgen
-ensure_trunk
 ensure_npm
-ensure_apt mesa-vulkan-drivers chromium
+# On a fresh machine the installs take about ten minutes of compiling and the Debian
+# packages a download: they run beside the lints and the core's tests, which need none of
+# them, and are awaited where first needed (apt: the UI tests; wasm-bindgen: the core's
+# wasm tests; trunk: the page).
+trap stop_background EXIT
+in_background wasm-bindgen ensure_wasm_bindgen
+in_background trunk ensure_trunk
+if apt_unattended; then
+  in_background apt ensure_apt mesa-vulkan-drivers chromium
+else
+  ensure_apt mesa-vulkan-drivers chromium
+fi
 
 LOG="$(mktemp -d)"
 passed=0
@@ -90,6 +99,15 @@ done
 
 run core-native cargo test --no-default-features --tests
 run core-doc cargo test --no-default-features --doc
+add core-native; add core-doc
+run core-urdf cargo test --no-default-features --features urdf --test urdf
+add core-urdf
+
+[ -z "${BG_PID[apt]:-}" ] || await_background apt
+run ui cargo test --lib --test ui --test ui_finnish
+add ui
+
+await_background wasm-bindgen
 run core-wasm cargo test --profile wasm-test --no-default-features --tests --target wasm32-unknown-unknown
 read -r native _ < <(count "$LOG/core-native.log")
 read -r wasm _ < <(count "$LOG/core-wasm.log")
@@ -97,12 +115,7 @@ say "core tests: $native passed natively, $wasm passed as wasm in Node"
 if [ "$native" -eq 0 ] || [ "$native" != "$wasm" ]; then
   echo "FAILED: the core's tests must pass in the same number natively and as wasm"; exit 1
 fi
-add core-native; add core-doc; add core-wasm
-run core-urdf cargo test --no-default-features --features urdf --test urdf
-add core-urdf
-
-run ui cargo test --lib --test ui --test ui_finnish
-add ui
+add core-wasm
 
 say "the JS API in Node"
 cargo rustc --lib --crate-type cdylib --release --target wasm32-unknown-unknown --no-default-features --features js
@@ -112,6 +125,7 @@ export ARMLAB_NODE_PKG="$CARGO_TARGET_DIR/armlab-node/armlab.js"
 run js-api node --test web/api.test.mjs
 add js-api
 
+await_background trunk
 build_web
 run e2e node --test --test-concurrency=1 web/e2e.test.mjs web/offline.test.mjs web/urdf.test.mjs web/motion.test.mjs web/collision.test.mjs web/exercise.test.mjs
 add e2e
