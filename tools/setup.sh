@@ -58,7 +58,8 @@ ensure_npm() {
 # foreground leaves idle (a single-threaded compile of the crate, a test run, a download)
 # instead of running before everything: `in_background NAME CMD...` starts CMD with its
 # output kept in a log, `await_background NAME` waits for it and shows that log (and fails
-# with it when CMD failed). On exit, unfinished ones are stopped (`stop_background`).
+# with it when CMD failed; a NAME never started is nothing to wait for). On exit, unfinished
+# ones are stopped (`stop_background`).
 declare -A BG_PID=() BG_LOG=()
 in_background() {
   local name="$1"; shift
@@ -68,6 +69,7 @@ in_background() {
 }
 await_background() {
   local name="$1" status=0
+  [ -n "${BG_PID[$name]:-}" ] || return 0
   kill -0 "${BG_PID[$name]}" 2>/dev/null && say "waiting for $name (installing in the background)"
   wait "${BG_PID[$name]}" || status=$?
   unset "BG_PID[$name]"

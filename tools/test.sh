@@ -103,7 +103,7 @@ add core-native; add core-doc
 run core-urdf cargo test --no-default-features --features urdf --test urdf
 add core-urdf
 
-[ -z "${BG_PID[apt]:-}" ] || await_background apt
+await_background apt
 run ui cargo test --lib --test ui --test ui_finnish
 add ui
 
