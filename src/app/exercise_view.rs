@@ -11,13 +11,13 @@ use nalgebra::{Point3, Vector3};
 
 use crate::i18n::Key;
 use crate::kinematics::exercise::Verdict;
-use crate::kinematics::{Convention, ForwardKinematics, JointKind, Robot, preset_names};
+use crate::kinematics::{Convention, ForwardKinematics, Robot, preset_names};
 use crate::link::exercise::ExerciseId;
 
 use super::format::number;
 use super::hook::ScreenPoints;
 use super::model::{Message, Model};
-use super::robot_panel::{COLUMNS, DhEditor, RowText, convention_row, dh_row};
+use super::robot_panel::{COLUMNS, DhEditor, RowText, convention_row, dh_rows};
 use super::{style, tr, trf};
 
 /// The student's answer table, kept while the exercise is open.
@@ -111,34 +111,24 @@ impl ExercisePanel {
     fn answer_table(&mut self, model: &Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
         let answer = &mut self.answer;
         convention_row(answer, model, ui);
-        let unit = model.robot().length_unit.symbol();
-        ui.label(egui::RichText::new(trf(model, Key::LengthsIn, &[&unit])).small());
-        let mut remove = None;
         let error = answer.error.clone();
-        egui::Grid::new("exercise_grid")
-            .striped(true)
-            .spacing([4.0, 2.0])
-            .show(ui, |ui| {
-                super::robot_panel::dh_header_row(model, ui);
-                for (i, row) in answer.rows.iter_mut().enumerate() {
-                    let edit = dh_row(ui, model, i, row, error.as_ref(), points);
-                    if edit.changed {
-                        answer.error = None;
-                    }
-                    if edit.remove {
-                        remove = Some(i);
-                    }
-                }
-            });
-        if let Some(i) = remove {
+        let edit = dh_rows(
+            ui,
+            model,
+            "exercise_grid",
+            &mut answer.rows,
+            error.as_ref(),
+            points,
+        );
+        if edit.changed {
+            answer.error = None;
+        }
+        if let Some(i) = edit.remove {
             answer.rows.remove(i);
             answer.error = None;
         }
         if ui.button(tr(model, Key::AddJoint)).clicked() {
-            answer.rows.push(RowText {
-                kind: JointKind::Revolute,
-                cells: ["0", "0", "0", "0", "-180", "180"].map(String::from),
-            });
+            answer.rows.push(RowText::blank());
         }
     }
 }
@@ -366,7 +356,7 @@ pub fn draw_in_view(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::kinematics::{ForwardKinematics, preset};
+    use crate::kinematics::{ForwardKinematics, JointKind, preset};
 
     fn lengths(id: &str, q: &[f64]) -> Vec<(f64, Option<f64>)> {
         let robot = preset(id).expect("a preset");

@@ -22,6 +22,9 @@ const CELL_DECIMALS: usize = 6;
 
 /// Column names of the editable DH cells.
 pub const COLUMNS: [&str; 6] = ["θ (°)", "d", "a", "α (°)", "min", "max"];
+/// The cells' names beside them in a narrow table's blocks, where the units would not fit
+/// (the caption above the table gives them).
+const BLOCK_NAMES: [&str; 6] = ["θ", "d", "a", "α", "min", "max"];
 
 /// One row of cell texts.
 #[derive(Debug, Clone, PartialEq)]
@@ -30,6 +33,16 @@ pub struct RowText {
     pub kind: JointKind,
     /// θ, d, a, α, min, max as typed (angles in degrees, lengths in robot units).
     pub cells: [String; 6],
+}
+
+impl RowText {
+    /// A new row: revolute, all zeros, ±180°.
+    pub fn blank() -> Self {
+        RowText {
+            kind: JointKind::Revolute,
+            cells: ["0", "0", "0", "0", "-180", "180"].map(String::from),
+        }
+    }
 }
 
 /// The editor's texts, kept separately from the robot so that a half-typed number does not
@@ -314,22 +327,35 @@ impl RobotPanel {
             RobotSource::Custom => None,
         };
         let mut chosen = None;
-        egui::ComboBox::new("preset_chooser", tr(model, Key::Preset))
-            .selected_text(match current {
-                Some(_) => model.robot().name.clone(),
-                None => trf(model, Key::Edited, &[&model.robot().name]),
-            })
-            .width((ui.available_width() - 60.0).clamp(120.0, 230.0))
-            .show_ui(ui, |ui| {
-                for (id, name) in preset_names() {
-                    if ui
-                        .selectable_label(current.as_deref() == Some(*id), name.as_str())
-                        .clicked()
-                    {
-                        chosen = Some(*id);
+        // The menu takes the row less its label; a long robot name is cut with "…" rather
+        // than pushing the label out of the column (or wrapping it a letter per line).
+        let label = tr(model, Key::Preset);
+        let font = egui::TextStyle::Button.resolve(ui.style());
+        let spacing = ui.spacing();
+        let room =
+            style::room(ui) - style::text_width(ui, label, &font) - 2.0 * spacing.item_spacing.x;
+        let name = match current {
+            Some(_) => model.robot().name.clone(),
+            None => trf(model, Key::Edited, &[&model.robot().name]),
+        };
+        let text_room = room - spacing.icon_width - 2.0 * spacing.button_padding.x - 4.0;
+        let selected = style::cut_to_width(ui, &name, &font, text_room);
+        ui.scope(|ui| {
+            ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Extend);
+            egui::ComboBox::new("preset_chooser", label)
+                .selected_text(selected)
+                .width(room.clamp(80.0, 230.0))
+                .show_ui(ui, |ui| {
+                    for (id, name) in preset_names() {
+                        if ui
+                            .selectable_label(current.as_deref() == Some(*id), name.as_str())
+                            .clicked()
+                        {
+                            chosen = Some(*id);
+                        }
                     }
-                }
-            });
+                });
+        });
         if let Some(id) = chosen {
             match preset(id) {
                 Ok(robot) => self.load_robot(model, robot, RobotSource::Preset(id.to_string())),
@@ -470,7 +496,9 @@ impl Panel for RobotPanel {
             egui::CollapsingHeader::new(super::style::fold_title(ui, tr(model, Key::DhTable)))
                 .id_salt("dh_editor")
                 .default_open(false)
-                .show(ui, |ui| dh_table(&mut self.editor, model, ui, points));
+                // Unindented: a projector's column has room for the table's blocks only
+                // with the indent's 18 points.
+                .show_unindented(ui, |ui| dh_table(&mut self.editor, model, ui, points));
         points.insert("dh-header", header.header_response.rect.center());
         super::convention_view::both_conventions_ui(model, ui);
         self.file_buttons(model, ui, points);
@@ -497,22 +525,18 @@ fn dh_table(
         converted = Some(robot);
         changed = false;
     }
-    let unit = model.robot().length_unit.symbol();
-    ui.label(egui::RichText::new(trf(model, Key::LengthsIn, &[&unit])).small());
-    let mut remove = None;
-    egui::Grid::new("dh_grid")
-        .striped(true)
-        .spacing([4.0, 2.0])
-        .show(ui, |ui| {
-            dh_header_row(model, ui);
-            for (i, row) in edited.rows.iter_mut().enumerate() {
-                let row_edit = dh_row(ui, model, i, row, editor.error.as_ref(), points);
-                changed |= row_edit.changed;
-                if row_edit.remove {
-                    remove = Some(i);
-                }
-            }
-        });
+    let TableEdit {
+        changed: cells_changed,
+        remove,
+    } = dh_rows(
+        ui,
+        model,
+        "dh_grid",
+        &mut edited.rows,
+        editor.error.as_ref(),
+        points,
+    );
+    changed |= cells_changed;
     if let Some(i) = remove {
         edited.kept_q = kept_q(editor, model, |robot, q| {
             remove_joint(robot, q, i).map(|(_, q)| q)
@@ -525,10 +549,7 @@ fn dh_table(
         edited.kept_q = kept_q(editor, model, |robot, q| {
             Some(insert_joint(robot, q, at, new_joint(at)).1)
         });
-        edited.rows.push(RowText {
-            kind: JointKind::Revolute,
-            cells: ["0", "0", "0", "0", "-180", "180"].map(String::from),
-        });
+        edited.rows.push(RowText::blank());
         changed = true;
     }
     if let Some(robot) = converted {
@@ -610,62 +631,186 @@ pub(super) fn convention_row(editor: &mut DhEditor, model: &Model, ui: &mut egui
     changed
 }
 
-/// What the user did in one row of the table.
-pub(super) struct RowEdit {
-    /// A cell or the type changed.
+/// What the user did in a DH table.
+pub(super) struct TableEdit {
+    /// A cell or a joint's type changed.
     pub changed: bool,
-    /// The row's × was clicked.
-    pub remove: bool,
+    /// The row whose × was clicked.
+    pub remove: Option<usize>,
 }
 
-/// One joint's row: number, type, six cells, remove button, and its error beneath.
-pub(super) fn dh_row(
+/// The space between a table's columns and rows (points).
+const TABLE_SPACING: egui::Vec2 = egui::vec2(4.0, 2.0);
+/// The narrowest cell of the one-line rows, and of the blocks (points).
+const CELL_MIN_WIDTH: f32 = 52.0;
+const BLOCK_CELL_MIN_WIDTH: f32 = 44.0;
+/// The widest a cell grows with its text (points); a longer text scrolls inside it.
+const CELL_MAX_WIDTH: f32 = 400.0;
+/// A cell's frame around its text: the text edit's margins and room for the cursor.
+const CELL_FRAME: f32 = 14.0;
+/// The width of a row's R/P menu.
+const KIND_MENU_WIDTH: f32 = 36.0;
+
+/// A DH table's caption (the units) and rows with their editable cells: one line per joint when the panel has
+/// the room for all of it (#, type, θ, d, a, α, min, max, ×); otherwise a block of four
+/// lines per joint (its number, type and ×; then θ and d, a and α, min and max, each
+/// cell named beside it: the joint's screw along z, its screw along x, its limits), so that in a narrow column (a projector's, a phone's sheet) no
+/// cell is cut or hidden behind a sideways scroll. A wrong cell's text is red, and its
+/// sentence goes under the table, wrapped at the panel's edge. The cells' screen points
+/// are `dh-ROW-COLUMN` (1-based) in both layouts.
+pub(super) fn dh_rows(
     ui: &mut egui::Ui,
     model: &Model,
-    i: usize,
-    row: &mut RowText,
+    id_salt: &str,
+    rows: &mut [RowText],
     error: Option<&CellError>,
     points: &mut ScreenPoints,
-) -> RowEdit {
-    let number = ui.label(format!("{}", i + 1));
-    let mut changed = kind_menu(ui, model, i, row, number.id);
-    for (c, cell) in row.cells.iter_mut().enumerate() {
-        let bad = error.is_some_and(|e| e.row == i && e.column == c);
-        // As wide as its value (the column scrolls; its width is bounded by the layout).
+) -> TableEdit {
+    let unit = model.robot().length_unit.symbol();
+    ui.label(egui::RichText::new(trf(model, Key::LengthsIn, &[&unit])).small());
+    let widths = TableWidths::measure(ui, model, rows);
+    let room = style::room(ui);
+    let mut edit = TableEdit {
+        changed: false,
+        remove: None,
+    };
+    if widths.one_line <= room {
+        egui::Grid::new((id_salt, "lines"))
+            .striped(true)
+            .spacing(TABLE_SPACING)
+            .min_col_width(0.0)
+            .max_col_width(widths.widest_column())
+            .show(ui, |ui| {
+                dh_header_row(model, ui);
+                for (i, row) in rows.iter_mut().enumerate() {
+                    let number = ui.label(format!("{}", i + 1));
+                    edit.changed |= kind_menu(ui, model, i, row, number.id);
+                    for c in 0..COLUMNS.len() {
+                        let width = widths.columns[c];
+                        edit.changed |= dh_cell(ui, i, c, row, width, error, points);
+                    }
+                    if remove_button(ui, model, i) {
+                        edit.remove = Some(i);
+                    }
+                    ui.end_row();
+                }
+            });
+    } else {
+        // Every other joint's four lines shaded, so that a block reads as one joint.
+        let shade = ui.visuals().faint_bg_color;
+        egui::Grid::new((id_salt, "blocks"))
+            .spacing(TABLE_SPACING)
+            .min_col_width(0.0)
+            .max_col_width(widths.block_cell)
+            .with_row_color(move |line, _| (line / 4 % 2 == 0).then_some(shade))
+            .show(ui, |ui| {
+                for (i, row) in rows.iter_mut().enumerate() {
+                    let number = ui.strong(format!("{}", i + 1));
+                    edit.changed |= kind_menu(ui, model, i, row, number.id);
+                    ui.label("");
+                    if remove_button(ui, model, i) {
+                        edit.remove = Some(i);
+                    }
+                    ui.end_row();
+                    for pair in [[0, 1], [2, 3], [4, 5]] {
+                        for c in pair {
+                            ui.label(BLOCK_NAMES[c]);
+                            edit.changed |=
+                                dh_cell(ui, i, c, row, widths.block_cell, error, points);
+                        }
+                        ui.end_row();
+                    }
+                }
+            });
+    }
+    if let Some(error) = error {
+        ui.scope(|ui| {
+            ui.set_max_width(room.max(120.0));
+            let sentence = egui::RichText::new(error.sentence(model.settings().lang));
+            ui.add(egui::Label::new(sentence.color(style::ERROR)).wrap());
+        });
+    }
+    edit
+}
+
+/// The widths a DH table needs (points), measured from its texts before it is drawn. Its
+/// grid is told the widest (`max_col_width`): an egui grid offers a cell only its column's
+/// width of the previous frame (at first the default 40 points), so a cell that asks for
+/// more would stay cut. Its columns are no wider than their contents (`min_col_width`
+/// 0, not egui's 40 points), as measured here.
+struct TableWidths {
+    /// Each cell column's width in the one-line rows.
+    columns: [f32; 6],
+    /// The one-line rows' whole width.
+    one_line: f32,
+    /// Every cell's width in the blocks (one width, so that the blocks line up).
+    block_cell: f32,
+}
+
+impl TableWidths {
+    fn measure(ui: &egui::Ui, model: &Model, rows: &[RowText]) -> Self {
         let font = egui::TextStyle::Body.resolve(ui.style());
-        let text_width = ui
-            .painter()
-            .layout_no_wrap(cell.clone(), font, egui::Color32::WHITE)
-            .size()
-            .x;
-        let mut edit = egui::TextEdit::singleline(cell)
-            .desired_width((text_width + 6.0).clamp(52.0, 400.0))
-            .id_salt(("dh", i, c))
-            .hint_text(COLUMNS[c]);
-        if bad {
-            edit = edit.text_color(style::ERROR);
+        let text_width = |text: &str| style::text_width(ui, text, &font);
+        let mut texts = [0.0f32; 6];
+        for row in rows {
+            for (widest, cell) in texts.iter_mut().zip(&row.cells) {
+                *widest = widest.max(text_width(cell));
+            }
         }
-        let cell_response = ui.add(edit);
-        changed |= cell_response.changed();
-        points.insert(
-            format!("dh-{}-{}", i + 1, c + 1),
-            cell_response.rect.center(),
-        );
+        let cell = |text: f32, min: f32| (text + CELL_FRAME).clamp(min, CELL_MAX_WIDTH);
+        let mut columns = [0.0; 6];
+        for (c, width) in columns.iter_mut().enumerate() {
+            *width = cell(texts[c], CELL_MIN_WIDTH).max(text_width(COLUMNS[c]));
+        }
+        let number = text_width(&rows.len().to_string()).max(text_width("#"));
+        let kind = (KIND_MENU_WIDTH + 2.0 * ui.spacing().button_padding.x)
+            .max(text_width(tr(model, Key::ColumnType)));
+        let remove = text_width("×") + 2.0 * ui.spacing().button_padding.x;
+        let gaps = TABLE_SPACING.x * (columns.len() + 2) as f32;
+        let block_text = texts.iter().copied().fold(0.0, f32::max);
+        Self {
+            columns,
+            one_line: number + kind + columns.iter().sum::<f32>() + remove + gaps,
+            block_cell: cell(block_text, BLOCK_CELL_MIN_WIDTH),
+        }
     }
-    let remove = ui
-        .small_button("×")
-        .on_hover_text(tr(model, Key::RemoveJoint))
-        .clicked();
-    ui.end_row();
-    if let Some(error) = error
-        && error.row == i
-    {
-        ui.label("");
-        ui.label("");
-        ui.colored_label(style::ERROR, error.sentence(model.settings().lang));
-        ui.end_row();
+
+    /// The widest cell column of the one-line rows.
+    fn widest_column(&self) -> f32 {
+        self.columns.iter().copied().fold(0.0, f32::max)
     }
-    RowEdit { changed, remove }
+}
+
+/// One editable cell of row `i`, column `c`; returns whether its text changed.
+fn dh_cell(
+    ui: &mut egui::Ui,
+    i: usize,
+    c: usize,
+    row: &mut RowText,
+    width: f32,
+    error: Option<&CellError>,
+    points: &mut ScreenPoints,
+) -> bool {
+    let bad = error.is_some_and(|e| e.row == i && e.column == c);
+    let mut edit = egui::TextEdit::singleline(&mut row.cells[c])
+        .desired_width(width)
+        .id_salt(("dh", i, c))
+        .hint_text(COLUMNS[c]);
+    if bad {
+        edit = edit.text_color(style::ERROR);
+    }
+    let response = ui.add(edit);
+    points.insert(format!("dh-{}-{}", i + 1, c + 1), response.rect.center());
+    response.changed()
+}
+
+/// Row `i`'s ×, named "Remove joint N" on hover and for screen readers; returns whether
+/// it was clicked.
+fn remove_button(ui: &mut egui::Ui, model: &Model, i: usize) -> bool {
+    let name = trf(model, Key::RemoveJoint, &[&(i + 1)]);
+    let response = ui.small_button("×");
+    response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Button, true, &name));
+    response.on_hover_text(name.as_str()).clicked()
 }
 
 /// The R/P menu of a row; a new type gets limits that make sense for it.
@@ -683,7 +828,7 @@ fn kind_menu(
         } else {
             "P"
         })
-        .width(36.0)
+        .width(KIND_MENU_WIDTH)
         .show_ui(ui, |ui| {
             ui.selectable_value(&mut row.kind, JointKind::Revolute, tr(model, Key::Revolute));
             ui.selectable_value(

@@ -167,11 +167,7 @@ impl SidePanels {
 fn tab_label(ui: &egui::Ui, title: &str) -> egui::RichText {
     let font = egui::TextStyle::Button.resolve(ui.style());
     let room = ui.available_width() - 2.0 * ui.spacing().button_padding.x;
-    let width = ui
-        .painter()
-        .layout_no_wrap(title.to_owned(), font.clone(), egui::Color32::PLACEHOLDER)
-        .size()
-        .x;
+    let width = super::style::text_width(ui, title, &font);
     let text = egui::RichText::new(title);
     if width > room && width > 0.0 {
         text.size(font.size * (room / width).max(0.75))

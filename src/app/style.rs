@@ -207,6 +207,31 @@ pub struct NameRow {
     pub values: Vec<String>,
 }
 
+/// The width of `text` on one line in `font` (points).
+pub fn text_width(ui: &egui::Ui, text: &str, font: &egui::FontId) -> f32 {
+    ui.painter()
+        .layout_no_wrap(text.to_owned(), font.clone(), Color32::PLACEHOLDER)
+        .size()
+        .x
+}
+
+/// `text`, cut to at most `width` points in `font` and ended with "…" when it was cut.
+pub fn cut_to_width(ui: &egui::Ui, text: &str, font: &egui::FontId, width: f32) -> String {
+    if text_width(ui, text, font) <= width {
+        return text.to_owned();
+    }
+    // The longest prefix (in characters) that fits with its "…": widths grow with the
+    // prefix, so a binary search finds it.
+    let ends: Vec<usize> = text.char_indices().map(|(i, _)| i).collect();
+    let fits = |n: usize| text_width(ui, &format!("{}…", &text[..ends[n]]), font) <= width;
+    let (mut lo, mut hi) = (0, ends.len());
+    while lo + 1 < hi {
+        let mid = (lo + hi) / 2;
+        if fits(mid) { lo = mid } else { hi = mid }
+    }
+    format!("{}…", text[..ends[lo]].trim_end())
+}
+
 /// Names and their values as a grid (a header row over the value columns when `headers`
 /// is not empty) where the grid fits the visible [`room`]; on a narrow column (a projector's
 /// side column, a phone) each name stands over its values instead, indented and labelled
@@ -221,12 +246,7 @@ pub fn fold_rows(ui: &mut egui::Ui, id: &str, headers: &[(String, String)], rows
 fn lay_out_rows(ui: &mut egui::Ui, id: &str, headers: &[(String, String)], rows: &[NameRow]) {
     let body = egui::TextStyle::Body.resolve(ui.style());
     let mono = egui::TextStyle::Monospace.resolve(ui.style());
-    let width = |text: &str, font: &egui::FontId| {
-        ui.painter()
-            .layout_no_wrap(text.to_owned(), font.clone(), Color32::PLACEHOLDER)
-            .size()
-            .x
-    };
+    let width = |text: &str, font: &egui::FontId| text_width(ui, text, font);
     let columns = rows.iter().map(|r| r.values.len()).max().unwrap_or(0);
     let mut widths = vec![0.0_f32; columns + 1];
     for row in rows {
