@@ -1532,11 +1532,5 @@ fn the_dh_table_shows_every_cell_whole_at_every_screen_size() {
             preset.height() < 30.0 && preset.right() <= column.right() + 0.5,
             "{size:?}: the preset menu and its label take one line in the column: {preset:?}"
         );
-        if std::env::var_os("DUMP_DH").is_some() {
-            let image = h.render().expect("a frame");
-            image
-                .save(format!("/tmp/dh-{}x{}.png", size[0], size[1]))
-                .expect("saved");
-        }
     }
 }

@@ -67,8 +67,12 @@ fn table(ui: &mut egui::Ui, robot: &Robot, degrees: bool) {
             number(v, 3)
         }
     };
+    // Columns as wide as their numbers (egui's default minimum is 40 points), so the four
+    // columns fit a projector's side column.
     egui::Grid::new(("convention_table", robot.convention == Convention::Standard))
         .striped(true)
+        .min_col_width(0.0)
+        .spacing([8.0, 2.0])
         .show(ui, |ui| {
             for head in ["", "θ", "d", "a", "α"] {
                 ui.label(egui::RichText::new(head).small());

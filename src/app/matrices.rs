@@ -161,8 +161,11 @@ fn matrix_header(
 
 /// A matrix block's numbers (or, while hiding applies, its clickable entries); returns
 /// whether they are hovered. Scrolled out of sight, the block keeps its last size
-/// without drawing. A matrix wider than the column scrolls sideways on its own: were the
-/// column to grow to its width, every text after it would run out of sight.
+/// without drawing. The numbers are drawn at the largest of [`FIT_SCALES`] that fits the
+/// column's visible width; a matrix wider than that even at the smallest is drawn at full
+/// size and scrolls sideways on its own, with its scroll bar always shown so that a
+/// person sees there is more (were the column to grow to its width, every text after it
+/// would run out of sight).
 fn matrix_body(
     ui: &mut egui::Ui,
     lang: Lang,
@@ -173,19 +176,72 @@ fn matrix_body(
 ) -> bool {
     let id = ui.make_persistent_id(("matrix body", title));
     style::unless_out_of_sight(ui, id, |ui| {
-        egui::ScrollArea::horizontal()
-            .id_salt(("matrix scroll", title))
-            .show(ui, |ui| {
-                if hiding.interactive(target) {
-                    hiding_table(ui, lang, m, decimals, target, hiding)
-                } else {
-                    number_table(ui, m, decimals)
-                }
+        let interactive = hiding.interactive(target);
+        let font = egui::TextStyle::Monospace.resolve(ui.style());
+        let fit = (!interactive).then(|| fit_font(ui, m, decimals, font.clone()));
+        ui.scope(|ui| {
+            let mut area = egui::ScrollArea::horizontal().id_salt(("matrix scroll", title));
+            if matches!(fit, Some(None)) {
+                ui.spacing_mut().scroll = egui::style::ScrollStyle::solid();
+                area = area
+                    .scroll_bar_visibility(egui::scroll_area::ScrollBarVisibility::AlwaysVisible);
+            }
+            area.show(ui, |ui| match fit {
+                Some(fit) => number_table(ui, m, decimals, fit.unwrap_or(font)),
+                None => hiding_table(ui, lang, m, decimals, target, hiding),
             })
             .inner
             .hovered()
+        })
+        .inner
     })
     .unwrap_or(false)
+}
+
+/// The sizes a matrix's numbers may be drawn at, as shares of the monospace text size,
+/// largest first: a projector's side column shows T_06 whole at 90 %. Few fixed steps, so
+/// that moving numbers do not make a new font size (and new glyphs in egui's font atlas)
+/// in every frame.
+const FIT_SCALES: [f32; 3] = [1.0, 0.9, 0.8];
+
+/// The font at the largest of [`FIT_SCALES`] whose table fits the visible room; `None`
+/// when none does. Measured without laying the numbers out: the monospace digits, sign
+/// and point share one advance width, so a column is as wide as its longest number's
+/// characters, and the gap is two characters (as [`number_table`] draws it).
+fn fit_font(
+    ui: &egui::Ui,
+    m: &DMatrix<f64>,
+    decimals: usize,
+    font: egui::FontId,
+) -> Option<egui::FontId> {
+    use std::fmt::Write as _;
+    let advance = ui.fonts_mut(|f| f.glyph_width(&font, '0'));
+    let mut text = String::new();
+    let mut chars = 2 * m.ncols().saturating_sub(1);
+    for column in m.column_iter() {
+        let mut widest = 0;
+        for v in column.iter() {
+            text.clear();
+            // Writing to a String cannot fail.
+            let _ = write!(text, "{:.p$}", clean(*v, decimals), p = decimals);
+            widest = widest.max(text.chars().count());
+        }
+        chars += widest;
+    }
+    let width = advance * chars as f32;
+    let room = style::room(ui);
+    // Glyph widths scale with the size, up to rounding: a small margin covers that.
+    let scale = FIT_SCALES.into_iter().find(|s| width * s <= room * 0.98)?;
+    Some(egui::FontId::new(font.size * scale, font.family))
+}
+
+/// The gap between a table's columns: two digits' width.
+fn column_gap(quads: &[GlyphQuad<'_>]) -> f32 {
+    quads
+        .iter()
+        .find(|(g, _)| g.chr == '0')
+        .map_or(8.0, |(g, _)| g.advance_width)
+        * 2.0
 }
 
 /// The characters a formatted number can hold.
@@ -200,8 +256,12 @@ const NUMBER_CHARS: &str = "0123456789-.";
 /// mesh (egui builds each glyph as one quad: four vertices, two triangles). The mesh is
 /// put in place by [`finish_numbers`] at the end of the frame. The screen-reader and test
 /// label is the "Text" copy of the matrix.
-fn number_table(ui: &mut egui::Ui, m: &DMatrix<f64>, decimals: usize) -> egui::Response {
-    let font = egui::TextStyle::Monospace.resolve(ui.style());
+fn number_table(
+    ui: &mut egui::Ui,
+    m: &DMatrix<f64>,
+    decimals: usize,
+    font: egui::FontId,
+) -> egui::Response {
     let color = ui.visuals().text_color();
     let glyphs = ui
         .painter()
@@ -214,11 +274,7 @@ fn number_table(ui: &mut egui::Ui, m: &DMatrix<f64>, decimals: usize) -> egui::R
         // A number this table cannot draw (NaN, infinity): plain text instead.
         return ui.label(plain_text(m, decimals));
     };
-    let gap = quads
-        .iter()
-        .find(|(g, _)| g.chr == '0')
-        .map_or(8.0, |(g, _)| g.advance_width)
-        * 2.0;
+    let gap = column_gap(&quads);
     let column_widths: Vec<f32> = cells
         .chunks(m.nrows().max(1))
         .map(|column| column.iter().map(|(_, w)| *w).fold(0.0, f32::max))
@@ -1056,4 +1112,74 @@ fn orientation_block(
             ];
             style::fold_rows(ui, "orientation", &[], &rows);
         });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `f`'s result in a frame whose panel is `width` points wide (two frames: the first
+    /// loads the fonts).
+    fn in_a_column<R>(width: f32, mut f: impl FnMut(&mut egui::Ui) -> R) -> R {
+        let ctx = egui::Context::default();
+        style::install_fonts(&ctx);
+        let input = || egui::RawInput {
+            screen_rect: Some(egui::Rect::from_min_size(
+                egui::Pos2::ZERO,
+                egui::vec2(1024.0, 768.0),
+            )),
+            ..Default::default()
+        };
+        let mut out = None;
+        for _ in 0..2 {
+            let mut output = ctx.run_ui(input(), |ui| {
+                ui.scope(|ui| {
+                    ui.set_max_width(width);
+                    out = Some(f(ui));
+                });
+            });
+            // Nothing draws here: the font atlas's uploads are dropped on purpose.
+            output.textures_delta.clear();
+        }
+        out.expect("the frame ran")
+    }
+
+    /// The UR10's T_06 at its home pose, in mm.
+    fn tool_pose() -> DMatrix<f64> {
+        DMatrix::from_row_slice(
+            4,
+            4,
+            &[
+                0.0, -1.0, 0.0, 685.770, 1.0, 0.0, 0.0, -163.9, 0.0, 0.0, 1.0, 465.187, 0.0, 0.0,
+                0.0, 1.0,
+            ],
+        )
+    }
+
+    #[test]
+    fn a_matrix_a_little_too_wide_is_drawn_smaller_and_fits() {
+        let full = egui::FontId::monospace(12.0);
+        // Wide enough: full size.
+        let fit = in_a_column(400.0, |ui| fit_font(ui, &tool_pose(), 3, full.clone()));
+        assert_eq!(fit, Some(full.clone()));
+        // A projector's right column: smaller, and the table then fits its room.
+        let (fit, width, room) = in_a_column(209.0, |ui| {
+            let room = style::room(ui);
+            let fit = fit_font(ui, &tool_pose(), 3, full.clone());
+            let font = fit.clone().unwrap_or(full.clone());
+            let width = number_table(ui, &tool_pose(), 3, font).rect.width();
+            (fit, width, room)
+        });
+        let size = fit.expect("a size that fits").size;
+        assert!(size < 12.0 && size >= 12.0 * 0.8, "{size}");
+        assert!(width <= room, "{width} drawn in {room}");
+    }
+
+    #[test]
+    fn a_matrix_much_too_wide_keeps_its_size_and_scrolls() {
+        let jacobian = DMatrix::from_fn(6, 6, |r, c| -337.187 + (r * 6 + c) as f64);
+        let full = egui::FontId::monospace(12.0);
+        let fit = in_a_column(209.0, |ui| fit_font(ui, &jacobian, 3, full.clone()));
+        assert_eq!(fit, None, "none of the sizes fits: it scrolls at full size");
+    }
 }
