@@ -1171,7 +1171,7 @@ mod tests {
             (fit, width, room)
         });
         let size = fit.expect("a size that fits").size;
-        assert!(size < 12.0 && size >= 12.0 * 0.8, "{size}");
+        assert!((12.0 * 0.8..12.0).contains(&size), "{size}");
         assert!(width <= room, "{width} drawn in {room}");
     }
 
