@@ -141,8 +141,12 @@ fn own_table(model: &Model, ui: &mut egui::Ui) {
         Convention::Modified => tr(model, Key::ConventionModified),
     };
     ui.label(trf(model, Key::ExerciseOwnTable, &[&convention]));
+    // Columns as wide as their numbers (egui's default minimum is 40 points each), as in
+    // the two conventions' tables: the five fit a projector's side column.
     egui::Grid::new("exercise_own_table")
         .striped(true)
+        .min_col_width(0.0)
+        .spacing([8.0, 2.0])
         .show(ui, |ui| {
             ui.label("#");
             for c in &COLUMNS[..4] {
