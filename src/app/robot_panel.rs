@@ -641,8 +641,10 @@ pub(super) struct TableEdit {
 
 /// The space between a table's columns and rows (points).
 const TABLE_SPACING: egui::Vec2 = egui::vec2(4.0, 2.0);
-/// The narrowest cell of the one-line rows, and of the blocks (points).
+/// The narrowest cell of the one-line rows (points).
 const CELL_MIN_WIDTH: f32 = 52.0;
+/// The narrowest cell of the blocks (points): two cells and their names fit a projector's
+/// 200-point column.
 const BLOCK_CELL_MIN_WIDTH: f32 = 44.0;
 /// The widest a cell grows with its text (points); a longer text scrolls inside it.
 const CELL_MAX_WIDTH: f32 = 400.0;
@@ -651,13 +653,14 @@ const CELL_FRAME: f32 = 14.0;
 /// The width of a row's R/P menu.
 const KIND_MENU_WIDTH: f32 = 36.0;
 
-/// A DH table's caption (the units) and rows with their editable cells: one line per joint when the panel has
-/// the room for all of it (#, type, θ, d, a, α, min, max, ×); otherwise a block of four
-/// lines per joint (its number, type and ×; then θ and d, a and α, min and max, each
-/// cell named beside it: the joint's screw along z, its screw along x, its limits), so that in a narrow column (a projector's, a phone's sheet) no
-/// cell is cut or hidden behind a sideways scroll. A wrong cell's text is red, and its
-/// sentence goes under the table, wrapped at the panel's edge. The cells' screen points
-/// are `dh-ROW-COLUMN` (1-based) in both layouts.
+/// A DH table's caption (the units) and rows with their editable cells: one line per
+/// joint when the panel has the room for all of it (#, type, θ, d, a, α, min, max, ×);
+/// otherwise a block of four lines per joint (its number, type and ×; then θ and d, a and
+/// α, min and max, each cell named beside it: the joint's screw along z, its screw along
+/// x, its limits), so that in a narrow column (a projector's, a phone's sheet) no cell is
+/// cut or hidden behind a sideways scroll. A wrong cell's text is red, and its sentence
+/// goes under the table, wrapped at the panel's edge. The cells' screen points are
+/// `dh-ROW-COLUMN` (1-based) in both layouts.
 pub(super) fn dh_rows(
     ui: &mut egui::Ui,
     model: &Model,
@@ -899,7 +902,7 @@ pub fn robot_file_name(robot: &Robot) -> String {
 
 /// The DH table's header row: #, type, the columns, and room for the remove button (the
 /// editor and the exercise's answer table share it).
-pub(super) fn dh_header_row(model: &Model, ui: &mut egui::Ui) {
+fn dh_header_row(model: &Model, ui: &mut egui::Ui) {
     ui.label("#");
     ui.label(tr(model, Key::ColumnType));
     for c in COLUMNS {
