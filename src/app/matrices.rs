@@ -199,9 +199,9 @@ fn matrix_body(
 }
 
 /// The sizes a matrix's numbers may be drawn at, as shares of the monospace text size,
-/// largest first: a 1024×768 projector's side column shows T_06 whole at 80 %. Few fixed steps, so
-/// that moving numbers do not make a new font size (and new glyphs in egui's font atlas)
-/// in every frame.
+/// largest first: a 1024×768 projector's side column shows T_06 whole at 80 %. Few fixed
+/// steps, so that moving numbers do not make a new font size (and new glyphs in egui's
+/// font atlas) in every frame.
 const FIT_SCALES: [f32; 3] = [1.0, 0.9, 0.8];
 
 /// The font at the largest of [`FIT_SCALES`] whose table fits the visible room; `None`
