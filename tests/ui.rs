@@ -1534,3 +1534,23 @@ fn the_dh_table_shows_every_cell_whole_at_every_screen_size() {
         );
     }
 }
+
+#[test]
+fn on_a_projector_the_motion_panel_keeps_to_its_column() {
+    let size = [1024.0, 768.0];
+    let h = harness_at("#robot=ur10&panels=motion,matrices", size);
+    let view = h.state().viewport().rect().expect("the view was laid out");
+    let bottom = h.ctx.content_rect().bottom();
+    let column = egui::Rect::from_x_y_ranges(30.0..=view.left(), view.top()..=bottom);
+    let clipped = clipped_controls(&h, column);
+    assert!(clipped.is_empty(), "{clipped:#?}");
+    // The controller menu's label stays on one line beside it (it wrapped a letter per
+    // line), and the typed goal's Drive button shows whole.
+    let menu = h.get_by_label("Controller").rect();
+    assert!(menu.height() < 30.0, "the menu and its label: {menu:?}");
+    let drive = h.get_by_label("Drive").rect();
+    assert!(
+        drive.right() <= view.left() && drive.width() > 30.0,
+        "Drive at {drive:?}"
+    );
+}

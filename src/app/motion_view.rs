@@ -261,13 +261,18 @@ impl MotionPanel {
         let settings = *model.motion().settings();
         let current = Choice::of(&settings.controller);
         let mut chosen = current;
-        egui::ComboBox::new("motion_controller", tr(model, Key::MotionController))
-            .selected_text(tr(model, current.key()))
-            .show_ui(ui, |ui| {
+        style::fitted_menu(
+            ui,
+            "motion_controller",
+            tr(model, Key::MotionController),
+            tr(model, current.key()),
+            None,
+            |ui| {
                 for choice in Choice::ALL {
                     ui.selectable_value(&mut chosen, choice, tr(model, choice.key()));
                 }
-            });
+            },
+        );
         if chosen != current {
             let next = MotionSettings {
                 controller: chosen.controller(),
@@ -408,20 +413,25 @@ impl MotionPanel {
         let label = ui.label(tr(model, Key::MotionGoalLabel));
         let go = ui
             .horizontal(|ui| {
+                // The field takes what the button leaves of the visible room (up to 140
+                // points): wider, it pushed Drive out of a projector's column and widened
+                // the panel, so that the texts under it wrapped past its edge.
+                let drive = tr(model, Key::MotionDrive);
+                let font = egui::TextStyle::Button.resolve(ui.style());
+                let spacing = ui.spacing();
+                let button = style::text_width(ui, drive, &font) + 2.0 * spacing.button_padding.x;
+                let field = (style::room(ui) - button - spacing.item_spacing.x).clamp(60.0, 140.0);
                 let r = ui
                     .add(
                         egui::TextEdit::singleline(&mut self.goal_text)
                             .id_salt("motion_goal")
                             .hint_text(tr(model, Key::MotionGoalHint))
-                            .desired_width(140.0),
+                            .desired_width(field),
                     )
                     .labelled_by(label.id);
                 let enter = r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
                 let clicked = ui
-                    .add_enabled(
-                        model.motion().on(),
-                        egui::Button::new(tr(model, Key::MotionDrive)),
-                    )
+                    .add_enabled(model.motion().on(), egui::Button::new(drive))
                     .clicked();
                 enter || clicked
             })

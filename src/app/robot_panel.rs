@@ -327,35 +327,27 @@ impl RobotPanel {
             RobotSource::Custom => None,
         };
         let mut chosen = None;
-        // The menu takes the row less its label; a long robot name is cut with "…" rather
-        // than pushing the label out of the column (or wrapping it a letter per line).
-        let label = tr(model, Key::Preset);
-        let font = egui::TextStyle::Button.resolve(ui.style());
-        let spacing = ui.spacing();
-        let room =
-            style::room(ui) - style::text_width(ui, label, &font) - 2.0 * spacing.item_spacing.x;
         let name = match current {
             Some(_) => model.robot().name.clone(),
             None => trf(model, Key::Edited, &[&model.robot().name]),
         };
-        let text_room = room - spacing.icon_width - 2.0 * spacing.button_padding.x - 4.0;
-        let selected = style::cut_to_width(ui, &name, &font, text_room);
-        ui.scope(|ui| {
-            ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Extend);
-            egui::ComboBox::new("preset_chooser", label)
-                .selected_text(selected)
-                .width(room.clamp(80.0, 230.0))
-                .show_ui(ui, |ui| {
-                    for (id, name) in preset_names() {
-                        if ui
-                            .selectable_label(current.as_deref() == Some(*id), name.as_str())
-                            .clicked()
-                        {
-                            chosen = Some(*id);
-                        }
+        style::fitted_menu(
+            ui,
+            "preset_chooser",
+            tr(model, Key::Preset),
+            &name,
+            Some(230.0),
+            |ui| {
+                for (id, name) in preset_names() {
+                    if ui
+                        .selectable_label(current.as_deref() == Some(*id), name.as_str())
+                        .clicked()
+                    {
+                        chosen = Some(*id);
                     }
-                });
-        });
+                }
+            },
+        );
         if let Some(id) = chosen {
             match preset(id) {
                 Ok(robot) => self.load_robot(model, robot, RobotSource::Preset(id.to_string())),

@@ -215,6 +215,38 @@ pub fn text_width(ui: &egui::Ui, text: &str, font: &egui::FontId) -> f32 {
         .x
 }
 
+/// A menu with its label on its right (egui's `ComboBox::new`) that keeps to the visible
+/// room: `wish` points wide (`None`: as wide as its selected text, egui's default) or what
+/// the room leaves beside the label if less, its selected text then cut with "…", and its
+/// label on one line. Left to egui, a long selected text took the row and the label
+/// wrapped a letter per line ("P / r / e / s / e / t").
+pub fn fitted_menu<R>(
+    ui: &mut egui::Ui,
+    id_salt: &str,
+    label: &str,
+    selected: &str,
+    wish: Option<f32>,
+    add_contents: impl FnOnce(&mut egui::Ui) -> R,
+) -> egui::InnerResponse<Option<R>> {
+    let font = egui::TextStyle::Button.resolve(ui.style());
+    let spacing = ui.spacing();
+    // The button's frame around its text: padding, the arrow and the gap before it.
+    let frame = spacing.icon_width + 2.0 * spacing.button_padding.x + 4.0;
+    let wish =
+        wish.unwrap_or_else(|| (text_width(ui, selected, &font) + frame).max(spacing.combo_width));
+    let room = room(ui) - text_width(ui, label, &font) - 2.0 * spacing.item_spacing.x;
+    let width = wish.min(room).max(80.0);
+    let selected = cut_to_width(ui, selected, &font, width - frame);
+    ui.scope(|ui| {
+        ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Extend);
+        egui::ComboBox::new(id_salt, label)
+            .selected_text(selected)
+            .width(width)
+            .show_ui(ui, add_contents)
+    })
+    .inner
+}
+
 /// `text`, cut to at most `width` points in `font` and ended with "…" when it was cut.
 pub fn cut_to_width(ui: &egui::Ui, text: &str, font: &egui::FontId, width: f32) -> String {
     if text_width(ui, text, font) <= width {
