@@ -1554,3 +1554,59 @@ fn on_a_projector_the_motion_panel_keeps_to_its_column() {
         "Drive at {drive:?}"
     );
 }
+
+/// What of the left column runs into the view (its unclipped rectangle crosses the view's
+/// left edge: cut where a person sees it) or stands a letter per line, with the fold
+/// `fold` open.
+fn left_column_overflow(h: &Harness<'_, ArmLabApp>, fold: &str) -> Vec<String> {
+    let view = h.state().viewport().rect().expect("the view was laid out");
+    let mut found = Vec::new();
+    for node in h.query_all(egui_kittest::kittest::by().include_labels()) {
+        let Some(b) = node.accesskit_node().bounding_box() else {
+            continue;
+        };
+        let r = egui::Rect::from_min_max(
+            egui::pos2(b.x0 as f32, b.y0 as f32),
+            egui::pos2(b.x1 as f32, b.y1 as f32),
+        );
+        let ak = node.accesskit_node();
+        let text = ak.label().or(ak.value()).unwrap_or_default();
+        // The top bar and the column's resize handle are not the column's content.
+        if r.top() < view.top() || text == "Resize panel" || r.top() > view.bottom() {
+            continue;
+        }
+        if r.left() < view.left() - 1.0 && r.right() > view.left() + 1.0 {
+            found.push(format!("{fold}: {text:?} runs to x {:.0}", r.right()));
+        }
+        if text.chars().count() >= 3 && r.width() < 20.0 && r.height() > 40.0 {
+            found.push(format!("{fold}: {text:?} a letter per line"));
+        }
+    }
+    found
+}
+
+#[test]
+fn on_a_projector_nothing_in_the_left_column_runs_into_the_view() {
+    for hash in [
+        "#robot=ur10&panels=joints,ik,robot,matrices",
+        "#robot=ur10&panels=motion,matrices",
+        "#robot=scara&panels=joints,robot,matrices",
+    ] {
+        let mut h = harness_at(hash, [1024.0, 768.0]);
+        let view = h.state().viewport().rect().expect("the view was laid out");
+        let folds: Vec<String> = h
+            .query_all_by_role(Role::DisclosureTriangle)
+            .filter(|n| n.rect().right() < view.left())
+            .filter_map(|n| n.accesskit_node().label())
+            .collect();
+        let mut found = left_column_overflow(&h, "none");
+        for fold in folds {
+            h.get_by_label(&fold).click();
+            h.run_steps(3);
+            found.extend(left_column_overflow(&h, &fold));
+            h.get_by_label(&fold).click();
+            h.run_steps(3);
+        }
+        assert!(found.is_empty(), "{hash}: {found:#?}");
+    }
+}

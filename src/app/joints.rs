@@ -9,7 +9,7 @@ use super::hook::ScreenPoints;
 use super::matrices::overlay_checkbox;
 use super::model::{HoverSource, Model};
 use super::settings::Overlay;
-use super::{Panel, tr, trf};
+use super::{Panel, style, tr, trf};
 use crate::i18n::Key;
 
 /// The joint sliders, the self-motion slider of a redundant arm and the joint-speed rows.
@@ -107,6 +107,77 @@ impl Panel for JointsPanel {
     }
 }
 
+/// A speed slider's range: ±1 rad/s, or ±a quarter of the reach per second for a
+/// prismatic joint.
+fn speed_range(model: &Model, joint: &Joint) -> f64 {
+    match joint.kind {
+        JointKind::Revolute => 1.0,
+        JointKind::Prismatic => 0.25 * model.robot().reach(),
+    }
+}
+
+/// The speed sliders' rail: what the fold's visible room leaves beside the name and the
+/// widest value. The joints' rail, set without the fold's indent and for other values,
+/// pushed the speeds (then with their units, "0.00 rad/s") past a projector's column, and
+/// the tool's v and ω under them wrapped at that width, out of sight.
+fn speed_rail(ui: &mut egui::Ui, model: &Model) {
+    let widest = model
+        .robot()
+        .joints
+        .iter()
+        .map(|j| format!("-{:.2}", speed_range(model, j)))
+        .max_by_key(|t| t.len())
+        .unwrap_or_default();
+    fit_rail(ui, "q̇00", &widest);
+}
+
+/// Sets the slider rail to what the visible room leaves on a row beside a name and a
+/// value as wide as these texts (with the value box's padding and the gaps between), at
+/// least 40 points; returns what the room left.
+fn fit_rail(ui: &mut egui::Ui, name: &str, value: &str) -> f32 {
+    let font = egui::TextStyle::Body.resolve(ui.style());
+    let spacing = ui.spacing();
+    let taken = style::text_width(ui, name, &font)
+        + style::text_width(ui, value, &font)
+        + 2.0 * spacing.button_padding.x
+        + 3.0 * spacing.item_spacing.x;
+    let left = style::room(ui) - taken;
+    ui.spacing_mut().slider_width = left.clamp(40.0, 320.0);
+    left
+}
+
+/// The self-motion slider (±3 rad, in steps of 0.05 rad: an arrow key moves it by one
+/// step whatever the rail's width), with its name beside it where the row leaves the rail
+/// 60 points, else above it (a projector's column).
+fn self_motion_slider(ui: &mut egui::Ui, model: &Model, s: &mut f64) -> egui::Response {
+    let name = tr(model, Key::SelfMotion);
+    let value = "-3.00 rad";
+    let slider = |ui: &mut egui::Ui, s: &mut f64, label: egui::Id| {
+        ui.add(
+            egui::Slider::new(s, -3.0..=3.0)
+                .suffix(" rad")
+                .step_by(0.05)
+                .fixed_decimals(2),
+        )
+        .labelled_by(label)
+    };
+    ui.scope(|ui| {
+        let hint = tr(model, Key::SelfMotionHint);
+        if fit_rail(ui, name, value) >= 60.0 {
+            ui.horizontal(|ui| {
+                let label = ui.label(name).on_hover_text(hint);
+                slider(ui, s, label.id)
+            })
+            .inner
+        } else {
+            let label = ui.label(name).on_hover_text(hint);
+            fit_rail(ui, "", value);
+            slider(ui, s, label.id)
+        }
+    })
+    .inner
+}
+
 impl JointsPanel {
     /// The self-motion slider, for an arm with exactly one joint more than task rows.
     fn self_motion_ui(&mut self, model: &mut Model, ui: &mut egui::Ui) {
@@ -127,19 +198,7 @@ impl JointsPanel {
         let mut state = state;
         ui.separator();
         let mut s = state.s;
-        let response = ui
-            .horizontal(|ui| {
-                let label = ui
-                    .label(tr(model, Key::SelfMotion))
-                    .on_hover_text(tr(model, Key::SelfMotionHint));
-                ui.add(
-                    egui::Slider::new(&mut s, -3.0..=3.0)
-                        .suffix(" rad")
-                        .fixed_decimals(2),
-                )
-                .labelled_by(label.id)
-            })
-            .inner;
+        let response = self_motion_slider(ui, model, &mut s);
         if response.changed() {
             let unit = model.robot().length_unit.symbol();
             match self_motion(model.robot(), &state.anchor, model.task(), s) {
@@ -192,26 +251,28 @@ impl JointsPanel {
                 .default_open(false)
                 .show(ui, |ui| {
                     ui.label(egui::RichText::new(tr(model, Key::JointSpeedsHint)).small());
+                    // The units once, above the sliders: beside each value they did not
+                    // fit a projector's column.
+                    let robot = model.robot();
+                    let units = if robot.joints.iter().any(|j| j.kind == JointKind::Prismatic) {
+                        let unit = robot.length_unit.symbol();
+                        trf(model, Key::JointSpeedsUnitsPrismatic, &[&unit])
+                    } else {
+                        tr(model, Key::JointSpeedsUnits).to_string()
+                    };
+                    ui.label(egui::RichText::new(units).small());
                     let mut speeds = model.joint_speeds();
-                    let reach = model.robot().reach();
                     let mut changed = false;
+                    speed_rail(ui, model);
                     egui::Grid::new("joint_speed_rows")
                         .num_columns(2)
+                        .min_col_width(0.0)
                         .show(ui, |ui| {
                             for (i, joint) in model.robot().joints.iter().enumerate() {
-                                let (range, unit) = match joint.kind {
-                                    JointKind::Revolute => (1.0, "rad/s".to_string()),
-                                    JointKind::Prismatic => (
-                                        0.25 * reach,
-                                        format!("{}/s", model.robot().length_unit.symbol()),
-                                    ),
-                                };
+                                let range = speed_range(model, joint);
                                 ui.label(format!("q̇{}", i + 1));
                                 changed |= ui
-                                    .add(
-                                        egui::Slider::new(&mut speeds[i], -range..=range)
-                                            .suffix(format!(" {unit}")),
-                                    )
+                                    .add(egui::Slider::new(&mut speeds[i], -range..=range))
                                     .changed();
                                 ui.end_row();
                             }

@@ -216,6 +216,8 @@ catalogue! {
     DrawNullSpace: "draw how each joint moves" / "piirrä kunkin nivelen liike",
     JointSpeeds: "Joint speeds q̇" / "Nivelnopeudet q̇",
     JointSpeedsHint: "Velocity kinematics: the tool's v and ω = J q̇" / "Nopeuskinematiikka: työkalun v ja ω = J q̇",
+    JointSpeedsUnits: "q̇ in rad/s." / "q̇ yksikössä rad/s.",
+    JointSpeedsUnitsPrismatic: "q̇ in rad/s; a prismatic joint's in {0}/s." / "q̇ yksikössä rad/s; liukunivelen yksikössä {0}/s.",
     ToolTwist: "v = ({0}) {1}/s,  ω = ({2}) rad/s" / "v = ({0}) {1}/s,  ω = ({2}) rad/s",
     DrawTwist: "draw v and ω" / "piirrä v ja ω",
     Play: "Play" / "Toista",
