@@ -64,9 +64,8 @@ impl Panel for JointsPanel {
         let mut changed = false;
         let mut slider_under = None;
         self.sliders.clear();
-        // The slider fills the column: the label and the value box beside it stay.
-        let rail = (ui.available_width() - 110.0).clamp(60.0, 320.0);
-        ui.spacing_mut().slider_width = rail;
+        // The slider fills the column: the name and the value box beside it stay.
+        joints_rail(ui, model);
         egui::Grid::new("joint_sliders")
             .num_columns(2)
             .striped(true)
@@ -128,16 +127,43 @@ fn speed_rail(ui: &mut egui::Ui, model: &Model) {
         .map(|j| format!("-{:.2}", speed_range(model, j)))
         .max_by_key(|t| t.len())
         .unwrap_or_default();
-    fit_rail(ui, "q̇00", &widest);
+    let font = egui::TextStyle::Body.resolve(ui.style());
+    let name_width = style::text_width(ui, "q̇00", &font);
+    fit_rail(ui, name_width, &widest);
 }
 
-/// Sets the slider rail to what the visible room leaves on a row beside a name and a
-/// value as wide as these texts (with the value box's padding and the gaps between), at
-/// least 40 points; returns what the room left.
-fn fit_rail(ui: &mut egui::Ui, name: &str, value: &str) -> f32 {
+/// The joint sliders' rail: what the visible room leaves beside the widest name (the
+/// grid's name column is at least egui's interact width) and the widest value at either
+/// limit. A fixed 110 points for both left a prismatic joint's "-0.300 m" past a phone's
+/// edge.
+fn joints_rail(ui: &mut egui::Ui, model: &Model) {
+    let robot = model.robot();
+    let degrees = model.settings().degrees;
+    let unit = robot.length_unit.symbol();
+    let widest = robot
+        .joints
+        .iter()
+        .flat_map(|j| [j.limits.min, j.limits.max].map(|v| (j.kind, v)))
+        .map(|(kind, v)| match kind {
+            JointKind::Revolute if degrees => format!("{:.1}°", v.to_degrees()),
+            JointKind::Revolute => format!("{v:.3} rad"),
+            JointKind::Prismatic => format!("{v:.3} {unit}"),
+        })
+        .max_by_key(|t| t.chars().count())
+        .unwrap_or_default();
+    let name = format!("θ{}", robot.dof());
+    let font = egui::TextStyle::Body.resolve(ui.style());
+    let name_width = style::text_width(ui, &name, &font).max(ui.spacing().interact_size.x);
+    fit_rail(ui, name_width, &widest);
+}
+
+/// Sets the slider rail to what the visible room leaves on a row beside a name
+/// `name_width` wide and a value as wide as `value` (with the value box's padding and the
+/// gaps between), at least 40 points; returns what the room left.
+fn fit_rail(ui: &mut egui::Ui, name_width: f32, value: &str) -> f32 {
     let font = egui::TextStyle::Body.resolve(ui.style());
     let spacing = ui.spacing();
-    let taken = style::text_width(ui, name, &font)
+    let taken = name_width
         + style::text_width(ui, value, &font)
         + 2.0 * spacing.button_padding.x
         + 3.0 * spacing.item_spacing.x;
@@ -163,7 +189,8 @@ fn self_motion_slider(ui: &mut egui::Ui, model: &Model, s: &mut f64) -> egui::Re
     };
     ui.scope(|ui| {
         let hint = tr(model, Key::SelfMotionHint);
-        if fit_rail(ui, name, value) >= 60.0 {
+        let font = egui::TextStyle::Body.resolve(ui.style());
+        if fit_rail(ui, style::text_width(ui, name, &font), value) >= 60.0 {
             ui.horizontal(|ui| {
                 let label = ui.label(name).on_hover_text(hint);
                 slider(ui, s, label.id)
@@ -171,7 +198,7 @@ fn self_motion_slider(ui: &mut egui::Ui, model: &Model, s: &mut f64) -> egui::Re
             .inner
         } else {
             let label = ui.label(name).on_hover_text(hint);
-            fit_rail(ui, "", value);
+            fit_rail(ui, 0.0, value);
             slider(ui, s, label.id)
         }
     })
