@@ -514,6 +514,12 @@ test('typing 1e999 into a DH cell at 1024×768 leaves the 3D view its share', as
   await typeIntoDhCell(page, 'dh-1-2', '1e999');
   const after = await page.evaluate(() => window.armlab.viewRect());
   assert.ok(Math.abs(after.width - before.width) <= 1, `the view stays ${before.width} px wide (now ${after.width})`);
+  // Every cell of the first joint sits in the column, left of the view (the table turns
+  // into a block per joint here; one line per joint put the limits at x 323-407).
+  for (let c = 1; c <= 6; c++) {
+    const cell = await point(page, `dh-1-${c}`);
+    assert.ok(cell.x > 30 && cell.x < after.x, `cell dh-1-${c} at x ${cell.x.toFixed(0)} lies in the column (the view starts at ${after.x})`);
+  }
   // The cell says what is wrong, and the keys typed into it did not act as shortcuts.
   const s = await state(page);
   assert.match(s.editor_error ?? '', /finite/);
