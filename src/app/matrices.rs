@@ -205,9 +205,9 @@ fn matrix_body(
 const FIT_SCALES: [f32; 3] = [1.0, 0.9, 0.8];
 
 /// The font at the largest of [`FIT_SCALES`] whose table fits the visible room; `None`
-/// when none does. Measured without laying the numbers out: the monospace digits, sign
-/// and point share one advance width, so a column is as wide as its longest number's
-/// characters, and the gap is two characters (as [`number_table`] draws it).
+/// when none does. Measured without laying the numbers out: each number's width is its
+/// digits', sign's and point's [`Advances`], a column is as wide as its widest number, and
+/// the gap is two digits (as [`number_table`] draws it).
 fn fit_font(
     ui: &egui::Ui,
     m: &DMatrix<f64>,
@@ -215,33 +215,80 @@ fn fit_font(
     font: egui::FontId,
 ) -> Option<egui::FontId> {
     use std::fmt::Write as _;
-    let advance = ui.fonts_mut(|f| f.glyph_width(&font, '0'));
+    // Each entry's count of digits, minus signs and points.
     let mut text = String::new();
-    let mut chars = 2 * m.ncols().saturating_sub(1);
-    for column in m.column_iter() {
-        let mut widest = 0;
-        for v in column.iter() {
+    let counts: Vec<[usize; 3]> = m
+        .iter()
+        .map(|v| {
             text.clear();
             // Writing to a String cannot fail.
             let _ = write!(text, "{:.p$}", clean(*v, decimals), p = decimals);
-            widest = widest.max(text.chars().count());
-        }
-        chars += widest;
-    }
-    let width = advance * chars as f32;
+            let minus = text.matches('-').count();
+            let point = text.matches('.').count();
+            [text.chars().count() - minus - point, minus, point]
+        })
+        .collect();
     let room = style::room(ui);
-    // Glyph widths scale with the size, up to rounding: a small margin covers that.
-    let scale = FIT_SCALES.into_iter().find(|s| width * s <= room * 0.98)?;
-    Some(egui::FontId::new(font.size * scale, font.family))
+    let rows = m.nrows().max(1);
+    FIT_SCALES
+        .into_iter()
+        .map(|scale| egui::FontId::new(font.size * scale, font.family.clone()))
+        .find(|f| {
+            let a = Advances::new(ui, f);
+            let columns: f32 = counts
+                .chunks(rows)
+                .map(|column| {
+                    column
+                        .iter()
+                        .map(|[d, mi, p]| {
+                            a.digit * *d as f32 + a.minus * *mi as f32 + a.point * *p as f32
+                        })
+                        .fold(0.0, f32::max)
+                })
+                .sum();
+            columns + a.gap() * m.ncols().saturating_sub(1) as f32 <= room
+        })
 }
 
-/// The gap between a table's columns: two digits' width.
-fn column_gap(quads: &[GlyphQuad<'_>]) -> f32 {
-    quads
-        .iter()
-        .find(|(g, _)| g.chr == '0')
-        .map_or(8.0, |(g, _)| g.advance_width)
-        * 2.0
+/// The advances of a number's characters in a font (points), each rounded to whole
+/// pixels. egui puts each glyph of a laid-out text on a whole pixel; copies placed at the
+/// sum of the exact advances (8.27 points for a digit at full size, 5.78 pixels at 80 %)
+/// were each rounded on their own, and the digits came out unevenly spaced.
+#[derive(Debug, Clone, Copy)]
+struct Advances {
+    digit: f32,
+    minus: f32,
+    point: f32,
+}
+
+impl Advances {
+    fn new(ui: &egui::Ui, font: &egui::FontId) -> Self {
+        let ppp = ui.ctx().pixels_per_point();
+        let snap = |c: char| {
+            let advance = ui.fonts_mut(|f| f.glyph_width(font, c));
+            (advance * ppp).round().max(1.0) / ppp
+        };
+        Self {
+            digit: snap('0'),
+            minus: snap('-'),
+            point: snap('.'),
+        }
+    }
+
+    /// The advance of one of [`NUMBER_CHARS`] (the digits share one: the font's digits
+    /// are tabular).
+    fn of(&self, c: char) -> f32 {
+        match c {
+            '-' => self.minus,
+            '.' => self.point,
+            _ => self.digit,
+        }
+    }
+
+    /// The gap between a table's columns: two digits.
+    fn gap(&self) -> f32 {
+        2.0 * self.digit
+    }
 }
 
 /// The characters a formatted number can hold.
@@ -263,6 +310,7 @@ fn number_table(
     font: egui::FontId,
 ) -> egui::Response {
     let color = ui.visuals().text_color();
+    let font_id = font.clone();
     let glyphs = ui
         .painter()
         .layout_no_wrap(NUMBER_CHARS.to_owned(), font, color);
@@ -270,11 +318,12 @@ fn number_table(
         return ui.label(plain_text(m, decimals));
     };
     let quads = glyph_quads(row);
-    let Some(cells) = number_cells(m, decimals, &quads) else {
+    let advances = Advances::new(ui, &font_id);
+    let Some(cells) = number_cells(m, decimals, &quads, &advances) else {
         // A number this table cannot draw (NaN, infinity): plain text instead.
         return ui.label(plain_text(m, decimals));
     };
-    let gap = column_gap(&quads);
+    let gap = advances.gap();
     let column_widths: Vec<f32> = cells
         .chunks(m.nrows().max(1))
         .map(|column| column.iter().map(|(_, w)| *w).fold(0.0, f32::max))
@@ -293,6 +342,7 @@ fn number_table(
     let layout = TableLayout {
         rect,
         row_height,
+        advances,
         gap,
         rows: m.nrows().max(1),
         column_widths: &column_widths,
@@ -340,6 +390,7 @@ fn number_cells<'a, 'b>(
     m: &DMatrix<f64>,
     decimals: usize,
     quads: &'b [GlyphQuad<'a>],
+    advances: &Advances,
 ) -> Option<Vec<NumberCell<'a, 'b>>> {
     m.iter()
         .map(|v| {
@@ -348,7 +399,7 @@ fn number_cells<'a, 'b>(
                 .chars()
                 .map(|c| quads.iter().find(|(g, _)| g.chr == c))
                 .collect::<Option<Vec<_>>>()?;
-            let width: f32 = chars.iter().map(|(g, _)| g.advance_width).sum();
+            let width: f32 = chars.iter().map(|(g, _)| advances.of(g.chr)).sum();
             Some((chars, width))
         })
         .collect()
@@ -358,6 +409,8 @@ fn number_cells<'a, 'b>(
 struct TableLayout<'a> {
     rect: egui::Rect,
     row_height: f32,
+    /// The characters' advances, on whole pixels.
+    advances: Advances,
     gap: f32,
     rows: usize,
     column_widths: &'a [f32],
@@ -396,7 +449,7 @@ fn numbers_mesh(
                     mesh.add_triangle(quad_start, quad_start + 1, quad_start + 2);
                     mesh.add_triangle(quad_start + 2, quad_start + 1, quad_start + 3);
                 }
-                x += glyph.advance_width;
+                x += layout.advances.of(glyph.chr);
             }
         }
         left += column_width + layout.gap;
