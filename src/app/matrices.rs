@@ -176,19 +176,31 @@ fn matrix_body(
 ) -> bool {
     let id = ui.make_persistent_id(("matrix body", title));
     style::unless_out_of_sight(ui, id, |ui| {
-        let interactive = hiding.interactive(target);
-        let font = egui::TextStyle::Monospace.resolve(ui.style());
-        let fit = (!interactive).then(|| fit_font(ui, m, decimals, font.clone()));
+        let area = egui::ScrollArea::horizontal().id_salt(("matrix scroll", title));
+        if hiding.interactive(target) {
+            return area
+                .show(ui, |ui| hiding_table(ui, lang, m, decimals, target, hiding))
+                .inner
+                .hovered();
+        }
+        // Each number formatted once a frame, for the fit and for the table.
+        let texts = number_texts(m, decimals);
+        let full = egui::TextStyle::Monospace.resolve(ui.style());
+        let fit = fit_font(ui, &texts, m.nrows(), &full);
+        let scrolls = fit.is_none();
+        let (font, advances) = fit.unwrap_or_else(|| {
+            let advances = Advances::new(ui, &full);
+            (full, advances)
+        });
         ui.scope(|ui| {
-            let mut area = egui::ScrollArea::horizontal().id_salt(("matrix scroll", title));
-            if matches!(fit, Some(None)) {
+            let mut area = area;
+            if scrolls {
                 ui.spacing_mut().scroll = egui::style::ScrollStyle::solid();
                 area = area
                     .scroll_bar_visibility(egui::scroll_area::ScrollBarVisibility::AlwaysVisible);
             }
-            area.show(ui, |ui| match fit {
-                Some(fit) => number_table(ui, m, decimals, fit.unwrap_or(font)),
-                None => hiding_table(ui, lang, m, decimals, target, hiding),
+            area.show(ui, |ui| {
+                number_table(ui, m, decimals, &texts, font, advances)
             })
             .inner
             .hovered()
@@ -204,50 +216,35 @@ fn matrix_body(
 /// font atlas) in every frame.
 const FIT_SCALES: [f32; 3] = [1.0, 0.9, 0.8];
 
-/// The font at the largest of [`FIT_SCALES`] whose table fits the visible room; `None`
-/// when none does. Measured without laying the numbers out: each number's width is its
-/// digits', sign's and point's [`Advances`], a column is as wide as its widest number, and
-/// the gap is two digits (as [`number_table`] draws it).
+/// Each entry's text as the table draws it (column-major, as nalgebra stores them).
+fn number_texts(m: &DMatrix<f64>, decimals: usize) -> Vec<String> {
+    m.iter()
+        .map(|v| format!("{:.p$}", clean(*v, decimals), p = decimals))
+        .collect()
+}
+
+/// The font at the largest of [`FIT_SCALES`] whose table of `texts` (`rows` per column)
+/// fits the visible room, with its [`Advances`]; `None` when none does. Measured without
+/// laying the numbers out: a column is as wide as its widest number, and the gap is two
+/// digits (as [`number_table`] draws it).
 fn fit_font(
     ui: &egui::Ui,
-    m: &DMatrix<f64>,
-    decimals: usize,
-    font: egui::FontId,
-) -> Option<egui::FontId> {
-    use std::fmt::Write as _;
-    // Each entry's count of digits, minus signs and points.
-    let mut text = String::new();
-    let counts: Vec<[usize; 3]> = m
-        .iter()
-        .map(|v| {
-            text.clear();
-            // Writing to a String cannot fail.
-            let _ = write!(text, "{:.p$}", clean(*v, decimals), p = decimals);
-            let minus = text.matches('-').count();
-            let point = text.matches('.').count();
-            [text.chars().count() - minus - point, minus, point]
-        })
-        .collect();
+    texts: &[String],
+    rows: usize,
+    font: &egui::FontId,
+) -> Option<(egui::FontId, Advances)> {
     let room = style::room(ui);
-    let rows = m.nrows().max(1);
-    FIT_SCALES
-        .into_iter()
-        .map(|scale| egui::FontId::new(font.size * scale, font.family.clone()))
-        .find(|f| {
-            let a = Advances::new(ui, f);
-            let columns: f32 = counts
-                .chunks(rows)
-                .map(|column| {
-                    column
-                        .iter()
-                        .map(|[d, mi, p]| {
-                            a.digit * *d as f32 + a.minus * *mi as f32 + a.point * *p as f32
-                        })
-                        .fold(0.0, f32::max)
-                })
-                .sum();
-            columns + a.gap() * m.ncols().saturating_sub(1) as f32 <= room
-        })
+    let rows = rows.max(1);
+    let gaps = texts.len().div_ceil(rows).saturating_sub(1) as f32;
+    FIT_SCALES.into_iter().find_map(|scale| {
+        let font = egui::FontId::new(font.size * scale, font.family.clone());
+        let a = Advances::new(ui, &font);
+        let columns: f32 = texts
+            .chunks(rows)
+            .map(|column| column.iter().map(|t| a.width(t)).fold(0.0, f32::max))
+            .sum();
+        (columns + a.gap() * gaps <= room).then_some((font, a))
+    })
 }
 
 /// The advances of a number's characters in a font (points), each rounded to whole
@@ -285,6 +282,11 @@ impl Advances {
         }
     }
 
+    /// The width of a number's text.
+    fn width(&self, text: &str) -> f32 {
+        text.chars().map(|c| self.of(c)).sum()
+    }
+
     /// The gap between a table's columns: two digits.
     fn gap(&self) -> f32 {
         2.0 * self.digit
@@ -307,10 +309,11 @@ fn number_table(
     ui: &mut egui::Ui,
     m: &DMatrix<f64>,
     decimals: usize,
+    texts: &[String],
     font: egui::FontId,
+    advances: Advances,
 ) -> egui::Response {
     let color = ui.visuals().text_color();
-    let font_id = font.clone();
     let glyphs = ui
         .painter()
         .layout_no_wrap(NUMBER_CHARS.to_owned(), font, color);
@@ -318,8 +321,7 @@ fn number_table(
         return ui.label(plain_text(m, decimals));
     };
     let quads = glyph_quads(row);
-    let advances = Advances::new(ui, &font_id);
-    let Some(cells) = number_cells(m, decimals, &quads, &advances) else {
+    let Some(cells) = number_cells(texts, &quads, &advances) else {
         // A number this table cannot draw (NaN, infinity): plain text instead.
         return ui.label(plain_text(m, decimals));
     };
@@ -387,20 +389,18 @@ fn glyph_quads(row: &egui::epaint::text::Row) -> Vec<GlyphQuad<'_>> {
 /// Each number (column-major, as nalgebra stores them) as its quads and its width; none
 /// when a number has a character outside [`NUMBER_CHARS`].
 fn number_cells<'a, 'b>(
-    m: &DMatrix<f64>,
-    decimals: usize,
+    texts: &[String],
     quads: &'b [GlyphQuad<'a>],
     advances: &Advances,
 ) -> Option<Vec<NumberCell<'a, 'b>>> {
-    m.iter()
-        .map(|v| {
-            let text = format!("{:.p$}", clean(*v, decimals), p = decimals);
+    texts
+        .iter()
+        .map(|text| {
             let chars = text
                 .chars()
                 .map(|c| quads.iter().find(|(g, _)| g.chr == c))
                 .collect::<Option<Vec<_>>>()?;
-            let width: f32 = chars.iter().map(|(g, _)| advances.of(g.chr)).sum();
-            Some((chars, width))
+            Some((chars, advances.width(text)))
         })
         .collect()
 }
@@ -1212,16 +1212,18 @@ mod tests {
     #[test]
     fn a_matrix_a_little_too_wide_is_drawn_smaller_and_fits() {
         let full = egui::FontId::monospace(12.0);
+        let texts = number_texts(&tool_pose(), 3);
         // Wide enough: full size.
-        let fit = in_a_column(400.0, |ui| fit_font(ui, &tool_pose(), 3, full.clone()));
+        let fit = in_a_column(400.0, |ui| fit_font(ui, &texts, 4, &full).map(|(f, _)| f));
         assert_eq!(fit, Some(full.clone()));
         // A projector's right column: smaller, and the table then fits its room.
         let (fit, width, room) = in_a_column(209.0, |ui| {
             let room = style::room(ui);
-            let fit = fit_font(ui, &tool_pose(), 3, full.clone());
-            let font = fit.clone().unwrap_or(full.clone());
-            let width = number_table(ui, &tool_pose(), 3, font).rect.width();
-            (fit, width, room)
+            let fit = fit_font(ui, &texts, 4, &full);
+            let font = fit.as_ref().map(|(f, _)| f.clone());
+            let (f, a) = fit.unwrap_or_else(|| (full.clone(), Advances::new(ui, &full)));
+            let width = number_table(ui, &tool_pose(), 3, &texts, f, a).rect.width();
+            (font, width, room)
         });
         let size = fit.expect("a size that fits").size;
         assert!((12.0 * 0.8..12.0).contains(&size), "{size}");
@@ -1232,7 +1234,8 @@ mod tests {
     fn a_matrix_much_too_wide_keeps_its_size_and_scrolls() {
         let jacobian = DMatrix::from_fn(6, 6, |r, c| -337.187 + (r * 6 + c) as f64);
         let full = egui::FontId::monospace(12.0);
-        let fit = in_a_column(209.0, |ui| fit_font(ui, &jacobian, 3, full.clone()));
+        let texts = number_texts(&jacobian, 3);
+        let fit = in_a_column(209.0, |ui| fit_font(ui, &texts, 6, &full).map(|(f, _)| f));
         assert_eq!(fit, None, "none of the sizes fits: it scrolls at full size");
     }
 }
