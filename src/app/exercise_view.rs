@@ -73,26 +73,21 @@ impl ExercisePanel {
             return;
         };
         // Sentences wrap at the column's visible edge (the table may be wider and scroll).
-        let visible = (ui.clip_rect().right() - ui.cursor().left() - 6.0).max(120.0);
         if let Some(verdict) = exercise.verdict {
             let color = match verdict {
                 Verdict::Correct => style::REACHED,
                 Verdict::Wrong(_) => style::ERROR,
             };
             let sentence = egui::RichText::new(verdict.sentence(model.settings().lang));
-            ui.scope(|ui| {
-                ui.set_max_width(visible);
-                ui.add(egui::Label::new(sentence.color(color)).wrap());
-            });
+            style::sentence(ui, sentence.color(color));
         }
         if exercise.solved {
             own_table(model, ui);
         }
-        let hint = egui::RichText::new(tr(model, Key::ExerciseShareHint)).small();
-        ui.scope(|ui| {
-            ui.set_max_width(visible);
-            ui.add(egui::Label::new(hint).wrap());
-        });
+        style::sentence(
+            ui,
+            egui::RichText::new(tr(model, Key::ExerciseShareHint)).small(),
+        );
     }
 
     /// Grades the answer; a cell that is not a number is named beside it instead.

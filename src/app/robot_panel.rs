@@ -719,11 +719,8 @@ pub(super) fn dh_rows(
             });
     }
     if let Some(error) = error {
-        ui.scope(|ui| {
-            ui.set_max_width(room.max(120.0));
-            let sentence = egui::RichText::new(error.sentence(model.settings().lang));
-            ui.add(egui::Label::new(sentence.color(style::ERROR)).wrap());
-        });
+        let sentence = egui::RichText::new(error.sentence(model.settings().lang));
+        style::sentence(ui, sentence.color(style::ERROR));
     }
     edit
 }

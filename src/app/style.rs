@@ -207,6 +207,17 @@ pub struct NameRow {
     pub values: Vec<String>,
 }
 
+/// A sentence wrapped at the visible edge of its panel ([`room`]), however wide a table
+/// above it (one that scrolls sideways) has made the layout.
+pub fn sentence(ui: &mut egui::Ui, text: egui::RichText) -> egui::Response {
+    let width = room(ui).max(120.0);
+    ui.scope(|ui| {
+        ui.set_max_width(width);
+        ui.add(egui::Label::new(text).wrap())
+    })
+    .inner
+}
+
 /// The width of `text` on one line in `font` (points).
 pub fn text_width(ui: &egui::Ui, text: &str, font: &egui::FontId) -> f32 {
     ui.painter()
