@@ -162,12 +162,18 @@ fn with_every_panel_open_no_text_is_english() {
     h.run_steps(2);
     assert_eq!(h.state().model().ik().reach, Reach::Reached);
     assert!(h.state().ik_panel().replay().run.is_some(), "a replay");
-    // The DH table, and the file dialog over everything.
+    // The DH table, and the file dialog over everything. The IK menus' long Finnish names
+    // take two lines each, and the replay's rows push the table's fold below the left
+    // column's edge: a person scrolls down to it first.
+    let solve = h.get_by_label(text(Lang::Fi, Key::Solve)).rect().center();
+    app_harness::wheel(&mut h, solve, -300.0);
     h.get_by_label(text(Lang::Fi, Key::DhTable)).click();
     h.run_steps(2);
     // Blocks below the fold are not laid out: the matrices panel is read while it is
     // scrolled through to its end, as a person would, then back at the top.
     let mut texts = scrolled_texts(&mut h, text(Lang::Fi, Key::ToolOrientation));
+    // The left column too, to the DH table's last row.
+    texts.extend(scrolled_texts(&mut h, text(Lang::Fi, Key::DhTable)));
     let here = std::env::temp_dir();
     h.state_mut()
         .robot_panel_mut()

@@ -92,14 +92,22 @@ impl IkPanel {
 
 impl Panel for IkPanel {
     fn ui(&mut self, model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
-        egui::Grid::new("ik_controls")
-            .num_columns(2)
-            .show(ui, |ui| {
-                task_menu(model, ui);
-                ui.end_row();
-                method_menu(model, ui);
-                ui.end_row();
-            });
+        // One width for both menus and their labels, so that they line up and keep their
+        // size whichever is chosen.
+        let font = egui::TextStyle::Button.resolve(ui.style());
+        let label_width = [Key::Task, Key::Method]
+            .map(|k| super::style::text_width(ui, tr(model, k), &font))
+            .into_iter()
+            .fold(0.0, f32::max);
+        let choices: Vec<&str> = Task::ALL
+            .iter()
+            .map(|t| t.label_key())
+            .chain(IkMethod::ALL.iter().map(|m| m.label_key()))
+            .map(|k| tr(model, k))
+            .collect();
+        let wish = super::style::menu_width(ui, &choices);
+        task_menu(model, ui, label_width, wish);
+        method_menu(model, ui, label_width, wish);
         super::style::wrapped(ui, |ui| {
             if ui.button(tr(model, Key::SnapTarget)).clicked() {
                 model.snap_target();
@@ -120,32 +128,33 @@ impl Panel for IkPanel {
     }
 }
 
-fn task_menu(model: &mut Model, ui: &mut egui::Ui) {
-    let label = ui.label(tr(model, Key::Task)).id;
+fn task_menu(model: &mut Model, ui: &mut egui::Ui, label_width: f32, wish: f32) {
     let mut task = model.task();
-    egui::ComboBox::from_id_salt("ik_task")
-        .selected_text(tr(model, task.label_key()))
-        .width((ui.available_width() - 8.0).clamp(60.0, 200.0))
-        .truncate()
-        .show_ui(ui, |ui| {
+    super::style::menu_row(
+        ui,
+        "ik_task",
+        (tr(model, Key::Task), label_width),
+        tr(model, task.label_key()),
+        wish,
+        |ui| {
             for t in Task::ALL {
                 ui.selectable_value(&mut task, t, tr(model, t.label_key()));
             }
-        })
-        .response
-        .labelled_by(label);
+        },
+    );
     model.set_task(task);
 }
 
-fn method_menu(model: &mut Model, ui: &mut egui::Ui) {
-    let label = ui.label(tr(model, Key::Method)).id;
+fn method_menu(model: &mut Model, ui: &mut egui::Ui, label_width: f32, wish: f32) {
     let has_closed_form = model.has_closed_form();
     let mut method = model.method();
-    egui::ComboBox::from_id_salt("ik_method")
-        .selected_text(tr(model, method.label_key()))
-        .width((ui.available_width() - 8.0).clamp(60.0, 200.0))
-        .truncate()
-        .show_ui(ui, |ui| {
+    super::style::menu_row(
+        ui,
+        "ik_method",
+        (tr(model, Key::Method), label_width),
+        tr(model, method.label_key()),
+        wish,
+        |ui| {
             for m in IkMethod::ALL {
                 let enabled = m != IkMethod::ClosedForm || has_closed_form;
                 ui.add_enabled_ui(enabled, |ui| {
@@ -153,9 +162,8 @@ fn method_menu(model: &mut Model, ui: &mut egui::Ui) {
                         .on_disabled_hover_text(tr(model, Key::NoClosedFormHint));
                 });
             }
-        })
-        .response
-        .labelled_by(label);
+        },
+    );
     if method != model.method() {
         model.set_method(method);
     }

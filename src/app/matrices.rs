@@ -9,7 +9,7 @@ use crate::kinematics::{
 };
 
 use crate::i18n::text as text_of;
-use crate::i18n::{Key, Lang, text};
+use crate::i18n::{Key, Lang, fill, text};
 
 use super::format::number;
 use super::hook::ScreenPoints;
@@ -162,10 +162,11 @@ fn matrix_header(
 /// A matrix block's numbers (or, while hiding applies, its clickable entries); returns
 /// whether they are hovered. Scrolled out of sight, the block keeps its last size
 /// without drawing. The numbers are drawn at the largest of [`FIT_SCALES`] that fits the
-/// column's visible width; a matrix wider than that even at the smallest is drawn at full
-/// size and scrolls sideways on its own, with its scroll bar always shown so that a
-/// person sees there is more (were the column to grow to its width, every text after it
-/// would run out of sight).
+/// column's visible width. A matrix wider than that even at the smallest (the 6×6
+/// Jacobian in a projector's side column) is drawn at full size in blocks of columns, one
+/// under the other, each captioned with its columns, as a book prints a wide matrix: a
+/// sideways scroll hid columns a lecture hall could not see. Only where not even one
+/// column fits does it scroll sideways, with its scroll bar always shown.
 fn matrix_body(
     ui: &mut egui::Ui,
     lang: Lang,
@@ -177,37 +178,80 @@ fn matrix_body(
     let id = ui.make_persistent_id(("matrix body", title));
     style::unless_out_of_sight(ui, id, |ui| {
         let area = egui::ScrollArea::horizontal().id_salt(("matrix scroll", title));
-        if hiding.interactive(target) {
-            return area
-                .show(ui, |ui| hiding_table(ui, lang, m, decimals, target, hiding))
-                .inner
-                .hovered();
-        }
         // Each number formatted once a frame, for the fit and for the table.
         let texts = number_texts(m, decimals);
         let full = egui::TextStyle::Monospace.resolve(ui.style());
-        let fit = fit_font(ui, &texts, m.nrows(), &full);
-        let scrolls = fit.is_none();
-        let (font, advances) = fit.unwrap_or_else(|| {
-            let advances = Advances::new(ui, &full);
-            (full, advances)
-        });
-        ui.scope(|ui| {
-            let mut area = area;
-            if scrolls {
-                ui.spacing_mut().scroll = egui::style::ScrollStyle::solid();
-                area = area
-                    .scroll_bar_visibility(egui::scroll_area::ScrollBarVisibility::AlwaysVisible);
+        let all = 0..m.ncols();
+        let fitted = fit(ui, &texts, m.nrows(), &full);
+        if hiding.interactive(target) {
+            // A "?" in place of a number is as wide as a digit: the same fit holds.
+            let mut table = |ui: &mut egui::Ui, columns, font| {
+                let cells = HidingCells {
+                    m,
+                    texts: &texts,
+                    columns,
+                    font,
+                };
+                hiding_table(ui, lang, &cells, target, hiding).hovered()
+            };
+            return match fitted {
+                Fit::Blocks(font, _, blocks) => {
+                    let cut = blocks.len() > 1;
+                    blocks.into_iter().fold(false, |hovered, columns| {
+                        if cut {
+                            column_caption(ui, lang, &columns);
+                        }
+                        table(ui, columns, font.clone()) || hovered
+                    })
+                }
+                Fit::Scroll(_) => area.show(ui, |ui| table(ui, all, full)).inner,
+            };
+        }
+        match fitted {
+            Fit::Blocks(font, advances, blocks) => {
+                let cut = blocks.len() > 1;
+                let mut hovered = false;
+                for (i, columns) in blocks.into_iter().enumerate() {
+                    if cut {
+                        column_caption(ui, lang, &columns);
+                    }
+                    let table = (columns, i == 0);
+                    hovered |= number_table(ui, m, decimals, &texts, table, font.clone(), advances)
+                        .hovered();
+                }
+                hovered
             }
-            area.show(ui, |ui| {
-                number_table(ui, m, decimals, &texts, font, advances)
-            })
-            .inner
-            .hovered()
-        })
-        .inner
+            Fit::Scroll(advances) => {
+                ui.scope(|ui| {
+                    ui.spacing_mut().scroll = egui::style::ScrollStyle::solid();
+                    area.scroll_bar_visibility(
+                        egui::scroll_area::ScrollBarVisibility::AlwaysVisible,
+                    )
+                    .show(ui, |ui| {
+                        number_table(ui, m, decimals, &texts, (all, true), full, advances)
+                    })
+                    .inner
+                    .hovered()
+                })
+                .inner
+            }
+        }
     })
     .unwrap_or(false)
+}
+
+/// The caption over one block of a matrix cut into blocks of columns ([`Fit::Columns`]).
+fn column_caption(ui: &mut egui::Ui, lang: Lang, columns: &std::ops::Range<usize>) {
+    let caption = if columns.len() == 1 {
+        fill(lang, Key::MatrixColumn, &[&columns.end])
+    } else {
+        fill(
+            lang,
+            Key::MatrixColumns,
+            &[&(columns.start + 1), &columns.end],
+        )
+    };
+    ui.label(egui::RichText::new(caption).weak());
 }
 
 /// The sizes a matrix's numbers may be drawn at, as shares of the monospace text size,
@@ -223,35 +267,88 @@ fn number_texts(m: &DMatrix<f64>, decimals: usize) -> Vec<String> {
         .collect()
 }
 
-/// The font at the largest of [`FIT_SCALES`] whose table of `texts` (`rows` per column)
-/// fits the visible room, with its [`Advances`]; `None` when none does. Measured without
-/// laying the numbers out: a column is as wide as its widest number, and the gap is two
-/// digits (as [`number_table`] draws it).
-fn fit_font(
-    ui: &egui::Ui,
-    texts: &[String],
-    rows: usize,
-    font: &egui::FontId,
-) -> Option<(egui::FontId, Advances)> {
+/// How a matrix's numbers fit the visible room ([`fit`]).
+#[derive(Debug, Clone, PartialEq)]
+enum Fit {
+    /// At this font (one of [`FIT_SCALES`]), in these blocks of consecutive columns, one
+    /// table under the other: one block when the whole matrix fits.
+    Blocks(egui::FontId, Advances, Vec<std::ops::Range<usize>>),
+    /// At full size and scrolling sideways: not even one column fits.
+    Scroll(Advances),
+}
+
+/// How `texts` (`rows` per column) are best drawn in the visible room: in the fewest
+/// blocks of columns ([`column_blocks`]) any of [`FIT_SCALES`] gives, at the largest
+/// scale that gives that few (T_06 in a projector's side column: whole at 80 %, rather
+/// than in two blocks at full size; the 6×6 Jacobian there: two blocks of three at 80 %,
+/// rather than three of two), else scrolling. Measured without laying the numbers out: a
+/// column is as wide as its widest number, and the gap is two digits (as
+/// [`number_table`] draws it).
+fn fit(ui: &egui::Ui, texts: &[String], rows: usize, font: &egui::FontId) -> Fit {
     let room = style::room(ui);
     let rows = rows.max(1);
-    let gaps = texts.len().div_ceil(rows).saturating_sub(1) as f32;
-    FIT_SCALES.into_iter().find_map(|scale| {
-        let font = egui::FontId::new(font.size * scale, font.family.clone());
-        let a = Advances::new(ui, &font);
-        let columns: f32 = texts
+    let mut best: Option<Fit> = None;
+    for scale in FIT_SCALES {
+        let scaled = egui::FontId::new(font.size * scale, font.family.clone());
+        let a = Advances::new(ui, &scaled);
+        let widths: Vec<f32> = texts
             .chunks(rows)
             .map(|column| column.iter().map(|t| a.width(t)).fold(0.0, f32::max))
-            .sum();
-        (columns + a.gap() * gaps <= room).then_some((font, a))
-    })
+            .collect();
+        let Some(blocks) = column_blocks(&widths, a.gap(), room) else {
+            continue;
+        };
+        let fewer = match &best {
+            Some(Fit::Blocks(_, _, fewest)) => blocks.len() < fewest.len(),
+            _ => true,
+        };
+        if fewer {
+            let whole = blocks.len() == 1;
+            best = Some(Fit::Blocks(scaled, a, blocks));
+            if whole {
+                break;
+            }
+        }
+    }
+    best.unwrap_or_else(|| Fit::Scroll(Advances::new(ui, font)))
+}
+
+/// The width of a table of columns `widths` wide with `gap` between them.
+fn table_width(widths: &[f32], gap: f32) -> f32 {
+    widths.iter().sum::<f32>() + gap * widths.len().saturating_sub(1) as f32
+}
+
+/// Columns `widths` wide (with `gap` between them) cut into the fewest blocks of
+/// consecutive columns that each fit `room`, as even in count as they fit (6 columns of
+/// which 4 fit: 3 and 3, not 4 and 2; an odd one over goes to the first blocks); `None`
+/// when a column alone is wider than `room`.
+fn column_blocks(widths: &[f32], gap: f32, room: f32) -> Option<Vec<std::ops::Range<usize>>> {
+    if widths.is_empty() || widths.iter().any(|w| *w > room) {
+        return None;
+    }
+    let fits = |r: &std::ops::Range<usize>| table_width(&widths[r.clone()], gap) <= room;
+    let mut greedy = Vec::new();
+    let mut block = 0..0;
+    for i in 0..widths.len() {
+        let grown = block.start..i + 1;
+        if fits(&grown) {
+            block = grown;
+        } else {
+            greedy.push(std::mem::replace(&mut block, i..i + 1));
+        }
+    }
+    greedy.push(block);
+    let (n, count) = (widths.len(), greedy.len());
+    let start = |k: usize| (k * n).div_ceil(count);
+    let even: Vec<_> = (0..count).map(|k| start(k)..start(k + 1)).collect();
+    Some(if even.iter().all(fits) { even } else { greedy })
 }
 
 /// The advances of a number's characters in a font (points), each rounded to whole
 /// pixels. egui puts each glyph of a laid-out text on a whole pixel; copies placed at the
 /// sum of the exact advances (7.44 points for a digit at the panel's monospace size, 5.95
 /// at 80 %) were each rounded on their own, and the digits came out unevenly spaced.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 struct Advances {
     digit: f32,
     minus: f32,
@@ -303,13 +400,17 @@ const NUMBER_CHARS: &str = "0123456789-.";
 /// time. Numbers use a dozen characters, so those are laid out once as one text (egui
 /// caches it) and each number is drawn by copying its characters' glyph quads into one
 /// mesh (egui builds each glyph as one quad: four vertices, two triangles). The mesh is
-/// put in place by [`finish_numbers`] at the end of the frame. The screen-reader and test
-/// label is the "Text" copy of the matrix.
+/// put in place by [`finish_numbers`] at the end of the frame.
+///
+/// `(columns, labelled)`: the columns drawn (all, or one block of [`Fit::Columns`]), and
+/// whether this table carries the screen-reader and test label, the "Text" copy of the
+/// whole matrix (the first block of a cut matrix does, so the matrix is read once).
 fn number_table(
     ui: &mut egui::Ui,
     m: &DMatrix<f64>,
     decimals: usize,
     texts: &[String],
+    (columns, labelled): (std::ops::Range<usize>, bool),
     font: egui::FontId,
     advances: Advances,
 ) -> egui::Response {
@@ -321,23 +422,34 @@ fn number_table(
         return ui.label(plain_text(m, decimals));
     };
     let quads = glyph_quads(row);
-    let Some(cells) = number_cells(texts, &quads, &advances) else {
-        // A number this table cannot draw (NaN, infinity): plain text instead.
-        return ui.label(plain_text(m, decimals));
+    let rows = m.nrows().max(1);
+    let shown = texts
+        .get(columns.start * rows..columns.end * rows)
+        .unwrap_or(&[]);
+    let Some(cells) = number_cells(shown, &quads, &advances) else {
+        // A number this table cannot draw (NaN, infinity): plain text instead, once.
+        return if labelled {
+            ui.label(plain_text(m, decimals))
+        } else {
+            ui.allocate_response(egui::Vec2::ZERO, egui::Sense::hover())
+        };
     };
     let gap = advances.gap();
     let column_widths: Vec<f32> = cells
-        .chunks(m.nrows().max(1))
+        .chunks(rows)
         .map(|column| column.iter().map(|(_, w)| *w).fold(0.0, f32::max))
         .collect();
     let row_height = row.size.y;
     let size = egui::vec2(
-        column_widths.iter().sum::<f32>() + gap * m.ncols().saturating_sub(1) as f32,
+        table_width(&column_widths, gap),
         row_height * m.nrows() as f32,
     );
     let (rect, response) = ui.allocate_exact_size(size, egui::Sense::hover());
-    response
-        .widget_info(|| egui::WidgetInfo::labeled(egui::Role::Label, true, to_plain(m, decimals)));
+    if labelled {
+        response.widget_info(|| {
+            egui::WidgetInfo::labeled(egui::Role::Label, true, to_plain(m, decimals))
+        });
+    }
     if !ui.is_rect_visible(rect) {
         return response;
     }
@@ -346,7 +458,7 @@ fn number_table(
         row_height,
         advances,
         gap,
-        rows: m.nrows().max(1),
+        rows,
         column_widths: &column_widths,
     };
     let mesh = numbers_mesh(
@@ -716,11 +828,19 @@ impl Hiding {
 /// The matrix entry by entry, each clickable: "?" for a concealed entry (a click reveals
 /// it); while choosing, every number, the hidden ones on a dark orange background (a click
 /// hides or shows the entry, or the Jacobian's column).
+/// The numbers of a matrix (or of some of its columns) that [`hiding_table`] draws.
+struct HidingCells<'a> {
+    m: &'a DMatrix<f64>,
+    /// Every entry's text ([`number_texts`], column-major).
+    texts: &'a [String],
+    columns: std::ops::Range<usize>,
+    font: egui::FontId,
+}
+
 fn hiding_table(
     ui: &mut egui::Ui,
     lang: Lang,
-    m: &DMatrix<f64>,
-    decimals: usize,
+    cells: &HidingCells<'_>,
     target: Target,
     hiding: &mut Hiding,
 ) -> egui::Response {
@@ -728,22 +848,31 @@ fn hiding_table(
         Target::Matrix(id) => Hidden::Matrix(id).to_link(),
         Target::Jacobian => "J".to_string(),
     };
-    let grid = egui::Grid::new(("hiding", name.clone()))
-        .spacing([10.0, 0.0])
+    let rows = cells.m.nrows();
+    let gap = Advances::new(ui, &cells.font).gap();
+    let grid = egui::Grid::new(("hiding", name.clone(), cells.columns.start))
+        .spacing([gap, 0.0])
+        .min_col_width(0.0)
         .show(ui, |ui| {
-            for r in 0..m.nrows() {
-                for c in 0..m.ncols() {
-                    let value = format!("{:.p$}", clean(m[(r, c)], decimals), p = decimals);
+            for r in 0..rows {
+                for c in cells.columns.clone() {
+                    let value = cells.texts.get(c * rows + r).map_or("", String::as_str);
                     let concealed = hiding.concealing(target, r, c);
                     let mut text = match concealed {
                         Some(_) => egui::RichText::new("?").strong().color(style::HIGHLIGHT),
                         None => egui::RichText::new(value),
                     }
-                    .monospace();
+                    .font(cells.font.clone());
                     if hiding.choosing && hiding.hiding_item(target, r, c).is_some() {
                         text = text.background_color(HIDDEN_BACKGROUND);
                     }
-                    let mut cell = ui.add(egui::Label::new(text).sense(egui::Sense::click()));
+                    // Right-aligned in its column, as the numbers are everywhere else.
+                    let right = egui::Layout::right_to_left(egui::Align::Center);
+                    let mut cell = ui
+                        .with_layout(right, |ui| {
+                            ui.add(egui::Label::new(text).sense(egui::Sense::click()))
+                        })
+                        .inner;
                     if concealed.is_some() {
                         cell = cell.on_hover_text(text_of(lang, Key::RevealHint));
                     }
@@ -1209,33 +1338,104 @@ mod tests {
         )
     }
 
+    /// The font [`fit`] chose when the whole table fits in one block.
+    fn whole_font(fit: &Fit) -> Option<egui::FontId> {
+        match fit {
+            Fit::Blocks(font, _, blocks) if blocks.len() == 1 => Some(font.clone()),
+            _ => None,
+        }
+    }
+
     #[test]
     fn a_matrix_a_little_too_wide_is_drawn_smaller_and_fits() {
         let full = egui::FontId::monospace(12.0);
         let texts = number_texts(&tool_pose(), 3);
         // Wide enough: full size.
-        let fit = in_a_column(400.0, |ui| fit_font(ui, &texts, 4, &full).map(|(f, _)| f));
-        assert_eq!(fit, Some(full.clone()));
+        let font = in_a_column(400.0, |ui| whole_font(&fit(ui, &texts, 4, &full)));
+        assert_eq!(font, Some(full.clone()));
         // A projector's right column: smaller, and the table then fits its room.
-        let (fit, width, room) = in_a_column(209.0, |ui| {
+        let (font, width, room) = in_a_column(209.0, |ui| {
             let room = style::room(ui);
-            let fit = fit_font(ui, &texts, 4, &full);
-            let font = fit.as_ref().map(|(f, _)| f.clone());
-            let (f, a) = fit.unwrap_or_else(|| (full.clone(), Advances::new(ui, &full)));
-            let width = number_table(ui, &tool_pose(), 3, &texts, f, a).rect.width();
+            let chosen = fit(ui, &texts, 4, &full);
+            let (Some(font), Fit::Blocks(_, a, _)) = (whole_font(&chosen), &chosen) else {
+                panic!("a 4×4 pose fits a side column whole: {chosen:?}");
+            };
+            let table = (0..4, true);
+            let width = number_table(ui, &tool_pose(), 3, &texts, table, font.clone(), *a)
+                .rect
+                .width();
             (font, width, room)
         });
-        let size = fit.expect("a size that fits").size;
-        assert!((12.0 * 0.8..12.0).contains(&size), "{size}");
+        assert!((12.0 * 0.8..12.0).contains(&font.size), "{}", font.size);
         assert!(width <= room, "{width} drawn in {room}");
     }
 
     #[test]
-    fn a_matrix_much_too_wide_keeps_its_size_and_scrolls() {
+    fn a_matrix_much_too_wide_is_shown_in_blocks_of_columns_that_each_fit() {
         let jacobian = DMatrix::from_fn(6, 6, |r, c| -337.187 + (r * 6 + c) as f64);
         let full = egui::FontId::monospace(12.0);
         let texts = number_texts(&jacobian, 3);
-        let fit = in_a_column(209.0, |ui| fit_font(ui, &texts, 6, &full).map(|(f, _)| f));
-        assert_eq!(fit, None, "none of the sizes fits: it scrolls at full size");
+        let blocks_of = |width: f32| {
+            in_a_column(width, |ui| {
+                let room = style::room(ui);
+                let chosen = fit(ui, &texts, 6, &full);
+                let Fit::Blocks(font, a, blocks) = chosen.clone() else {
+                    return (chosen, Vec::new(), room);
+                };
+                let widths: Vec<f32> = blocks
+                    .iter()
+                    .map(|b| {
+                        let table = (b.clone(), b.start == 0);
+                        number_table(ui, &jacobian, 3, &texts, table, font.clone(), a)
+                            .rect
+                            .width()
+                    })
+                    .collect();
+                (chosen, widths, room)
+            })
+        };
+        // Fewest blocks first, then the largest size: two blocks of three at a smaller size
+        // in a narrow column (three blocks of two at full size would be taller), at full
+        // size in a wider one, and the whole matrix at a smaller size in a wider one still.
+        let two = vec![0..3, 3..6];
+        let whole: Vec<_> = std::iter::once(0..6).collect();
+        for (width, smaller, want) in [
+            (175.0, true, &two),
+            (209.0, false, &two),
+            (320.0, true, &whole),
+        ] {
+            let (chosen, widths, room) = blocks_of(width);
+            let Fit::Blocks(font, _, blocks) = chosen else {
+                panic!("a 6×6 Jacobian {width} wide is cut into blocks: {chosen:?}");
+            };
+            assert_eq!(&blocks, want, "{width}");
+            assert_eq!(font.size < 12.0, smaller, "{width}: {}", font.size);
+            for w in widths {
+                assert!(w <= room && w > room / 2.0, "a block {w} wide in {room}");
+            }
+        }
+        // Not even one column fits: it scrolls at full size.
+        let narrow = in_a_column(40.0, |ui| fit(ui, &texts, 6, &full));
+        assert!(matches!(narrow, Fit::Scroll(_)), "{narrow:?}");
+    }
+
+    #[test]
+    fn columns_are_cut_into_the_fewest_blocks_as_even_as_they_fit() {
+        // Seven columns of 10 with gaps of 2; 4 fit in 46.
+        let seven = [10.0; 7];
+        assert_eq!(column_blocks(&seven, 2.0, 46.0), Some(vec![0..4, 4..7]));
+        // Six of which four fit: three and three.
+        assert_eq!(
+            column_blocks(&seven[..6], 2.0, 46.0),
+            Some(vec![0..3, 3..6])
+        );
+        // Uneven widths where the even cut does not fit: the greedy one.
+        let uneven = [30.0, 30.0, 5.0, 5.0];
+        assert_eq!(column_blocks(&uneven, 2.0, 46.0), Some(vec![0..1, 1..4]));
+        // Everything fits: one block; a column wider than the room: none.
+        let whole = std::iter::once(0..7).collect();
+        assert_eq!(column_blocks(&seven, 2.0, 1000.0), Some(whole));
+        assert_eq!(column_blocks(&[50.0], 2.0, 46.0), None);
+        assert_eq!(column_blocks(&[], 2.0, 46.0), None);
     }
 }

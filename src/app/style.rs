@@ -241,8 +241,7 @@ pub fn fitted_menu<R>(
 ) -> egui::InnerResponse<Option<R>> {
     let font = egui::TextStyle::Button.resolve(ui.style());
     let spacing = ui.spacing();
-    // The button's frame around its text: padding, the arrow and the gap before it.
-    let frame = spacing.icon_width + 2.0 * spacing.button_padding.x + 4.0;
+    let frame = menu_frame(ui);
     let wish =
         wish.unwrap_or_else(|| (text_width(ui, selected, &font) + frame).max(spacing.combo_width));
     let room = room(ui) - text_width(ui, label, &font) - 2.0 * spacing.item_spacing.x;
@@ -256,6 +255,73 @@ pub fn fitted_menu<R>(
             .show_ui(ui, add_contents)
     })
     .inner
+}
+
+/// A menu button's width beyond its selected text: the padding, the arrow and the gap
+/// before it.
+pub fn menu_frame(ui: &egui::Ui) -> f32 {
+    let spacing = ui.spacing();
+    spacing.icon_width + 2.0 * spacing.button_padding.x + 4.0
+}
+
+/// The width a menu needs to show the longest of `choices` whole ([`menu_frame`] added),
+/// so that it keeps one width whichever is chosen.
+pub fn menu_width(ui: &egui::Ui, choices: &[&str]) -> f32 {
+    let font = egui::TextStyle::Button.resolve(ui.style());
+    let widest = choices
+        .iter()
+        .map(|c| text_width(ui, c, &font))
+        .fold(0.0, f32::max);
+    widest + menu_frame(ui)
+}
+
+/// A menu with its label on its left, the label `label_width` wide (the widest of its
+/// group's labels, so that the group's menus line up) and the menu `wish` wide or what
+/// the row has left. Where that leaves the selected text less room than it needs (a
+/// projector's side column: "Damped least squares" beside "Method" at 1024×768; a long
+/// Finnish name), the label goes above and the menu takes the whole row, its text
+/// wrapped onto a second line rather than cut.
+pub fn menu_row<R>(
+    ui: &mut egui::Ui,
+    id_salt: &str,
+    (label, label_width): (&str, f32),
+    selected: &str,
+    wish: f32,
+    add_contents: impl FnOnce(&mut egui::Ui) -> R,
+) -> egui::InnerResponse<Option<R>> {
+    let font = egui::TextStyle::Button.resolve(ui.style());
+    let need = text_width(ui, selected, &font) + menu_frame(ui);
+    let room = room(ui);
+    let beside = room - label_width - ui.spacing().item_spacing.x;
+    let menu = |ui: &mut egui::Ui, label: egui::Id, width: f32| {
+        ui.scope(|ui| {
+            ui.set_max_width(width);
+            let inner = egui::ComboBox::from_id_salt(id_salt)
+                .selected_text(selected)
+                .width(width)
+                .wrap()
+                .show_ui(ui, add_contents);
+            egui::InnerResponse::new(inner.inner, inner.response.labelled_by(label))
+        })
+        .inner
+    };
+    if need <= beside {
+        ui.horizontal(|ui| {
+            let size = egui::vec2(label_width, ui.spacing().interact_size.y);
+            let layout = egui::Layout::left_to_right(egui::Align::Center);
+            let label = ui
+                .allocate_ui_with_layout(size, layout, |ui| {
+                    ui.set_min_width(label_width);
+                    ui.label(label).id
+                })
+                .inner;
+            menu(ui, label, wish.min(beside))
+        })
+        .inner
+    } else {
+        let label = ui.label(label).id;
+        menu(ui, label, wish.min(room))
+    }
 }
 
 /// `text`, cut to at most `width` points in `font` and ended with "…" when it was cut.

@@ -190,6 +190,8 @@ catalogue! {
     Jacobian: "Jacobian" / "Jacobin matriisi",
     JacobianTitle: "J  (6×n, base frame)" / "J  (6×n, kantakoordinaatisto)",
     JacobianHint: "Geometric Jacobian, rows vx vy vz ωx ωy ωz: revolute J_v = z × (o_n − o), J_ω = z; prismatic J_v = z" / "Geometrinen Jacobin matriisi, rivit vx vy vz ωx ωy ωz: kiertonivel J_v = z × (o_n − o), J_ω = z; liukunivel J_v = z",
+    MatrixColumns: "columns {0}–{1}" / "sarakkeet {0}–{1}",
+    MatrixColumn: "column {0}" / "sarake {0}",
     CentralDifferences: "central differences (ε = 1e−6) agree to {0}" / "keskeisdifferenssit (ε = 1e−6) täsmäävät tarkkuudella {0}",
     AboveTolerance: "{0}: above the tolerance {1}" / "{0}: yli toleranssin {1}",
     TaskRows: "task rows" / "tehtävän rivit",
