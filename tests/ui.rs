@@ -1610,3 +1610,51 @@ fn on_a_projector_nothing_in_the_left_column_runs_into_the_view() {
         assert!(found.is_empty(), "{hash}: {found:#?}");
     }
 }
+
+/// A projector's and a laptop's right column print the 6×6 Jacobian in blocks of columns,
+/// every block inside the column: it used to scroll sideways with half its columns out of
+/// sight.
+#[test]
+fn at_lecture_sizes_the_jacobian_shows_every_column_in_blocks() {
+    for size in [[1024.0, 768.0], [1280.0, 720.0], [1366.0, 768.0]] {
+        let h = harness_at("#robot=ur10&panels=joints,ik,robot,matrices", size);
+        let view = h.state().viewport().rect().expect("the view was laid out");
+        let jacobian = h.state().model().jacobian().clone();
+        let first = format!("{:.3}", jacobian[(0, 0)]);
+        let captions: Vec<egui::Rect> = ["columns 1–3", "columns 4–6"]
+            .iter()
+            .map(|c| {
+                let caption = h.query_by_label(c);
+                caption.unwrap_or_else(|| panic!("{size:?}: {c}")).rect()
+            })
+            .collect();
+        assert!(
+            captions[0].bottom() < captions[1].top(),
+            "{size:?}: one under the other"
+        );
+        // The first block carries the whole matrix's text, for screen readers.
+        let text = |n: &egui_kittest::Node<'_>| {
+            let ak = n.accesskit_node();
+            ak.label().or(ak.value()).unwrap_or_default()
+        };
+        let table = h
+            .query_all(egui_kittest::kittest::by().include_labels())
+            .find(|n| {
+                let t = text(n);
+                t.lines().count() == 6 && t.trim_start().starts_with(&first)
+            })
+            .unwrap_or_else(|| panic!("{size:?}: the Jacobian's table"));
+        let r = table.rect();
+        assert!(r.left() > view.right(), "{size:?}: in the right column");
+        assert!(
+            r.top() > captions[0].top() && r.bottom() < captions[1].top(),
+            "{size:?}: under its caption"
+        );
+        assert!(
+            r.right() <= size[0] - 30.0,
+            "{size:?}: the block ends at {} (the tab strip at {})",
+            r.right(),
+            size[0] - 30.0
+        );
+    }
+}
