@@ -19,15 +19,14 @@ ensure_wasm_target() {
     || { say "adding the wasm32 target"; rustup target add wasm32-unknown-unknown; }
 }
 
-# The installs build in cargo's own temporary folder, not in CARGO_TARGET_DIR (which
-# cargo install would use): the tests' builds there would wait on its lock while one runs
-# in the background.
-
 # wasm-bindgen-cli must equal the wasm-bindgen version in Cargo.lock.
 wasm_bindgen_version() {
   awk '/^name = "wasm-bindgen"$/ { getline; gsub(/version = |"/, ""); print; exit }' "$ROOT/Cargo.lock"
 }
 
+# The two installs below build in cargo's own temporary folder, not in CARGO_TARGET_DIR
+# (which cargo install would use): the tests' builds there would wait on its lock while
+# one runs in the background.
 ensure_wasm_bindgen() {
   local want; want="$(wasm_bindgen_version)"
   if ! wasm-bindgen --version 2>/dev/null | grep -q " $want\$"; then
