@@ -161,12 +161,12 @@ fn matrix_header(
 
 /// A matrix block's numbers (or, while hiding applies, its clickable entries); returns
 /// whether they are hovered. Scrolled out of sight, the block keeps its last size
-/// without drawing. The numbers are drawn at the largest of [`FIT_SCALES`] that fits the
-/// column's visible width. A matrix wider than that even at the smallest (the 6×6
-/// Jacobian in a projector's side column) is drawn at full size in blocks of columns, one
-/// under the other, each captioned with its columns, as a book prints a wide matrix: a
-/// sideways scroll hid columns a lecture hall could not see. Only where not even one
-/// column fits does it scroll sideways, with its scroll bar always shown.
+/// without drawing. The numbers are drawn whole at the largest of [`FIT_SCALES`] that
+/// fits the column's visible width ([`fit`]). A matrix wider than that even at the
+/// smallest (the 6×6 Jacobian in a projector's side column) is cut into blocks of
+/// columns, one under the other, each captioned with its columns, as a book prints a wide
+/// matrix: a sideways scroll hid columns a lecture hall could not see. Only where not even
+/// one column fits does it scroll sideways, with its scroll bar always shown.
 fn matrix_body(
     ui: &mut egui::Ui,
     lang: Lang,
@@ -240,7 +240,7 @@ fn matrix_body(
     .unwrap_or(false)
 }
 
-/// The caption over one block of a matrix cut into blocks of columns ([`Fit::Columns`]).
+/// The caption over one block of a matrix cut into blocks of columns ([`Fit::Blocks`]).
 fn column_caption(ui: &mut egui::Ui, lang: Lang, columns: &std::ops::Range<usize>) {
     let caption = if columns.len() == 1 {
         fill(lang, Key::MatrixColumn, &[&columns.end])
@@ -402,7 +402,7 @@ const NUMBER_CHARS: &str = "0123456789-.";
 /// mesh (egui builds each glyph as one quad: four vertices, two triangles). The mesh is
 /// put in place by [`finish_numbers`] at the end of the frame.
 ///
-/// `(columns, labelled)`: the columns drawn (all, or one block of [`Fit::Columns`]), and
+/// `(columns, labelled)`: the columns drawn (all, or one block of [`Fit::Blocks`]), and
 /// whether this table carries the screen-reader and test label, the "Text" copy of the
 /// whole matrix (the first block of a cut matrix does, so the matrix is read once).
 fn number_table(
@@ -825,9 +825,6 @@ impl Hiding {
     }
 }
 
-/// The matrix entry by entry, each clickable: "?" for a concealed entry (a click reveals
-/// it); while choosing, every number, the hidden ones on a dark orange background (a click
-/// hides or shows the entry, or the Jacobian's column).
 /// The numbers of a matrix (or of some of its columns) that [`hiding_table`] draws.
 struct HidingCells<'a> {
     m: &'a DMatrix<f64>,
@@ -837,6 +834,9 @@ struct HidingCells<'a> {
     font: egui::FontId,
 }
 
+/// The matrix entry by entry (its columns `cells.columns`), each clickable: "?" for a
+/// concealed entry (a click reveals it); while choosing, every number, the hidden ones on a
+/// dark orange background (a click hides or shows the entry, or the Jacobian's column).
 fn hiding_table(
     ui: &mut egui::Ui,
     lang: Lang,
