@@ -1658,3 +1658,32 @@ fn at_lecture_sizes_the_jacobian_shows_every_column_in_blocks() {
         );
     }
 }
+
+/// On a full-HD screen (a laptop, a modern lecture hall's projector) the DH table is the
+/// textbook's table, one line per joint; on a 1366-wide laptop, a block per joint.
+#[test]
+fn on_a_full_hd_screen_the_dh_table_has_one_line_per_joint() {
+    for (size, one_line) in [([1920.0, 1080.0], true), ([1366.0, 768.0], false)] {
+        let mut h = harness_at("#robot=ur10&panels=joints,ik,robot,matrices", size);
+        h.get_by_label("DH table (editable)").click();
+        h.run_steps(3);
+        let at = |name: &str| {
+            let [x, y] = h.state().points().get(name).expect("the cell is drawn");
+            egui::pos2(x, y)
+        };
+        let (theta, max, next) = (at("dh-1-1"), at("dh-1-6"), at("dh-2-1"));
+        assert_eq!(
+            (theta.y - max.y).abs() < 1.0,
+            one_line,
+            "{size:?}: θ1 at {theta:?}, max1 at {max:?}"
+        );
+        assert!(
+            next.y > theta.y.max(max.y),
+            "{size:?}: joint 2 under joint 1"
+        );
+        assert!(
+            (theta.x - next.x).abs() < 1.0,
+            "{size:?}: θ cells in one column"
+        );
+    }
+}

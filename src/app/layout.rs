@@ -115,10 +115,13 @@ pub fn plan(size: egui::Vec2, css_width: f32, settings: &Settings) -> Plan {
     // Each open column may grow to the budget less the others' narrowest.
     let min_width = MIN_COLUMN.min(budget / open_columns);
     let max_width = budget - min_width * (open_columns - 1.0);
+    // At 1920 the left column gets 460 points, enough for the UR10's DH table on one line
+    // per joint (the textbook's table; narrower, it is a block per joint), and the right
+    // one 430, where the 6×6 Jacobian still shows whole.
     let wish = |side: Side| match (side, settings.presentation) {
         (_, true) => budget,
-        (Side::Left, false) => (size.x * 0.24).clamp(220.0, 340.0),
-        (Side::Right, false) => (size.x * 0.30).clamp(240.0, 480.0),
+        (Side::Left, false) => (size.x * 0.24).clamp(220.0, 480.0),
+        (Side::Right, false) => (size.x * 0.30).clamp(240.0, 430.0),
     };
     // The open columns' wishes, scaled down together when they exceed the budget.
     let wished: f32 = sides

@@ -634,7 +634,7 @@ pub(super) struct TableEdit {
 /// The space between a table's columns and rows (points).
 const TABLE_SPACING: egui::Vec2 = egui::vec2(4.0, 2.0);
 /// The narrowest cell of the one-line rows (points).
-const CELL_MIN_WIDTH: f32 = 52.0;
+const CELL_MIN_WIDTH: f32 = 50.0;
 /// The narrowest cell of the blocks (points): two cells and their names fit a projector's
 /// 200-point column.
 const BLOCK_CELL_MIN_WIDTH: f32 = 44.0;
