@@ -86,49 +86,21 @@ pub fn plan(size: egui::Vec2, css_width: f32, settings: &Settings) -> Plan {
         };
     }
     let open = settings.open_panels();
-    let (side_share, sides): (f32, Vec<(Side, Vec<PanelKind>)>) = if settings.presentation {
-        (0.4, vec![(Side::Right, PanelKind::ALL.to_vec())])
-    } else {
-        (
-            0.5,
-            vec![
-                (
-                    Side::Left,
-                    vec![
-                        PanelKind::Joints,
-                        PanelKind::Ik,
-                        PanelKind::Robot,
-                        PanelKind::Motion,
-                    ],
-                ),
-                (Side::Right, vec![PanelKind::Matrices]),
-            ],
-        )
-    };
+    let (side_share, sides) = sides(settings.presentation);
     let strips = EDGE_TAB_WIDTH * sides.len() as f32;
     let budget = (size.x * side_share - strips).max(0.0);
-    let open_columns = sides
+    let open_sides: Vec<Side> = sides
         .iter()
         .filter(|(_, tabs)| tabs.iter().any(|k| open.contains(*k)))
-        .count()
-        .max(1) as f32;
+        .map(|(side, _)| *side)
+        .collect();
+    let open_columns = open_sides.len().max(1) as f32;
     // Each open column may grow to the budget less the others' narrowest.
     let min_width = MIN_COLUMN.min(budget / open_columns);
     let max_width = budget - min_width * (open_columns - 1.0);
-    // At 1920 the left column gets 460 points, enough for the UR10's DH table on one line
-    // per joint (the textbook's table; narrower, it is a block per joint), and the right
-    // one 430, where the 6×6 Jacobian still shows whole.
-    let wish = |side: Side| match (side, settings.presentation) {
-        (_, true) => budget,
-        (Side::Left, false) => (size.x * 0.24).clamp(220.0, 480.0),
-        (Side::Right, false) => (size.x * 0.30).clamp(240.0, 430.0),
-    };
+    let wish = |side: Side| column_wish(side, settings.presentation, size.x, budget);
     // The open columns' wishes, scaled down together when they exceed the budget.
-    let wished: f32 = sides
-        .iter()
-        .filter(|(_, tabs)| tabs.iter().any(|k| open.contains(*k)))
-        .map(|(side, _)| wish(*side))
-        .sum();
+    let wished: f32 = open_sides.iter().map(|side| wish(*side)).sum();
     let scale = if wished > budget {
         budget / wished
     } else {
@@ -136,17 +108,13 @@ pub fn plan(size: egui::Vec2, css_width: f32, settings: &Settings) -> Plan {
     };
     let columns = sides
         .into_iter()
-        .map(|(side, tabs)| {
-            let open_here: Vec<PanelKind> =
-                tabs.iter().copied().filter(|k| open.contains(*k)).collect();
-            Column {
-                side,
-                tabs,
-                open: open_here,
-                default_width: (wish(side) * scale).clamp(min_width, max_width),
-                min_width,
-                max_width,
-            }
+        .map(|(side, tabs)| Column {
+            side,
+            open: tabs.iter().copied().filter(|k| open.contains(*k)).collect(),
+            tabs,
+            default_width: (wish(side) * scale).clamp(min_width, max_width),
+            min_width,
+            max_width,
         })
         .collect();
     Plan {
@@ -155,6 +123,37 @@ pub fn plan(size: egui::Vec2, css_width: f32, settings: &Settings) -> Plan {
         side_share,
         sheet_height: 0.0,
         width: size.x,
+    }
+}
+
+/// The wide layout's columns and the share of the width they may take together:
+/// presentation mode puts every panel in one right-hand column of at most 40 %; otherwise
+/// the matrices go right and the rest left, the two at most half the width.
+fn sides(presentation: bool) -> (f32, Vec<(Side, Vec<PanelKind>)>) {
+    if presentation {
+        return (0.4, vec![(Side::Right, PanelKind::ALL.to_vec())]);
+    }
+    let left = vec![
+        PanelKind::Joints,
+        PanelKind::Ik,
+        PanelKind::Robot,
+        PanelKind::Motion,
+    ];
+    (
+        0.5,
+        vec![(Side::Left, left), (Side::Right, vec![PanelKind::Matrices])],
+    )
+}
+
+/// The width a column would like on a screen `width` points wide, before the columns are
+/// scaled into the `budget` together. At 1920 the left column gets 460 points, enough for
+/// the UR10's DH table on one line per joint (the textbook's table; narrower, it is a
+/// block per joint), and the right one 430, where the 6×6 Jacobian still shows whole.
+fn column_wish(side: Side, presentation: bool, width: f32, budget: f32) -> f32 {
+    match (side, presentation) {
+        (_, true) => budget,
+        (Side::Left, false) => (width * 0.24).clamp(220.0, 480.0),
+        (Side::Right, false) => (width * 0.30).clamp(240.0, 430.0),
     }
 }
 
