@@ -27,6 +27,53 @@ pub struct IkPanel {
     replay: Replay,
     /// The notebook run last started, if the replay is one.
     demo: Option<NotebookDemo>,
+    /// The Task and Method menus' label and menu widths ([`MenuWidths`]), measured once
+    /// per language and text size rather than in every frame of a drag.
+    menu_widths: Option<MenuWidths>,
+}
+
+/// The widths the IK panel's two menus share: their labels' (the wider), and the menus'
+/// (the widest choice of either), for one language, text size and pixel density.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct MenuWidths {
+    /// What they were measured for: the language, the button font's size and the points
+    /// per pixel, as bits.
+    key: (crate::i18n::Lang, u32, u32),
+    label: f32,
+    menu: f32,
+}
+
+impl MenuWidths {
+    /// The widths for `ui`'s style in the model's language, measured again only when the
+    /// kept ones were measured for another language, text size or pixel density.
+    fn of(kept: &mut Option<MenuWidths>, model: &Model, ui: &egui::Ui) -> MenuWidths {
+        let font = egui::TextStyle::Button.resolve(ui.style());
+        let key = (
+            model.settings().lang,
+            font.size.to_bits(),
+            ui.ctx().pixels_per_point().to_bits(),
+        );
+        if let Some(widths) = kept.filter(|w| w.key == key) {
+            return widths;
+        }
+        let label = [Key::Task, Key::Method]
+            .map(|k| style::text_width(ui, tr(model, k), &font))
+            .into_iter()
+            .fold(0.0, f32::max);
+        let choices: Vec<&str> = Task::ALL
+            .iter()
+            .map(|t| t.label_key())
+            .chain(IkMethod::ALL.iter().map(|m| m.label_key()))
+            .map(|k| tr(model, k))
+            .collect();
+        let widths = MenuWidths {
+            key,
+            label,
+            menu: style::menu_width(ui, &choices),
+        };
+        *kept = Some(widths);
+        widths
+    }
 }
 
 impl IkPanel {
@@ -94,20 +141,9 @@ impl Panel for IkPanel {
     fn ui(&mut self, model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
         // One width for both menus and their labels, so that they line up and keep their
         // size whichever is chosen.
-        let font = egui::TextStyle::Button.resolve(ui.style());
-        let label_width = [Key::Task, Key::Method]
-            .map(|k| super::style::text_width(ui, tr(model, k), &font))
-            .into_iter()
-            .fold(0.0, f32::max);
-        let choices: Vec<&str> = Task::ALL
-            .iter()
-            .map(|t| t.label_key())
-            .chain(IkMethod::ALL.iter().map(|m| m.label_key()))
-            .map(|k| tr(model, k))
-            .collect();
-        let wish = super::style::menu_width(ui, &choices);
-        task_menu(model, ui, label_width, wish);
-        method_menu(model, ui, label_width, wish);
+        let widths = MenuWidths::of(&mut self.menu_widths, model, ui);
+        task_menu(model, ui, widths.label, widths.menu);
+        method_menu(model, ui, widths.label, widths.menu);
         super::style::wrapped(ui, |ui| {
             if ui.button(tr(model, Key::SnapTarget)).clicked() {
                 model.snap_target();
