@@ -185,26 +185,27 @@ fn matrix_body(
         let fitted = fit(ui, &texts, m.nrows(), &full);
         if hiding.interactive(target) {
             // A "?" in place of a number is as wide as a digit: the same fit holds.
-            let mut table = |ui: &mut egui::Ui, columns, font| {
+            let mut table = |ui: &mut egui::Ui, columns, font, advances| {
                 let cells = HidingCells {
                     m,
                     texts: &texts,
                     columns,
                     font,
+                    advances,
                 };
                 hiding_table(ui, lang, &cells, target, hiding).hovered()
             };
             return match fitted {
-                Fit::Blocks(font, _, blocks) => {
+                Fit::Blocks(font, advances, blocks) => {
                     let cut = blocks.len() > 1;
                     blocks.into_iter().fold(false, |hovered, columns| {
                         if cut {
                             column_caption(ui, lang, &columns);
                         }
-                        table(ui, columns, font.clone()) || hovered
+                        table(ui, columns, font.clone(), advances) || hovered
                     })
                 }
-                Fit::Scroll(_) => area.show(ui, |ui| table(ui, all, full)).inner,
+                Fit::Scroll(advances) => area.show(ui, |ui| table(ui, all, full, advances)).inner,
             };
         }
         match fitted {
@@ -832,6 +833,8 @@ struct HidingCells<'a> {
     texts: &'a [String],
     columns: std::ops::Range<usize>,
     font: egui::FontId,
+    /// The font's advances, as [`fit`] measured them (the gap between columns).
+    advances: Advances,
 }
 
 /// The matrix entry by entry (its columns `cells.columns`), each clickable: "?" for a
@@ -849,9 +852,8 @@ fn hiding_table(
         Target::Jacobian => "J".to_string(),
     };
     let rows = cells.m.nrows();
-    let gap = Advances::new(ui, &cells.font).gap();
     let grid = egui::Grid::new(("hiding", name.clone(), cells.columns.start))
-        .spacing([gap, 0.0])
+        .spacing([cells.advances.gap(), 0.0])
         .min_col_width(0.0)
         .show(ui, |ui| {
             for r in 0..rows {
