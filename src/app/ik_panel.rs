@@ -7,6 +7,7 @@ use crate::kinematics::{IkMethod, Task, wrapped_equivalent};
 
 use crate::i18n::Key;
 
+use super::format::{fixed, scientific};
 use super::hook::ScreenPoints;
 use super::model::Model;
 use super::notebook::NotebookDemo;
@@ -226,9 +227,9 @@ fn status(model: &Model, ui: &mut egui::Ui) {
         model,
         Key::IkErrors,
         &[
-            &format!("{:.3e}", ik.position_error),
+            &scientific(ik.position_error, 3),
             &model.robot().length_unit.symbol(),
-            &format!("{:.3e}", ik.orientation_error),
+            &scientific(ik.orientation_error, 3),
             &ik.iterations,
         ],
     ));
@@ -265,13 +266,13 @@ fn replay_ui(replay: &mut Replay, model: &mut Model, ui: &mut egui::Ui) {
         model,
         Key::StepLine,
         &[
-            &format!("{:.3e}", s.error),
-            &format!("{:.3e}", s.step),
-            &format!("{:.2e}", s.damping),
+            &scientific(s.error, 3),
+            &scientific(s.step, 3),
+            &scientific(s.damping, 3),
         ],
     ));
-    let raw: Vec<String> = s.raw_q.iter().map(|v| format!("{v:.3}")).collect();
-    let kept: Vec<String> = s.q.iter().map(|v| format!("{v:.3}")).collect();
+    let raw: Vec<String> = s.raw_q.iter().map(|v| fixed(*v, 3)).collect();
+    let kept: Vec<String> = s.q.iter().map(|v| fixed(*v, 3)).collect();
     ui.label(trf(model, Key::RawQ, &[&raw.join(", ")]));
     ui.label(trf(model, Key::KeptQ, &[&kept.join(", ")]));
     error_plot(model, ui, run, step);

@@ -11,7 +11,7 @@ use crate::kinematics::{
 use crate::i18n::text as text_of;
 use crate::i18n::{Key, Lang, fill, text};
 
-use super::format::number;
+use super::format::{fixed, number};
 use super::hook::ScreenPoints;
 use super::jacobian_view::{self, LinearSvd};
 use super::model::{HoverSource, Model};
@@ -26,14 +26,7 @@ pub fn to_plain(m: &DMatrix<f64>, decimals: usize) -> String {
     (0..m.nrows())
         .map(|r| {
             (0..m.ncols())
-                .map(|c| {
-                    format!(
-                        "{:>w$.p$}",
-                        clean(m[(r, c)], decimals),
-                        w = decimals + 7,
-                        p = decimals
-                    )
-                })
+                .map(|c| format!("{:>w$}", fixed(m[(r, c)], decimals), w = decimals + 7))
                 .collect::<Vec<_>>()
                 .join(" ")
         })
@@ -46,7 +39,7 @@ pub fn to_latex(m: &DMatrix<f64>, decimals: usize) -> String {
     let rows: Vec<String> = (0..m.nrows())
         .map(|r| {
             (0..m.ncols())
-                .map(|c| format!("{:.p$}", clean(m[(r, c)], decimals), p = decimals))
+                .map(|c| fixed(m[(r, c)], decimals))
                 .collect::<Vec<_>>()
                 .join(" & ")
         })
@@ -61,19 +54,11 @@ pub fn to_latex(m: &DMatrix<f64>, decimals: usize) -> String {
 pub fn to_numpy(m: &DMatrix<f64>, decimals: usize) -> String {
     let rows: Vec<String> = (0..m.nrows())
         .map(|r| {
-            let cells: Vec<String> = (0..m.ncols())
-                .map(|c| format!("{:.p$}", clean(m[(r, c)], decimals), p = decimals))
-                .collect();
+            let cells: Vec<String> = (0..m.ncols()).map(|c| fixed(m[(r, c)], decimals)).collect();
             format!("[{}]", cells.join(", "))
         })
         .collect();
     format!("np.array([{}])", rows.join(",\n          "))
-}
-
-/// Rounds away "−0.000".
-fn clean(v: f64, decimals: usize) -> f64 {
-    let scale = 10f64.powi(decimals as i32);
-    if (v * scale).round() == 0.0 { 0.0 } else { v }
 }
 
 /// A matrix with copy buttons; returns true when it is hovered.
@@ -263,9 +248,7 @@ const FIT_SCALES: [f32; 3] = [1.0, 0.9, 0.8];
 
 /// Each entry's text as the table draws it (column-major, as nalgebra stores them).
 fn number_texts(m: &DMatrix<f64>, decimals: usize) -> Vec<String> {
-    m.iter()
-        .map(|v| format!("{:.p$}", clean(*v, decimals), p = decimals))
-        .collect()
+    m.iter().map(|v| fixed(*v, decimals)).collect()
 }
 
 /// How a matrix's numbers fit the visible room ([`fit`]).
@@ -1077,7 +1060,7 @@ fn jacobian_block(
         model.set_hovered_column(None, HoverSource::Matrices);
     }
     if let Some(lost) = LinearSvd::of(model.jacobian()).and_then(|s| s.lost_direction()) {
-        let d = format!("{:.2}, {:.2}, {:.2}", lost.x, lost.y, lost.z);
+        let d = [lost.x, lost.y, lost.z].map(|v| fixed(v, 2)).join(", ");
         ui.colored_label(style::UNREACHABLE, trf(model, Key::LostDirection, &[&d]));
     }
 }
@@ -1245,9 +1228,9 @@ fn orientation_block(
     };
     let ang = |v: f64| {
         if degrees {
-            format!("{:.p$}°", v.to_degrees(), p = decimals.min(4))
+            format!("{}°", fixed(v.to_degrees(), decimals.min(4)))
         } else {
-            format!("{:.p$}", v, p = decimals.max(3))
+            fixed(v, decimals.max(3))
         }
     };
     egui::CollapsingHeader::new(super::style::fold_title(ui, t(Key::ToolOrientation)))
@@ -1281,17 +1264,17 @@ fn orientation_block(
                 row(
                     Key::AngleAxis,
                     format!(
-                        "{}  ({:.4}, {:.4}, {:.4}){}",
+                        "{}  ({}, {}, {}){}",
                         ang(a.angle),
-                        a.axis.x,
-                        a.axis.y,
-                        a.axis.z,
+                        fixed(a.axis.x, 4),
+                        fixed(a.axis.y, 4),
+                        fixed(a.axis.z, 4),
                         note(a.degenerate, Key::AngleAxisDegenerate)
                     ),
                 ),
                 row(
                     Key::EulerParameters,
-                    format!("{:.5}  {:.5}  {:.5}  {:.5}", q.e1, q.e2, q.e3, q.e4),
+                    [q.e1, q.e2, q.e3, q.e4].map(|v| fixed(v, 5)).join("  "),
                 ),
             ];
             style::fold_rows(ui, "orientation", &[], &rows);

@@ -18,6 +18,7 @@ use crate::kinematics::collision::KeepOut;
 use crate::kinematics::motion::{Controller, MotionSettings, PidGains, Series};
 use crate::kinematics::profile::ProfileShape;
 
+use super::format::scientific;
 use super::hook::ScreenPoints;
 use super::jacobian_view::column_color;
 use super::model::Model;
@@ -616,7 +617,7 @@ fn measures_ui(model: &Model, ui: &mut egui::Ui) {
                     Some(t) => format!("{t:.2} s"),
                     None => "–".to_string(),
                 });
-                ui.monospace(format!("{:.1e}", m.error));
+                ui.monospace(scientific(m.error, 1));
                 ui.end_row();
             }
         });

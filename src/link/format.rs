@@ -21,11 +21,7 @@ pub fn number(v: f64, decimals: usize) -> String {
     }
     let magnitude = v.abs();
     if magnitude >= LARGE || (magnitude > 0.0 && magnitude < SMALL) {
-        let text = format!("{v:.decimals$e}");
-        return match text.split_once('e') {
-            Some((mantissa, exponent)) => format!("{}e{exponent}", trim_zeros(mantissa)),
-            None => text,
-        };
+        return scientific(v, decimals);
     }
     let text = format!("{v:.decimals$}");
     let trimmed = trim_zeros(&text);
@@ -33,6 +29,31 @@ pub fn number(v: f64, decimals: usize) -> String {
         "0".into()
     } else {
         trimmed.into()
+    }
+}
+
+/// `v` in scientific form with at most `decimals` decimals in the mantissa and no trailing
+/// zeros (`1.976e-8`, `4e-4`, `2.5e3`), for errors and residuals that span many orders of
+/// magnitude; zero is `0` (not `0.000e0`), and the non-finite as Rust writes them.
+pub fn scientific(v: f64, decimals: usize) -> String {
+    if v == 0.0 {
+        return "0".into();
+    }
+    let text = format!("{v:.decimals$e}");
+    match text.split_once('e') {
+        Some((mantissa, exponent)) => format!("{}e{exponent}", trim_zeros(mantissa)),
+        None => text,
+    }
+}
+
+/// `v` with exactly `decimals` decimals, for columns of numbers that line up (matrices,
+/// angles): `0.500`, `-1.000`. A value that rounds to zero is written without its sign
+/// (`0.000`, not `-0.000`: a rotation's entries and Euler angles are often −10⁻¹⁷).
+pub fn fixed(v: f64, decimals: usize) -> String {
+    let text = format!("{v:.decimals$}");
+    match text.strip_prefix('-') {
+        Some(rest) if rest.bytes().all(|b| b == b'0' || b == b'.') => rest.to_owned(),
+        _ => text,
     }
 }
 
@@ -61,7 +82,7 @@ pub fn number_list(values: &[f64], decimals: usize) -> String {
     allow(clippy::unwrap_used, clippy::expect_used)
 )]
 mod tests {
-    use super::number;
+    use super::{fixed, number, scientific};
     #[cfg(target_arch = "wasm32")]
     use wasm_bindgen_test::wasm_bindgen_test as test;
 
@@ -74,6 +95,29 @@ mod tests {
         assert_eq!(number(-0.0000001, 3), "-1e-7");
         assert_eq!(number(-0.0004, 3), "0");
         assert_eq!(number(250.0, 0), "250");
+    }
+
+    #[test]
+    fn errors_are_scientific_and_zero_is_zero() {
+        assert_eq!(scientific(0.0, 3), "0");
+        assert_eq!(scientific(-0.0, 3), "0");
+        assert_eq!(scientific(1.9764e-8, 3), "1.976e-8");
+        assert_eq!(scientific(0.0004, 3), "4e-4");
+        assert_eq!(scientific(-2500.0, 1), "-2.5e3");
+        assert_eq!(scientific(1.0, 3), "1e0");
+    }
+
+    #[test]
+    fn fixed_decimals_never_show_a_negative_zero() {
+        assert_eq!(fixed(-1e-17, 3), "0.000");
+        assert_eq!(fixed(-0.0, 3), "0.000");
+        assert_eq!(fixed(-0.0004, 3), "0.000");
+        assert_eq!(fixed(-0.0005001, 3), "-0.001");
+        assert_eq!(fixed(-1.0, 3), "-1.000");
+        assert_eq!(fixed(std::f64::consts::FRAC_1_SQRT_2, 5), "0.70711");
+        assert_eq!(fixed(-1e-9, 0), "0");
+        assert_eq!(fixed(-2.0, 0), "-2");
+        assert_eq!(fixed(f64::NEG_INFINITY, 2), "-inf");
     }
 
     #[test]
