@@ -1536,6 +1536,53 @@ fn the_dh_table_shows_every_cell_whole_at_every_screen_size() {
 }
 
 #[test]
+fn the_preset_menu_names_the_robot_whole_at_every_screen_size() {
+    for size in [
+        [1024.0, 768.0],
+        [1280.0, 720.0],
+        [1366.0, 768.0],
+        [820.0, 1180.0],
+        [390.0, 844.0],
+    ] {
+        let mut h = harness_at("#robot=panda", size);
+        if h.state().sheet().is_some() || size[0] < size[1] {
+            h.get_by_label("Robot").click();
+            h.run_steps(3);
+        }
+        let menus: Vec<(String, egui::Rect)> = h
+            .query_all_by_role(Role::ComboBox)
+            .map(|n| {
+                let value = n.accesskit_node().value().unwrap_or_default().to_string();
+                (value, n.rect())
+            })
+            .collect();
+        // The menu's text was cut to "Franka Pa…" in a projector's side column: now the
+        // label goes above and the name wraps if it must, inside the screen.
+        let preset = menus
+            .iter()
+            .find(|(value, _)| value.starts_with("Franka"))
+            .unwrap_or_else(|| panic!("{size:?}: the preset menu among {menus:?}"));
+        assert_eq!(preset.0, "Franka Panda", "{size:?}");
+        let view = h.state().viewport().rect().expect("the view was laid out");
+        let right = if view.left() > 100.0 {
+            view.left()
+        } else {
+            size[0]
+        };
+        assert!(
+            preset.1.left() >= 0.0 && preset.1.right() <= right + 0.5,
+            "{size:?}: the menu at {:?} ends past {right}",
+            preset.1
+        );
+        let label = h.get_by_role_and_label(Role::Label, "Preset").rect();
+        assert!(
+            label.right() <= right + 0.5 && label.height() < 30.0,
+            "{size:?}: the label at {label:?}"
+        );
+    }
+}
+
+#[test]
 fn on_a_projector_the_motion_panel_keeps_to_its_column() {
     let size = [1024.0, 768.0];
     let h = harness_at("#robot=ur10&panels=motion,matrices", size);

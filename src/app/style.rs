@@ -226,11 +226,11 @@ pub fn text_width(ui: &egui::Ui, text: &str, font: &egui::FontId) -> f32 {
         .x
 }
 
-/// A menu with its label on its right (egui's `ComboBox::new`) that keeps to the visible
-/// room: `wish` points wide (`None`: as wide as its selected text, egui's default) or what
-/// the room leaves beside the label if less, its selected text then cut with "…", and its
-/// label on one line. Left to egui, a long selected text took the row and the label
-/// wrapped a letter per line ("P / r / e / s / e / t").
+/// A menu with its label on its left ([`menu_row`]), `wish` points wide (`None`: as wide
+/// as its selected text, at least egui's combo width) and never narrower than its
+/// selected text where the room allows. A long selected text in a narrow column (a
+/// projector's side column: "Franka Emika Panda" beside "Preset" at 1024×768) puts the
+/// label above and wraps the text rather than cutting it to "Franka Pa…".
 pub fn fitted_menu<R>(
     ui: &mut egui::Ui,
     id_salt: &str,
@@ -240,21 +240,17 @@ pub fn fitted_menu<R>(
     add_contents: impl FnOnce(&mut egui::Ui) -> R,
 ) -> egui::InnerResponse<Option<R>> {
     let font = egui::TextStyle::Button.resolve(ui.style());
-    let spacing = ui.spacing();
-    let frame = menu_frame(ui);
-    let wish =
-        wish.unwrap_or_else(|| (text_width(ui, selected, &font) + frame).max(spacing.combo_width));
-    let room = room(ui) - text_width(ui, label, &font) - 2.0 * spacing.item_spacing.x;
-    let width = wish.min(room).max(80.0);
-    let selected = cut_to_width(ui, selected, &font, width - frame);
-    ui.scope(|ui| {
-        ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Extend);
-        egui::ComboBox::new(id_salt, label)
-            .selected_text(selected)
-            .width(width)
-            .show_ui(ui, add_contents)
-    })
-    .inner
+    let label_width = text_width(ui, label, &font);
+    let need = text_width(ui, selected, &font) + menu_frame(ui);
+    let wish = wish.unwrap_or(ui.spacing().combo_width).max(need);
+    menu_row(
+        ui,
+        id_salt,
+        (label, label_width),
+        selected,
+        wish,
+        add_contents,
+    )
 }
 
 /// A menu button's width beyond its selected text: the padding, the arrow and the gap
@@ -322,23 +318,6 @@ pub fn menu_row<R>(
         let label = ui.label(label).id;
         menu(ui, label, wish.min(room))
     }
-}
-
-/// `text`, cut to at most `width` points in `font` and ended with "…" when it was cut.
-pub fn cut_to_width(ui: &egui::Ui, text: &str, font: &egui::FontId, width: f32) -> String {
-    if text_width(ui, text, font) <= width {
-        return text.to_owned();
-    }
-    // The longest prefix (in characters) that fits with its "…": widths grow with the
-    // prefix, so a binary search finds it.
-    let ends: Vec<usize> = text.char_indices().map(|(i, _)| i).collect();
-    let fits = |n: usize| text_width(ui, &format!("{}…", &text[..ends[n]]), font) <= width;
-    let (mut lo, mut hi) = (0, ends.len());
-    while lo + 1 < hi {
-        let mid = (lo + hi) / 2;
-        if fits(mid) { lo = mid } else { hi = mid }
-    }
-    format!("{}…", text[..ends[lo]].trim_end())
 }
 
 /// Names and their values as a grid (a header row over the value columns when `headers`
