@@ -93,6 +93,7 @@ catalogue! {
     StatusOutOfReach: "target out of reach: the arm stretches toward it" / "kohde ulottumattomissa: käsi ojentuu sitä kohti",
     StatusPending: "drag the target ball, its arrows or rings" / "vedä kohdepalloa, sen nuolia tai renkaita",
     JointHighlighted: "joint {0}: {1} — A_{0} and T_0{0} highlighted" / "nivel {0}: {1} — A_{0} ja T_0{0} korostettu",
+    JointHighlightedUnnamed: "joint {0} — A_{0} and T_0{0} highlighted" / "nivel {0} — A_{0} ja T_0{0} korostettu",
     ReachedIn: "Reached in {0} iterations" / "Saavutettu {0} iteraatiossa",
 
     // --- The IK panel ---------------------------------------------------------------------

@@ -56,7 +56,13 @@ pub fn draw(model: &Model, painter: &egui::Painter, rect: Rect, grid_step: f64, 
     if let Some(link) = model.hovered_link()
         && let Some(joint) = model.robot().joints.get(link.wrapping_sub(1))
     {
-        let text = trf(model, Key::JointHighlighted, &[&link, &joint.name]);
+        // A name that only numbers the joint ("joint 3", the Panda's) is not said twice.
+        let name = joint.name.trim();
+        let text = if name.is_empty() || name.eq_ignore_ascii_case(&format!("joint {link}")) {
+            trf(model, Key::JointHighlightedUnnamed, &[&link])
+        } else {
+            trf(model, Key::JointHighlighted, &[&link, &name])
+        };
         let galley = painter.layout(text, small, style::HIGHLIGHT, wrap);
         let at = rect.right_top() + egui::vec2(-10.0 - galley.size().x, 14.0 + status_height);
         painter.galley(at, galley, style::HIGHLIGHT);
