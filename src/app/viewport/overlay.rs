@@ -7,7 +7,7 @@ use egui::{Color32, Rect};
 use crate::app::format::number;
 use crate::app::model::Model;
 use crate::app::{style, tr, trf};
-use crate::i18n::Key;
+use crate::i18n::{Key, Lang, fill};
 use crate::kinematics::ik::Reach;
 
 /// Draws the labels over the picture; `touch` names finger gestures instead of the mouse.
@@ -56,15 +56,45 @@ pub fn draw(model: &Model, painter: &egui::Painter, rect: Rect, grid_step: f64, 
     if let Some(link) = model.hovered_link()
         && let Some(joint) = model.robot().joints.get(link.wrapping_sub(1))
     {
-        // A name that only numbers the joint ("joint 3", the Panda's) is not said twice.
-        let name = joint.name.trim();
-        let text = if name.is_empty() || name.eq_ignore_ascii_case(&format!("joint {link}")) {
-            trf(model, Key::JointHighlightedUnnamed, &[&link])
-        } else {
-            trf(model, Key::JointHighlighted, &[&link, &name])
-        };
+        let text = highlight_text(model.settings().lang, link, &joint.name);
         let galley = painter.layout(text, small, style::HIGHLIGHT, wrap);
         let at = rect.right_top() + egui::vec2(-10.0 - galley.size().x, 14.0 + status_height);
         painter.galley(at, galley, style::HIGHLIGHT);
+    }
+}
+
+/// The line naming the highlighted joint `link` (1-based) and its matrices. A name that
+/// only numbers the joint ("joint 3", the Panda's) is not said twice.
+fn highlight_text(lang: Lang, link: usize, name: &str) -> String {
+    let name = name.trim();
+    if name.is_empty() || name.eq_ignore_ascii_case(&format!("joint {link}")) {
+        fill(lang, Key::JointHighlightedUnnamed, &[&link])
+    } else {
+        fill(lang, Key::JointHighlighted, &[&link, &name])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_joint_is_named_once() {
+        assert_eq!(
+            highlight_text(Lang::En, 2, "shoulder"),
+            "joint 2: shoulder — A_2 and T_02 highlighted"
+        );
+        assert_eq!(
+            highlight_text(Lang::En, 3, "joint 3"),
+            "joint 3 — A_3 and T_03 highlighted"
+        );
+        assert_eq!(
+            highlight_text(Lang::Fi, 3, "Joint 3 "),
+            "nivel 3 — A_3 ja T_03 korostettu"
+        );
+        assert_eq!(
+            highlight_text(Lang::En, 4, ""),
+            "joint 4 — A_4 and T_04 highlighted"
+        );
     }
 }
