@@ -290,11 +290,24 @@ pub fn draw_in_view(
     project: &dyn Fn(&Point3<f64>) -> Option<egui::Pos2>,
 ) {
     let font = egui::FontId::proportional(14.0);
-    let label = |at: &Point3<f64>, text: String, color: Color32| {
-        if let Some(p) = project(at) {
-            let at = p + egui::vec2(8.0, -8.0);
-            painter.text(at, egui::Align2::LEFT_BOTTOM, text, font.clone(), color);
+    // Labels of nearby places (a singularity and a jump a few steps apart) went on top of
+    // each other: each one moves up a line at a time past those already drawn.
+    let mut taken: Vec<egui::Rect> = Vec::new();
+    let mut label = |at: &Point3<f64>, text: String, color: Color32| {
+        let Some(p) = project(at) else {
+            return;
+        };
+        let galley = painter.layout_no_wrap(text, font.clone(), color);
+        let size = galley.size();
+        let mut rect = egui::Rect::from_min_size(p + egui::vec2(8.0, -8.0 - size.y), size);
+        for _ in 0..8 {
+            if !taken.iter().any(|r| r.intersects(rect)) {
+                break;
+            }
+            rect = rect.translate(egui::vec2(0.0, -size.y));
         }
+        taken.push(rect);
+        painter.galley(rect.min, galley, color);
     };
     for (i, pose) in model.paths().waypoints().poses().iter().enumerate() {
         let at = Point3::from(pose.translation.vector);
