@@ -752,6 +752,43 @@ fn the_jacobian_columns_and_the_velocity_ellipsoid_are_drawn_at_the_tool() {
 }
 
 #[test]
+fn ghosts_from_a_link_show_without_the_ik_panel() {
+    // A lecturer's link opened on a phone (no sheet open) or with the IK panel closed:
+    // the solutions were found only by the IK panel's list, so no ghost was drawn.
+    for (hash, size) in [
+        (
+            "#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2&show=ghosts&panels=joints",
+            [1366.0, 768.0],
+        ),
+        (
+            "#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2&show=ghosts",
+            [390.0, 844.0],
+        ),
+    ] {
+        let h = harness_at(hash, size);
+        assert!(h.state().sheet().is_none(), "{size:?}: no sheet open");
+        let rows = h
+            .state()
+            .model()
+            .branches()
+            .map(|b| b.rows.len())
+            .unwrap_or_default();
+        assert_eq!(rows, 8, "{size:?}: the UR10's eight branches");
+        let ghosts = h
+            .state()
+            .points()
+            .all()
+            .iter()
+            .filter(|(n, _)| n.starts_with("ghost-"))
+            .count();
+        assert_eq!(
+            ghosts, 7,
+            "{size:?}: every branch but the arm's own is drawn"
+        );
+    }
+}
+
+#[test]
 fn every_ur10_branch_is_listed_and_a_click_on_its_ghost_moves_the_arm_there() {
     let mut h = harness("#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2&show=ghosts&panels=ik");
     h.get_by_label("Solutions of this target").click();

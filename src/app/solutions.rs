@@ -42,14 +42,12 @@ pub fn branch_words(model: &Model, branch: &Branch) -> String {
 
 /// The solutions section of the IK panel.
 pub fn solutions_ui(model: &mut Model, ui: &mut egui::Ui) {
-    // The closed form's rows (microseconds) only while someone looks at them: the list
-    // open, or the ghosts drawn in the 3D view (folded list).
-    let mut listed = false;
+    // The closed form's rows (microseconds) every frame while the list is open; the
+    // ghosts' rows otherwise come from [`ghost_rows`].
     egui::CollapsingHeader::new(super::style::fold_title(ui, tr(model, Key::Solutions)))
         .id_salt("ik_solutions")
         .default_open(false)
         .show(ui, |ui| {
-            listed = true;
             let unreachable = model.has_closed_form() && closed_form_rows(model);
             ui.label(egui::RichText::new(tr(model, Key::SolutionsHint)).small());
             if !model.has_closed_form()
@@ -72,7 +70,16 @@ pub fn solutions_ui(model: &mut Model, ui: &mut egui::Ui) {
             }
             rows_ui(model, ui);
         });
-    if !listed && model.has_closed_form() && model.settings().overlays.contains(Overlay::Ghosts) {
+}
+
+/// The closed form's rows for the 3D view's ghosts when they are on and no rows are kept
+/// for this target and robot: whether or not the IK panel, where the list is, is shown
+/// (a phone's link with `show=ghosts` drew none until the IK sheet was opened).
+pub fn ghost_rows(model: &mut Model) {
+    if model.settings().overlays.contains(Overlay::Ghosts)
+        && model.has_closed_form()
+        && model.branches().is_none()
+    {
         closed_form_rows(model);
     }
 }
