@@ -330,7 +330,6 @@ impl ArmLabApp {
                 &mut self.points,
             ),
         }
-        solutions::ghost_rows(&mut self.model);
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE.fill(style::background(self.model.settings().presentation)))
             .show(ui, |ui| {

@@ -584,9 +584,10 @@ fn advance_motion(model: &mut Model, ui: &egui::Ui, timing: &mut FrameTime) {
 }
 
 /// The overlays that fill over frames: the workspace cloud (a few milliseconds a frame,
-/// repainting until full) and the sphere of tool directions (redone when the target
-/// moves).
+/// repainting until full), the sphere of tool directions and the ghosts' solutions
+/// (redone when the target moves).
 fn fill_overlays(model: &mut Model, ui: &egui::Ui, timing: &mut FrameTime) {
+    crate::app::solutions::ghost_rows(model);
     if model.settings().overlays.contains(Overlay::Workspace) {
         let measure = workspace_view::measure(model);
         let (samples, budget) = (workspace_view::SAMPLES, workspace_view::BUDGET_MS);
