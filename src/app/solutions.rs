@@ -174,7 +174,9 @@ fn rows_ui(model: &mut Model, ui: &mut egui::Ui) {
             style::UNREACHABLE
         };
         let response = ui.selectable_label(current, egui::RichText::new(text).color(color));
-        ui.label(egui::RichText::new(values.join("  ")).monospace().small());
+        // At the monospace size, not small: a phone's and a projector's readers need the
+        // joint values (a narrow column wraps them).
+        ui.label(egui::RichText::new(values.join("  ")).monospace());
         if response.clicked() {
             chosen = Some(row.q.clone());
         }
