@@ -1620,6 +1620,41 @@ fn the_preset_menu_names_the_robot_whole_at_every_screen_size() {
 }
 
 #[test]
+fn the_ik_menus_sit_alike_beside_or_under_their_labels() {
+    // At 1280×720 "Full pose (6 rows)" sat beside "Task" and "Damped least squares" under
+    // "Method": one group, two arrangements.
+    let mut seen = Vec::new();
+    for size in [
+        [1024.0, 768.0],
+        [1280.0, 720.0],
+        [1366.0, 768.0],
+        [1920.0, 1080.0],
+    ] {
+        let h = harness_at("#robot=ur10", size);
+        let beside = |label: &str, value: &str| {
+            let label = h.get_by_role_and_label(Role::Label, label).rect();
+            let menu = h
+                .query_all_by_role(Role::ComboBox)
+                .find(|n| n.accesskit_node().value().as_deref() == Some(value))
+                .unwrap_or_else(|| panic!("{size:?}: the {value:?} menu"))
+                .rect();
+            assert!(menu.right() <= h.state().viewport().rect().expect("a view").left());
+            menu.left() > label.right() && (menu.center().y - label.center().y).abs() < 4.0
+        };
+        let task = beside("Task", "Full pose (6 rows)");
+        let method = beside("Method", "Damped least squares");
+        assert_eq!(
+            task, method,
+            "{size:?}: task beside {task}, method beside {method}"
+        );
+        seen.push(task);
+    }
+    // Under at a projector's 1024, beside at full HD.
+    assert_eq!(seen.first(), Some(&false));
+    assert_eq!(seen.last(), Some(&true));
+}
+
+#[test]
 fn on_a_projector_the_motion_panel_keeps_to_its_column() {
     let size = [1024.0, 768.0];
     let h = harness_at("#robot=ur10&panels=motion,matrices", size);

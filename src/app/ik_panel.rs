@@ -141,10 +141,14 @@ impl IkPanel {
 impl Panel for IkPanel {
     fn ui(&mut self, model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
         // One width for both menus and their labels, so that they line up and keep their
-        // size whichever is chosen.
+        // size whichever is chosen; both beside their labels or both under them.
         let widths = MenuWidths::of(&mut self.menu_widths, model, ui);
-        task_menu(model, ui, widths.label, widths.menu);
-        method_menu(model, ui, widths.label, widths.menu);
+        let need = [model.task().label_key(), model.method().label_key()]
+            .map(|k| style::menu_need(ui, tr(model, k)))
+            .into_iter()
+            .fold(0.0, f32::max);
+        task_menu(model, ui, widths.label, (need, widths.menu));
+        method_menu(model, ui, widths.label, (need, widths.menu));
         super::style::wrapped(ui, |ui| {
             if ui.button(tr(model, Key::SnapTarget)).clicked() {
                 model.snap_target();
@@ -165,14 +169,14 @@ impl Panel for IkPanel {
     }
 }
 
-fn task_menu(model: &mut Model, ui: &mut egui::Ui, label_width: f32, wish: f32) {
+fn task_menu(model: &mut Model, ui: &mut egui::Ui, label_width: f32, size: (f32, f32)) {
     let mut task = model.task();
     super::style::menu_row(
         ui,
         "ik_task",
         (tr(model, Key::Task), label_width),
         tr(model, task.label_key()),
-        wish,
+        size,
         |ui| {
             for t in Task::ALL {
                 ui.selectable_value(&mut task, t, tr(model, t.label_key()));
@@ -182,7 +186,7 @@ fn task_menu(model: &mut Model, ui: &mut egui::Ui, label_width: f32, wish: f32) 
     model.set_task(task);
 }
 
-fn method_menu(model: &mut Model, ui: &mut egui::Ui, label_width: f32, wish: f32) {
+fn method_menu(model: &mut Model, ui: &mut egui::Ui, label_width: f32, size: (f32, f32)) {
     let has_closed_form = model.has_closed_form();
     let mut method = model.method();
     super::style::menu_row(
@@ -190,7 +194,7 @@ fn method_menu(model: &mut Model, ui: &mut egui::Ui, label_width: f32, wish: f32
         "ik_method",
         (tr(model, Key::Method), label_width),
         tr(model, method.label_key()),
-        wish,
+        size,
         |ui| {
             for m in IkMethod::ALL {
                 let enabled = m != IkMethod::ClosedForm || has_closed_form;

@@ -241,14 +241,14 @@ pub fn fitted_menu<R>(
 ) -> egui::InnerResponse<Option<R>> {
     let font = egui::TextStyle::Button.resolve(ui.style());
     let label_width = text_width(ui, label, &font);
-    let need = text_width(ui, selected, &font) + menu_frame(ui);
+    let need = menu_need(ui, selected);
     let wish = wish.unwrap_or(ui.spacing().combo_width).max(need);
     menu_row(
         ui,
         id_salt,
         (label, label_width),
         selected,
-        wish,
+        (need, wish),
         add_contents,
     )
 }
@@ -271,22 +271,26 @@ pub fn menu_width(ui: &egui::Ui, choices: &[&str]) -> f32 {
     widest + menu_frame(ui)
 }
 
+/// The width a menu needs to show `selected` whole on one line.
+pub fn menu_need(ui: &egui::Ui, selected: &str) -> f32 {
+    text_width(ui, selected, &egui::TextStyle::Button.resolve(ui.style())) + menu_frame(ui)
+}
+
 /// A menu with its label on its left, the label `label_width` wide (the widest of its
 /// group's labels, so that the group's menus line up) and the menu `wish` wide or what
-/// the row has left. Where that leaves the selected text less room than it needs (a
-/// projector's side column: "Damped least squares" beside "Method" at 1024×768; a long
-/// Finnish name), the label goes above and the menu takes the whole row, its text
-/// wrapped onto a second line rather than cut.
+/// the row has left. Where that leaves less than `need` ([`menu_need`] of the selected
+/// text, or the most of a group's, so that the group's menus are placed alike: a
+/// projector's side column has no room for "Damped least squares" beside "Method" at
+/// 1024×768; a long Finnish name), the label goes above and the menu takes the whole
+/// row, its text wrapped onto a second line rather than cut.
 pub fn menu_row<R>(
     ui: &mut egui::Ui,
     id_salt: &str,
     (label, label_width): (&str, f32),
     selected: &str,
-    wish: f32,
+    (need, wish): (f32, f32),
     add_contents: impl FnOnce(&mut egui::Ui) -> R,
 ) -> egui::InnerResponse<Option<R>> {
-    let font = egui::TextStyle::Button.resolve(ui.style());
-    let need = text_width(ui, selected, &font) + menu_frame(ui);
     let room = room(ui);
     let beside = room - label_width - ui.spacing().item_spacing.x;
     let menu = |ui: &mut egui::Ui, label: egui::Id, width: f32| {
