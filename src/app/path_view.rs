@@ -299,13 +299,10 @@ pub fn draw_in_view(
         };
         let galley = painter.layout_no_wrap(text, font.clone(), color);
         let size = galley.size();
-        let mut rect = egui::Rect::from_min_size(p + egui::vec2(8.0, -8.0 - size.y), size);
-        for _ in 0..8 {
-            if !taken.iter().any(|r| r.intersects(rect)) {
-                break;
-            }
-            rect = rect.translate(egui::vec2(0.0, -size.y));
-        }
+        let rect = free_place(
+            &taken,
+            egui::Rect::from_min_size(p + egui::vec2(8.0, -8.0 - size.y), size),
+        );
         taken.push(rect);
         painter.galley(rect.min, galley, color);
     };
@@ -318,6 +315,18 @@ pub fn draw_in_view(
     }
 }
 
+/// `rect` moved up a line (its height) at a time, at most eight lines, until it overlaps
+/// none of `taken`.
+fn free_place(taken: &[egui::Rect], mut rect: egui::Rect) -> egui::Rect {
+    for _ in 0..8 {
+        if !taken.iter().any(|r| r.intersects(rect)) {
+            break;
+        }
+        rect = rect.translate(egui::vec2(0.0, -rect.height()));
+    }
+    rect
+}
+
 /// The waypoints' screen points for the browser tests (`waypoint-1`, …).
 pub fn points(model: &Model, mut add: impl FnMut(String, &Point3<f64>)) {
     for (i, pose) in model.paths().waypoints().poses().iter().enumerate() {
@@ -325,5 +334,30 @@ pub fn points(model: &Model, mut add: impl FnMut(String, &Point3<f64>)) {
             format!("waypoint-{}", i + 1),
             &Point3::from(pose.translation.vector),
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::free_place;
+    use egui::{Rect, pos2, vec2};
+
+    #[test]
+    fn labels_of_nearby_places_move_up_past_each_other() {
+        let line = |x: f32, y: f32| Rect::from_min_size(pos2(x, y), vec2(60.0, 16.0));
+        // Nothing in the way: the label stays.
+        assert_eq!(free_place(&[], line(100.0, 200.0)), line(100.0, 200.0));
+        // Two labels a few pixels apart: the second goes up until clear of the first.
+        let first = line(100.0, 200.0);
+        let second = free_place(&[first], line(110.0, 205.0));
+        assert_eq!(second, line(110.0, 173.0));
+        assert!(!second.intersects(first));
+        let third = free_place(&[first, second], line(104.0, 198.0));
+        assert!(
+            !third.intersects(first) && !third.intersects(second),
+            "{third:?}"
+        );
+        // Labels far apart keep their places.
+        assert_eq!(free_place(&[first], line(300.0, 200.0)), line(300.0, 200.0));
     }
 }
