@@ -80,21 +80,18 @@ mod tests {
 
     #[test]
     fn a_joint_is_named_once() {
-        assert_eq!(
-            highlight_text(Lang::En, 2, "shoulder"),
-            "joint 2: shoulder — A_2 and T_02 highlighted"
-        );
-        assert_eq!(
-            highlight_text(Lang::En, 3, "joint 3"),
-            "joint 3 — A_3 and T_03 highlighted"
-        );
-        assert_eq!(
-            highlight_text(Lang::Fi, 3, "Joint 3 "),
-            "nivel 3 — A_3 ja T_03 korostettu"
-        );
-        assert_eq!(
-            highlight_text(Lang::En, 4, ""),
-            "joint 4 — A_4 and T_04 highlighted"
-        );
+        for (lang, link, name, want) in [
+            (
+                Lang::En,
+                2,
+                "shoulder",
+                "joint 2: shoulder — A_2 and T_02 highlighted",
+            ),
+            (Lang::En, 3, "joint 3", "joint 3 — A_3 and T_03 highlighted"),
+            (Lang::Fi, 3, "Joint 3 ", "nivel 3 — A_3 ja T_03 korostettu"),
+            (Lang::En, 4, "", "joint 4 — A_4 and T_04 highlighted"),
+        ] {
+            assert_eq!(highlight_text(lang, link, name), want);
+        }
     }
 }
