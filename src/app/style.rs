@@ -229,7 +229,7 @@ pub fn text_width(ui: &egui::Ui, text: &str, font: &egui::FontId) -> f32 {
 /// A menu with its label on its left ([`menu_row`]), `wish` points wide (`None`: as wide
 /// as its selected text, at least egui's combo width) and never narrower than its
 /// selected text where the room allows. A long selected text in a narrow column (a
-/// projector's side column: "Franka Emika Panda" beside "Preset" at 1024×768) puts the
+/// projector's side column: "Franka Panda" beside "Preset" at 1024×768) puts the
 /// label above and wraps the text rather than cutting it to "Franka Pa…".
 pub fn fitted_menu<R>(
     ui: &mut egui::Ui,
