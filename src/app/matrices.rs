@@ -162,15 +162,16 @@ fn matrix_body(
 ) -> bool {
     let id = ui.make_persistent_id(("matrix body", title));
     style::unless_out_of_sight(ui, id, |ui| {
-        let area = egui::ScrollArea::horizontal().id_salt(("matrix scroll", title));
         // Each number formatted once a frame, for the fit and for the table.
         let texts = number_texts(m, decimals);
         let full = egui::TextStyle::Monospace.resolve(ui.style());
-        let all = 0..m.ncols();
         let fitted = fit(ui, &texts, m.nrows(), &full);
-        if hiding.interactive(target) {
-            // A "?" in place of a number is as wide as a digit: the same fit holds.
-            let mut table = |ui: &mut egui::Ui, columns, font, advances| {
+        // The clickable entries of predict-and-reveal or the plain numbers; a "?" in place
+        // of a number is as wide as a digit, so the same fit holds for both. `labelled`:
+        // the first block carries the whole matrix's screen-reader text.
+        let interactive = hiding.interactive(target);
+        let mut table = |ui: &mut egui::Ui, columns, labelled, font, advances| {
+            if interactive {
                 let cells = HidingCells {
                     m,
                     texts: &texts,
@@ -179,20 +180,11 @@ fn matrix_body(
                     advances,
                 };
                 hiding_table(ui, lang, &cells, target, hiding).hovered()
-            };
-            return match fitted {
-                Fit::Blocks(font, advances, blocks) => {
-                    let cut = blocks.len() > 1;
-                    blocks.into_iter().fold(false, |hovered, columns| {
-                        if cut {
-                            column_caption(ui, lang, &columns);
-                        }
-                        table(ui, columns, font.clone(), advances) || hovered
-                    })
-                }
-                Fit::Scroll(advances) => area.show(ui, |ui| table(ui, all, full, advances)).inner,
-            };
-        }
+            } else {
+                let columns = (columns, labelled);
+                number_table(ui, m, decimals, &texts, columns, font, advances).hovered()
+            }
+        };
         match fitted {
             Fit::Blocks(font, advances, blocks) => {
                 let cut = blocks.len() > 1;
@@ -201,23 +193,20 @@ fn matrix_body(
                     if cut {
                         column_caption(ui, lang, &columns);
                     }
-                    let table = (columns, i == 0);
-                    hovered |= number_table(ui, m, decimals, &texts, table, font.clone(), advances)
-                        .hovered();
+                    hovered |= table(ui, columns, i == 0, font.clone(), advances);
                 }
                 hovered
             }
             Fit::Scroll(advances) => {
                 ui.scope(|ui| {
                     ui.spacing_mut().scroll = egui::style::ScrollStyle::solid();
-                    area.scroll_bar_visibility(
-                        egui::scroll_area::ScrollBarVisibility::AlwaysVisible,
-                    )
-                    .show(ui, |ui| {
-                        number_table(ui, m, decimals, &texts, (all, true), full, advances)
-                    })
-                    .inner
-                    .hovered()
+                    egui::ScrollArea::horizontal()
+                        .id_salt(("matrix scroll", title))
+                        .scroll_bar_visibility(
+                            egui::scroll_area::ScrollBarVisibility::AlwaysVisible,
+                        )
+                        .show(ui, |ui| table(ui, 0..m.ncols(), true, full, advances))
+                        .inner
                 })
                 .inner
             }
