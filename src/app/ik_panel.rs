@@ -28,31 +28,36 @@ pub struct IkPanel {
     replay: Replay,
     /// The notebook run last started, if the replay is one.
     demo: Option<NotebookDemo>,
-    /// The Task and Method menus' label and menu widths ([`MenuWidths`]), measured once
-    /// per language and text size rather than in every frame of a drag.
+    /// The Task and Method menus' widths ([`MenuWidths`]), measured once per language,
+    /// text size and choice rather than in every frame of a drag.
     menu_widths: Option<MenuWidths>,
 }
 
-/// The widths the IK panel's two menus share: their labels' (the wider), and the menus'
-/// (the widest choice of either), for one language, text size and pixel density.
+/// The widths the IK panel's two menus share: their labels' (the wider), the menus' (the
+/// widest choice of either), and what the two chosen names need beside their labels (the
+/// more of the two: both menus go beside or both under), for one language, text size,
+/// pixel density and pair of choices.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct MenuWidths {
     /// What they were measured for: the language, the button font's size and the points
-    /// per pixel, as bits.
-    key: (crate::i18n::Lang, u32, u32),
+    /// per pixel as bits, and the chosen task and method.
+    key: (crate::i18n::Lang, u32, u32, Task, IkMethod),
     label: f32,
     menu: f32,
+    need: f32,
 }
 
 impl MenuWidths {
     /// The widths for `ui`'s style in the model's language, measured again only when the
-    /// kept ones were measured for another language, text size or pixel density.
+    /// kept ones were measured for another language, text size, pixel density or choice.
     fn of(kept: &mut Option<MenuWidths>, model: &Model, ui: &egui::Ui) -> MenuWidths {
         let font = egui::TextStyle::Button.resolve(ui.style());
         let key = (
             model.settings().lang,
             font.size.to_bits(),
             ui.ctx().pixels_per_point().to_bits(),
+            model.task(),
+            model.method(),
         );
         if let Some(widths) = kept.filter(|w| w.key == key) {
             return widths;
@@ -71,6 +76,10 @@ impl MenuWidths {
             key,
             label,
             menu: style::menu_width(ui, &choices),
+            need: [model.task().label_key(), model.method().label_key()]
+                .map(|k| style::menu_need(ui, tr(model, k)))
+                .into_iter()
+                .fold(0.0, f32::max),
         };
         *kept = Some(widths);
         widths
@@ -143,12 +152,8 @@ impl Panel for IkPanel {
         // One width for both menus and their labels, so that they line up and keep their
         // size whichever is chosen; both beside their labels or both under them.
         let widths = MenuWidths::of(&mut self.menu_widths, model, ui);
-        let need = [model.task().label_key(), model.method().label_key()]
-            .map(|k| style::menu_need(ui, tr(model, k)))
-            .into_iter()
-            .fold(0.0, f32::max);
-        task_menu(model, ui, widths.label, (need, widths.menu));
-        method_menu(model, ui, widths.label, (need, widths.menu));
+        task_menu(model, ui, widths.label, (widths.need, widths.menu));
+        method_menu(model, ui, widths.label, (widths.need, widths.menu));
         super::style::wrapped(ui, |ui| {
             if ui.button(tr(model, Key::SnapTarget)).clicked() {
                 model.snap_target();

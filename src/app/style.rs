@@ -263,12 +263,7 @@ pub fn menu_frame(ui: &egui::Ui) -> f32 {
 /// The width a menu needs to show the longest of `choices` whole ([`menu_frame`] added),
 /// so that it keeps one width whichever is chosen.
 pub fn menu_width(ui: &egui::Ui, choices: &[&str]) -> f32 {
-    let font = egui::TextStyle::Button.resolve(ui.style());
-    let widest = choices
-        .iter()
-        .map(|c| text_width(ui, c, &font))
-        .fold(0.0, f32::max);
-    widest + menu_frame(ui)
+    choices.iter().map(|c| menu_need(ui, c)).fold(0.0, f32::max)
 }
 
 /// The width a menu needs to show `selected` whole on one line.
