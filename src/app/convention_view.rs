@@ -8,7 +8,7 @@ use crate::i18n::Key;
 use crate::kinematics::convention::frames_in_both_conventions;
 use crate::kinematics::{Convention, Robot};
 
-use super::format::{number, scientific};
+use super::format::{error_value, number};
 use super::matrices::overlay_checkbox;
 use super::model::Model;
 use super::scene::{AXIS, segment};
@@ -36,7 +36,7 @@ pub fn both_conventions_ui(model: &mut Model, ui: &mut egui::Ui) {
             return;
         };
         let unit = model.robot().length_unit.symbol();
-        let agreement = scientific(both.disagreement, 1);
+        let agreement = error_value(both.disagreement, 1);
         ui.label(trf(model, Key::ConventionsAgree, &[&agreement, &unit]));
         // Side by side where the column has room for both, else one under the other.
         let tables = |ui: &mut egui::Ui| {

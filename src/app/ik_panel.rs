@@ -7,7 +7,7 @@ use crate::kinematics::{IkMethod, Task, wrapped_equivalent};
 
 use crate::i18n::Key;
 
-use super::format::{fixed, scientific};
+use super::format::{error_value, fixed};
 use super::hook::ScreenPoints;
 use super::model::Model;
 use super::notebook::NotebookDemo;
@@ -236,9 +236,9 @@ fn status(model: &Model, ui: &mut egui::Ui) {
         model,
         Key::IkErrors,
         &[
-            &scientific(ik.position_error, 3),
+            &error_value(ik.position_error, 3),
             &model.robot().length_unit.symbol(),
-            &scientific(ik.orientation_error, 3),
+            &error_value(ik.orientation_error, 3),
             &ik.iterations,
         ],
     ));
@@ -275,9 +275,9 @@ fn replay_ui(replay: &mut Replay, model: &mut Model, ui: &mut egui::Ui) {
         model,
         Key::StepLine,
         &[
-            &scientific(s.error, 3),
-            &scientific(s.step, 3),
-            &scientific(s.damping, 3),
+            &error_value(s.error, 3),
+            &error_value(s.step, 3),
+            &error_value(s.damping, 3),
         ],
     ));
     let raw: Vec<String> = s.raw_q.iter().map(|v| fixed(*v, 3)).collect();

@@ -18,7 +18,7 @@ use crate::kinematics::collision::KeepOut;
 use crate::kinematics::motion::{Controller, MotionSettings, PidGains, Series};
 use crate::kinematics::profile::ProfileShape;
 
-use super::format::scientific;
+use super::format::error_value;
 use super::hook::ScreenPoints;
 use super::jacobian_view::column_color;
 use super::model::Model;
@@ -617,7 +617,7 @@ fn measures_ui(model: &Model, ui: &mut egui::Ui) {
                     Some(t) => format!("{t:.2} s"),
                     None => "–".to_string(),
                 });
-                ui.monospace(scientific(m.error, 1));
+                ui.monospace(error_value(m.error, 1));
                 ui.end_row();
             }
         });

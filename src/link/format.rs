@@ -32,10 +32,22 @@ pub fn number(v: f64, decimals: usize) -> String {
     }
 }
 
+/// An error or a residual, which spans many orders of magnitude: from 0.01 up as
+/// [`number`] with 3 decimals (`450.123`, `0.012`), below that in [`scientific`] form with
+/// at most `decimals` decimals in the mantissa (`4.5e-3`, `1.976e-8`), where 3 decimals
+/// would show 0; zero is `0` (not `0.000e0`).
+pub fn error_value(v: f64, decimals: usize) -> String {
+    if v != 0.0 && v.abs() < 0.01 {
+        scientific(v, decimals)
+    } else {
+        number(v, 3)
+    }
+}
+
 /// `v` in scientific form with at most `decimals` decimals in the mantissa and no trailing
-/// zeros (`1.976e-8`, `4e-4`, `2.5e3`), for errors and residuals that span many orders of
-/// magnitude; zero is `0` (not `0.000e0`), and the non-finite as Rust writes them.
-pub fn scientific(v: f64, decimals: usize) -> String {
+/// zeros (`1.976e-8`, `4e-4`, `2.5e3`); zero is `0` (not `0.000e0`), and the non-finite as
+/// Rust writes them.
+fn scientific(v: f64, decimals: usize) -> String {
     if v == 0.0 {
         return "0".into();
     }
@@ -82,7 +94,7 @@ pub fn number_list(values: &[f64], decimals: usize) -> String {
     allow(clippy::unwrap_used, clippy::expect_used)
 )]
 mod tests {
-    use super::{fixed, number, scientific};
+    use super::{error_value, fixed, number, scientific};
     #[cfg(target_arch = "wasm32")]
     use wasm_bindgen_test::wasm_bindgen_test as test;
 
@@ -105,6 +117,13 @@ mod tests {
         assert_eq!(scientific(0.0004, 3), "4e-4");
         assert_eq!(scientific(-2500.0, 1), "-2.5e3");
         assert_eq!(scientific(1.0, 3), "1e0");
+        // Errors: tiny ones scientific, the rest plain (a 450 mm error read "4.5e2 mm").
+        assert_eq!(error_value(0.0, 3), "0");
+        assert_eq!(error_value(1.9764e-8, 3), "1.976e-8");
+        assert_eq!(error_value(0.0045, 1), "4.5e-3");
+        assert_eq!(error_value(0.0123, 3), "0.012");
+        assert_eq!(error_value(450.1234, 3), "450.123");
+        assert_eq!(error_value(2.5e7, 3), "2.5e7");
     }
 
     #[test]
