@@ -33,7 +33,7 @@ pub fn number(v: f64, decimals: usize) -> String {
 }
 
 /// An error or a residual, which spans many orders of magnitude: from 0.01 up as
-/// [`number`] with 3 decimals (`450.123`, `0.012`), below that in [`scientific`] form with
+/// [`number`] with 3 decimals (`450.123`, `0.012`), below that in scientific form with
 /// at most `decimals` decimals in the mantissa (`4.5e-3`, `1.976e-8`), where 3 decimals
 /// would show 0; zero is `0` (not `0.000e0`).
 pub fn error_value(v: f64, decimals: usize) -> String {
