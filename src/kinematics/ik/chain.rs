@@ -10,9 +10,59 @@ use crate::kinematics::angles::sin_cos;
 use crate::kinematics::jacobian::Task;
 use crate::kinematics::robot::{Convention, JointKind, Robot};
 
+/// A row's twist α when it is a multiple of a quarter turn (to within 10⁻¹⁵ in sin α and
+/// cos α, as the presets' ±π/2 are): the pass then permutes and negates columns instead
+/// of multiplying by sin α and cos α, whose rounded values (cos(π/2) ≈ 6·10⁻¹⁷) it drops.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Twist {
+    /// α = 0.
+    Zero,
+    /// α = +π/2.
+    Quarter,
+    /// α = −π/2.
+    MinusQuarter,
+    /// α = π.
+    Half,
+    /// Any other α: sin α and cos α.
+    General,
+}
+
+impl Twist {
+    fn of(sa: f64, ca: f64) -> Twist {
+        const EPS: f64 = 1e-15;
+        let near = |v: f64, w: f64| (v - w).abs() <= EPS;
+        match (sa, ca) {
+            _ if near(sa, 0.0) && near(ca, 1.0) => Twist::Zero,
+            _ if near(sa, 1.0) && near(ca, 0.0) => Twist::Quarter,
+            _ if near(sa, -1.0) && near(ca, 0.0) => Twist::MinusQuarter,
+            _ if near(sa, 0.0) && near(ca, -1.0) => Twist::Half,
+            _ => Twist::General,
+        }
+    }
+
+    /// `(b·cos α + c·sin α, c·cos α − b·sin α)`.
+    #[inline(always)]
+    fn turn(
+        self,
+        sa: f64,
+        ca: f64,
+        b: Vector3<f64>,
+        c: Vector3<f64>,
+    ) -> (Vector3<f64>, Vector3<f64>) {
+        match self {
+            Twist::Zero => (b, c),
+            Twist::Quarter => (c, -b),
+            Twist::MinusQuarter => (-c, b),
+            Twist::Half => (-b, -c),
+            Twist::General => (b * ca + c * sa, c * ca - b * sa),
+        }
+    }
+}
+
 /// One DH row in the form the pass needs.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Link {
+    twist: Twist,
     sa: f64,
     ca: f64,
     a: f64,
@@ -72,6 +122,7 @@ impl Chain {
         self.links.extend(robot.joints.iter().map(|joint| {
             let (sa, ca) = sin_cos(joint.dh.alpha);
             Link {
+                twist: Twist::of(sa, ca),
                 sa,
                 ca,
                 a: joint.dh.a,
@@ -127,8 +178,7 @@ impl Chain {
             let c2 = r.column(2).into_owned();
             if modified {
                 // R_i = R·Rx(α)·Rz(θ), o_i = o + a·x_{i−1} + d·z_i; axis z_i at o_i.
-                let y1 = c1 * ca + c2 * sa;
-                let z = c2 * ca - c1 * sa;
+                let (y1, z) = link.twist.turn(sa, ca, c1, c2);
                 let x = c0 * ct + y1 * st;
                 let y = y1 * ct - c0 * st;
                 o += c0 * link.a + z * d;
@@ -139,8 +189,7 @@ impl Chain {
                 // R_i = R·Rz(θ)·Rx(α), o_i = o + a·x_i + d·z_{i−1}; axis z_{i−1} at o_{i−1}.
                 let x = c0 * ct + c1 * st;
                 let y0 = c1 * ct - c0 * st;
-                let y = y0 * ca + c2 * sa;
-                let z = c2 * ca - y0 * sa;
+                let (y, z) = link.twist.turn(sa, ca, y0, c2);
                 *axis = c2;
                 *origin = o;
                 o += x * link.a + c2 * d;
@@ -228,45 +277,90 @@ pub(crate) fn solve_spd6(
     shift: f64,
     b: &nalgebra::Vector6<f64>,
 ) -> Option<[f64; 6]> {
-    let mut l = [[0.0f64; 6]; 6];
-    let mut dd = [0.0f64; 6];
-    let mut inv_d = [0.0f64; 6];
-    for j in 0..6 {
-        // w[k] = L[j][k]·D[k] for k < j
+    let mut f = Ldl {
+        l: [[0.0; 6]; 6],
+        d: [0.0; 6],
+        inv_d: [0.0; 6],
+    };
+    // One call per column with the column's index a constant, so that every inner loop
+    // has a known length and unrolls (with run-time lengths they stayed loops).
+    let ok = f.column::<0>(a, shift)
+        && f.column::<1>(a, shift)
+        && f.column::<2>(a, shift)
+        && f.column::<3>(a, shift)
+        && f.column::<4>(a, shift)
+        && f.column::<5>(a, shift);
+    if !ok {
+        return None;
+    }
+    let mut y = [b[0], b[1], b[2], b[3], b[4], b[5]];
+    f.forward::<1>(&mut y);
+    f.forward::<2>(&mut y);
+    f.forward::<3>(&mut y);
+    f.forward::<4>(&mut y);
+    f.forward::<5>(&mut y);
+    y[5] *= f.inv_d[5];
+    f.backward::<4>(&mut y);
+    f.backward::<3>(&mut y);
+    f.backward::<2>(&mut y);
+    f.backward::<1>(&mut y);
+    f.backward::<0>(&mut y);
+    Some(y)
+}
+
+/// The `L·D·Lᵀ` factors of [`solve_spd6`].
+struct Ldl {
+    /// L below the diagonal (row, column).
+    l: [[f64; 6]; 6],
+    d: [f64; 6],
+    inv_d: [f64; 6],
+}
+
+impl Ldl {
+    /// Column `J` of L and pivot `J` of D from `A + shift·I`; false when the pivot is not
+    /// positive.
+    #[inline(always)]
+    fn column<const J: usize>(&mut self, a: &Matrix6<f64>, shift: f64) -> bool {
+        // w[k] = L[J][k]·D[k] for k < J
         let mut w = [0.0f64; 6];
-        let mut d = a[(j, j)] + shift;
-        for k in 0..j {
-            w[k] = l[j][k] * dd[k];
-            d -= w[k] * l[j][k];
+        let mut d = a[(J, J)] + shift;
+        for k in 0..J {
+            w[k] = self.l[J][k] * self.d[k];
+            d -= w[k] * self.l[J][k];
         }
         if d.is_nan() || d <= 0.0 {
-            return None;
+            return false;
         }
         let inv = 1.0 / d;
-        dd[j] = d;
-        inv_d[j] = inv;
-        for i in j + 1..6 {
-            let mut s = a[(i, j)];
-            for k in 0..j {
-                s -= l[i][k] * w[k];
+        self.d[J] = d;
+        self.inv_d[J] = inv;
+        for i in J + 1..6 {
+            let mut s = a[(i, J)];
+            for k in 0..J {
+                s -= self.l[i][k] * w[k];
             }
-            l[i][j] = s * inv;
+            self.l[i][J] = s * inv;
         }
+        true
     }
-    let mut y = [0.0f64; 6];
-    for i in 0..6 {
-        let mut s = b[i];
-        for k in 0..i {
-            s -= l[i][k] * y[k];
+
+    /// Row `I` of the forward substitution `L·z = b` (rows before it done).
+    #[inline(always)]
+    fn forward<const I: usize>(&self, y: &mut [f64; 6]) {
+        let mut s = y[I];
+        for k in 0..I {
+            s -= self.l[I][k] * y[k];
         }
-        y[i] = s;
+        y[I] = s;
     }
-    for i in (0..6).rev() {
-        let mut s = y[i] * inv_d[i];
-        for k in i + 1..6 {
-            s -= l[k][i] * y[k];
+
+    /// Row `I` of `Lᵀ·y = D⁻¹·z` (rows after it done).
+    #[inline(always)]
+    fn backward<const I: usize>(&self, y: &mut [f64; 6]) {
+        let mut s = y[I] * self.inv_d[I];
+        for k in I + 1..6 {
+            s -= self.l[k][I] * y[k];
         }
-        y[i] = s;
+        y[I] = s;
     }
-    Some(y)
 }
