@@ -100,3 +100,37 @@ fn fast_sin_cos_agrees_with_the_library() {
     }
     assert!(worst <= 4.5e-16, "largest difference {worst:e}");
 }
+
+#[test]
+fn two_angles_at_once_are_the_one_angle_sin_cos_bit_for_bit() {
+    use armlab::kinematics::angles::{sin_cos, sin_cos_2};
+    let mut rng = common::rng(9);
+    let mut xs: Vec<f64> = (0..20000).map(|_| rng.uniform(-50.0, 50.0)).collect();
+    xs.extend((0..2000).map(|_| rng.uniform(-1e6, 1e6)));
+    // Quadrant edges, both signs of zero, the range's end and what the library takes.
+    xs.extend([
+        0.0,
+        -0.0,
+        PI / 4.0,
+        -PI / 4.0,
+        PI / 2.0,
+        -PI,
+        3.0 * PI,
+        1e-300,
+    ]);
+    xs.extend([999_999.9, 1e6, -1e6, 2e6, f64::INFINITY, f64::NAN]);
+    let same = |a: f64, b: f64| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
+    for pair in xs.chunks_exact(2).chain(xs.windows(2).rev().take(20)) {
+        let (s, c) = sin_cos_2([pair[0], pair[1]]);
+        for k in 0..2 {
+            let (s1, c1) = sin_cos(pair[k]);
+            assert!(
+                same(s[k], s1) && same(c[k], c1),
+                "x = {}: ({}, {}) vs ({s1}, {c1})",
+                pair[k],
+                s[k],
+                c[k]
+            );
+        }
+    }
+}

@@ -55,6 +55,64 @@ pub fn nearest_equivalent_within(value: f64, current: f64, limits: &JointLimits)
     }
 }
 
+/// [`sin_cos`] of two angles at once: `(sines, cosines)`. The same reduction and
+/// polynomials written lane by lane without a branch (the quadrant taken from the rounded
+/// value's low bits), so the compiler runs both lanes in one vector register (SSE2, wasm
+/// simd128). Angles of 10⁶ or more, or NaN, go through [`sin_cos`] one by one. Equal to
+/// [`sin_cos`] bit for bit.
+#[inline]
+pub fn sin_cos_2(x: [f64; 2]) -> ([f64; 2], [f64; 2]) {
+    if !(x[0].abs() < 1e6 && x[1].abs() < 1e6) {
+        let (a, b) = (sin_cos(x[0]), sin_cos(x[1]));
+        return ([a.0, b.0], [a.1, b.1]);
+    }
+    let mut s = [0.0; 2];
+    let mut c = [0.0; 2];
+    for i in 0..2 {
+        let t = x[i] * TWO_OVER_PI + ROUNDER;
+        // t's low bits hold k (the rounding to an integer happens in the addition).
+        let q = t.to_bits();
+        let k = t - ROUNDER;
+        let r = ((x[i] - k * PIO2_1) - k * PIO2_2) - k * PIO2_3;
+        let (ps, pc) = kernels(r);
+        let odd = (q & 1).wrapping_neg();
+        let (ps, pc) = (ps.to_bits(), pc.to_bits());
+        let sv = (ps & !odd) | (pc & odd);
+        let cv = (pc & !odd) | (ps & odd);
+        s[i] = f64::from_bits(sv ^ ((q & 2) << 62));
+        c[i] = f64::from_bits(cv ^ ((q.wrapping_add(1) & 2) << 62));
+    }
+    (s, c)
+}
+
+const TWO_OVER_PI: f64 = std::f64::consts::FRAC_2_PI;
+const PIO2_1: f64 = 1.5707963267341256; // first 33 bits of π/2
+const PIO2_2: f64 = 6.077100506303966e-11; // next 33 bits
+const PIO2_3: f64 = 2.0222662487959506e-21; // the rest
+/// 1.5·2⁵²: adding and removing it rounds to the nearest integer (no library call).
+const ROUNDER: f64 = 6755399441055744.0;
+
+/// sin r and cos r for |r| ≤ π/4 (Sun's fdlibm kernels' coefficients).
+#[inline(always)]
+fn kernels(r: f64) -> (f64, f64) {
+    let z = r * r;
+    let s = r + r
+        * z
+        * (-0.16666666666666632
+            + z * (0.00833333333332249
+                + z * (-0.0001984126982985795
+                    + z * (2.7557313707070068e-6
+                        + z * (-2.5050760253406863e-8 + z * 1.58969099521155e-10)))));
+    let c = 1.0 - 0.5 * z
+        + z * z
+            * (0.0416666666666666
+                + z * (-0.001388888888887411
+                    + z * (2.480158728947673e-5
+                        + z * (-2.7557314351390663e-7
+                            + z * (2.087572321298175e-9 + z * -1.1359647557788195e-11)))));
+    (s, c)
+}
+
 /// sin x and cos x together, for forward kinematics' hot loop: one shared argument
 /// reduction and two short polynomials instead of two library calls (about twice as fast
 /// natively, more on wasm where the library's sin and cos are software). Within 2 ulp of
@@ -71,32 +129,12 @@ pub fn nearest_equivalent_within(value: f64, current: f64, limits: &JointLimits)
 /// ```
 #[inline]
 pub fn sin_cos(x: f64) -> (f64, f64) {
-    const TWO_OVER_PI: f64 = std::f64::consts::FRAC_2_PI;
-    const PIO2_1: f64 = 1.5707963267341256; // first 33 bits of π/2
-    const PIO2_2: f64 = 6.077100506303966e-11; // next 33 bits
-    const PIO2_3: f64 = 2.0222662487959506e-21; // the rest
     if x.is_nan() || x.abs() >= 1e6 {
         return x.sin_cos(); // huge, infinite or NaN: the library handles it
     }
-    // Round to nearest by adding and removing 1.5·2⁵² (no library call, unlike `round`).
-    const ROUNDER: f64 = 6755399441055744.0;
     let k = (x * TWO_OVER_PI + ROUNDER) - ROUNDER;
     let r = ((x - k * PIO2_1) - k * PIO2_2) - k * PIO2_3;
-    let z = r * r;
-    let s = r + r
-        * z
-        * (-0.16666666666666632
-            + z * (0.00833333333332249
-                + z * (-0.0001984126982985795
-                    + z * (2.7557313707070068e-6
-                        + z * (-2.5050760253406863e-8 + z * 1.58969099521155e-10)))));
-    let c = 1.0 - 0.5 * z
-        + z * z
-            * (0.0416666666666666
-                + z * (-0.001388888888887411
-                    + z * (2.480158728947673e-5
-                        + z * (-2.7557314351390663e-7
-                            + z * (2.087572321298175e-9 + z * -1.1359647557788195e-11)))));
+    let (s, c) = kernels(r);
     // The quadrant without a branch (random angles would mispredict one): odd quadrants
     // swap sin and cos; sin is negated in quadrants 2 and 3, cos in 1 and 2.
     let q = (k as i64) as u64;

@@ -6,7 +6,7 @@
 
 use nalgebra::{IsometryMatrix3, Matrix3, Matrix6, Matrix6xX, Rotation3, Translation3, Vector3};
 
-use crate::kinematics::angles::sin_cos;
+use crate::kinematics::angles::{sin_cos, sin_cos_2};
 use crate::kinematics::jacobian::Task;
 use crate::kinematics::robot::{Convention, JointKind, Robot};
 
@@ -152,15 +152,24 @@ impl Chain {
     /// axis and point for [`Chain::task_jacobian`].
     pub fn update(&mut self, q: &[f64]) {
         // Every joint's sine and cosine first, in a loop of independent work (the chain
-        // below is one long dependency; the sines no longer wait in it).
+        // below is one long dependency; the sines no longer wait in it), two joints at a
+        // time in one vector register.
         for ((link, &qi), sc) in self.links.iter().zip(q).zip(self.sc.iter_mut()) {
-            let (theta, d) = if link.prismatic {
-                (link.theta, link.d + qi)
+            *sc = if link.prismatic {
+                (link.theta, 0.0, link.d + qi)
             } else {
-                (link.theta + qi, link.d)
+                (link.theta + qi, 0.0, link.d)
             };
-            let (st, ct) = sin_cos(theta);
-            *sc = (st, ct, d);
+        }
+        let mut pairs = self.sc.chunks_exact_mut(2);
+        for pair in &mut pairs {
+            let (s, c) = sin_cos_2([pair[0].0, pair[1].0]);
+            pair[0] = (s[0], c[0], pair[0].2);
+            pair[1] = (s[1], c[1], pair[1].2);
+        }
+        for sc in pairs.into_remainder() {
+            let (st, ct) = sin_cos(sc.0);
+            *sc = (st, ct, sc.2);
         }
         let mut r = self.base_r;
         let mut o = self.base_o;
