@@ -134,3 +134,64 @@ fn two_angles_at_once_are_the_one_angle_sin_cos_bit_for_bit() {
         }
     }
 }
+
+#[test]
+fn polynomial_atan2_is_within_two_ulp_of_the_library() {
+    use armlab::kinematics::angles::atan2_poly as atan2;
+    let ulps = |a: f64, b: f64| -> u64 {
+        if a == b {
+            return 0;
+        }
+        // Same sign here (the results share y's sign), so the bit distance counts ulps.
+        (a.to_bits() as i64 - b.to_bits() as i64).unsigned_abs()
+    };
+    let mut rng = common::rng(10);
+    let mut worst = 0u64;
+    let mut pairs: Vec<(f64, f64)> = (0..200_000)
+        .map(|_| (rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0)))
+        .collect();
+    // Ratios near the eighths' switching points and the octant edges, scales far apart.
+    for k in 0..=16 {
+        let t = k as f64 / 16.0;
+        for d in [-1e-12, 0.0, 1e-12] {
+            for (sy, sx) in [(1.0, 1.0), (-1.0, 1.0), (1.0, -1.0), (-1.0, -1.0)] {
+                pairs.push((sy * (t + d), sx * 1.0));
+                pairs.push((sy * 1.0, sx * (t + d)));
+            }
+        }
+    }
+    pairs.extend((0..20_000).map(|_| {
+        let e = rng.uniform(-280.0, 280.0);
+        (
+            rng.uniform(-1.0, 1.0) * 10f64.powf(e),
+            rng.uniform(-1.0, 1.0),
+        )
+    }));
+    for &(y, x) in &pairs {
+        let (got, want) = (atan2(y, x), y.atan2(x));
+        assert_eq!(
+            got.is_sign_negative(),
+            want.is_sign_negative(),
+            "({y}, {x})"
+        );
+        worst = worst.max(ulps(got, want));
+    }
+    assert!(worst <= 2, "largest difference {worst} ulp");
+    // What the library answers: zeros of both signs, infinities, NaN, extreme magnitudes.
+    let special = [
+        0.0,
+        -0.0,
+        1.0,
+        -1.0,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        1e300,
+        -1e-300,
+    ];
+    for &y in &special {
+        for &x in &special {
+            assert_eq!(atan2(y, x).to_bits(), y.atan2(x).to_bits(), "({y}, {x})");
+        }
+    }
+    assert!(atan2(f64::NAN, 1.0).is_nan() && atan2(1.0, f64::NAN).is_nan());
+}

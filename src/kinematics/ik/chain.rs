@@ -325,6 +325,8 @@ struct Ldl {
     inv_d: [f64; 6],
 }
 
+// The loops index L by row and column, as the formulas do; their lengths are constants.
+#[allow(clippy::needless_range_loop)]
 impl Ldl {
     /// Column `J` of L and pivot `J` of D from `A + shift·I`; false when the pivot is not
     /// positive.

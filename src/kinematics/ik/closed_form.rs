@@ -24,6 +24,7 @@
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
+use crate::kinematics::angles::{atan2, sin_cos};
 use nalgebra::{IsometryMatrix3, Rotation3, Translation3, Vector3};
 
 mod pieper;
@@ -130,7 +131,7 @@ struct Row {
 impl Row {
     /// `sin α`, `cos α` once, for [`Row::transform_with`].
     fn alpha_sin_cos(&self) -> (f64, f64) {
-        self.alpha.sin_cos()
+        sin_cos(self.alpha)
     }
 
     /// The standard DH transform `Rot_z(θ)·Trans_z(d)·Trans_x(a)·Rot_x(α)` of this row
@@ -142,7 +143,7 @@ impl Row {
         } else {
             (var, self.d)
         };
-        let (st, ct) = theta.sin_cos();
+        let (st, ct) = sin_cos(theta);
         IsometryMatrix3::from_parts(
             Translation3::new(self.a * ct, self.a * st, d),
             Rotation3::from_matrix_unchecked(nalgebra::Matrix3::new(
@@ -402,14 +403,14 @@ fn planar_2r(x: f64, y: f64, a1: f64, a2: f64, seed_a: f64, out: &mut Vec<Planar
     let scale = a1.abs() + a2.abs();
     for sign in [1.0, -1.0] {
         let sb = sign * s;
-        let tb = sb.atan2(c);
+        let tb = atan2(sb, c);
         let kx = a1 + a2 * c;
         let ky = a2 * sb;
         let free_a = r2.sqrt() <= 1e-12 * scale && kx.hypot(ky) <= 1e-12 * scale;
         let ta = if free_a {
             seed_a
         } else {
-            y.atan2(x) - ky.atan2(kx)
+            atan2(y, x) - atan2(ky, kx)
         };
         out.push(Planar {
             ta,
@@ -468,7 +469,7 @@ fn shoulder(
     if rho <= 1e-12 * scale && d_sum.abs() <= 1e-12 * scale {
         return ([seed, seed + PI], true, true, true);
     }
-    let phi = y.atan2(x);
+    let phi = atan2(y, x);
     let ratio = if rho > 0.0 {
         sigma1 * d_sum / rho
     } else {
@@ -624,7 +625,7 @@ pub fn closed_form_solutions(
             let d_sum = r[1].d + r[2].d;
             let (t1s, ok1, sing1, free1) = shoulder(w.x, w.y, sigma1, d_sum, seed_theta[0], scale);
             for (s, &t1) in t1s.iter().enumerate() {
-                let (s1, c1) = t1.sin_cos();
+                let (s1, c1) = sin_cos(t1);
                 let x = w.x * c1 + w.y * s1;
                 let y = sigma1 * w.z;
                 planar.clear();
@@ -747,14 +748,14 @@ fn ur_family(
     let d_sum = r[1].d + r[2].d + r[3].d;
     let (t1s, ok1, sing1, free1) = shoulder(w.x, w.y, sigma1, d_sum, seed_theta[0], scale);
     for (s, &t1) in t1s.iter().enumerate() {
-        let (s1, c1) = t1.sin_cos();
+        let (s1, c1) = sin_cos(t1);
         let z1 = Vector3::new(s1, -c1, 0.0) * sigma1;
         let cz = z6.dot(&z1);
         let sx = x6.dot(&z1);
         let sy = y6.dot(&z1);
         let s5 = sx.hypot(sy);
         let wrist_singular = s5 < WRIST_SINGULAR;
-        let t5_plus = s5.atan2(-sigma45 * cz);
+        let t5_plus = atan2(s5, -sigma45 * cz);
         let a1_inv = r[0].transform_with(t1, sc1).inverse();
         // The target in frame 1.
         let t1_target = a1_inv * t;
@@ -779,7 +780,7 @@ fn ur_family(
                 let a56 = a5 * row6.transform_with(t6, (0.0, 1.0));
                 let t14 = t1_target * a56.inverse();
                 let m = t14.rotation.matrix();
-                let t234 = m[(1, 0)].atan2(m[(0, 0)]);
+                let t234 = atan2(m[(1, 0)], m[(0, 0)]);
                 (t14.translation.vector.x, t14.translation.vector.y, t234)
             };
             let reachable = |x: f64, y: f64| {
@@ -789,7 +790,7 @@ fn ur_family(
             };
             let t6 = if !wrist_singular {
                 let k = sigma4 * sin5.signum();
-                (-k * sy).atan2(k * sx)
+                atan2(-k * sy, k * sx)
             } else {
                 // θ6 is free: the seed's value when the planar 2R then reaches its point,
                 // else the nearest value for which it does (docs/kinematics.md §9.3).
@@ -846,7 +847,7 @@ fn ur_wrist_free_t6(
     let d5 = r[4].d;
     let (x0, y0, psi0) = frame4(seed6);
     // The centre: o4(ψ0) + σ4·d5·(sin ψ0, −cos ψ0).
-    let (sp, cp) = psi0.sin_cos();
+    let (sp, cp) = sin_cos(psi0);
     let cx = x0 + sigma4 * d5 * sp;
     let cy = y0 - sigma4 * d5 * cp;
     let c_norm = cx.hypot(cy);
@@ -854,7 +855,7 @@ fn ur_wrist_free_t6(
     if b.abs() < 1e-300 {
         return None;
     }
-    let phi_c = cy.atan2(cx);
+    let phi_c = atan2(cy, cx);
     let a2 = r[1].a.abs();
     let a3 = r[2].a.abs();
     // θ6 for a given ψ, read from the rotation: Rot_z(θ6) = (Rot_z(ψ)·Rx(α4)·A5ʳᵒᵗ)ᵀ·R.
@@ -874,7 +875,7 @@ fn ur_wrist_free_t6(
         let asin = k.clamp(-1.0, 1.0).asin();
         for psi in [phi_c + asin, phi_c + PI - asin] {
             let n = rot_to5(psi).transpose() * r_target;
-            let t6 = n[(1, 0)].atan2(n[(0, 0)]);
+            let t6 = atan2(n[(1, 0)], n[(0, 0)]);
             let (x, y, _) = frame4(t6);
             if !reachable(x, y) {
                 continue;
@@ -912,7 +913,7 @@ pub(crate) fn target_for_task(
             let b = target.rotation.matrix().column(k).into_owned();
             let cross = a.cross(&b);
             let s = cross.norm();
-            let angle = s.atan2(a.dot(&b));
+            let angle = atan2(s, a.dot(&b));
             let turn = if s > 1e-12 {
                 Rotation3::new(cross * (angle / s))
             } else if angle > FRAC_PI_2 {

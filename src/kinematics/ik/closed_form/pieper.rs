@@ -12,6 +12,7 @@
 //!   centre is `Rot_z(θ2)·(k, −σ2·(d3 + d4))` with `k = a2 + a3·cos θ3⁰`, so
 //!   `(d3 + d4)² = ρ1² − k²` and θ2 follows; the offset is `D = d2 + σ2·a3·sin θ3⁰`.
 
+use crate::kinematics::angles::{atan2, sin_cos};
 use nalgebra::{IsometryMatrix3, Vector3};
 
 use super::{
@@ -97,7 +98,7 @@ pub(super) fn solve(
     };
     let (t1s, ok1, sing1, free1) = shoulder(w.x, w.y, sigma1, d_sum, seed_theta[0], scale);
     for (s, &t1) in t1s.iter().enumerate() {
-        let (s1, c1) = t1.sin_cos();
+        let (s1, c1) = sin_cos(t1);
         let x1 = w.x * c1 + w.y * s1;
         let y1 = sigma1 * w.z;
         let mut arms: Vec<Arm> = Vec::with_capacity(2);
@@ -106,7 +107,7 @@ pub(super) fn solve(
                 let ux = r[2].a;
                 let uy = -r[2].alpha.sin() * r[3].d;
                 let len = ux.hypot(uy);
-                let beta = uy.atan2(ux);
+                let beta = atan2(uy, ux);
                 planar.clear();
                 planar_2r(x1, y1, r[1].a, len, seed_theta[1], planar);
                 let side = sigma1 * front_sign(s);
@@ -146,7 +147,7 @@ pub(super) fn solve(
                 for d3 in roots {
                     // θ2 turns v = (k, −σ2·(d3 + d4)) onto the point (x1, y1).
                     let vy = -sigma2 * (d3 + r[3].d);
-                    let t2 = y1.atan2(x1) - vy.atan2(k);
+                    let t2 = atan2(y1, x1) - atan2(vy, k);
                     arms.push(Arm {
                         t2,
                         v3: d3,
@@ -216,11 +217,11 @@ fn wrist(
     let (sigma4, sigma5) = (r[3].sigma(), r[4].sigma());
     let s5 = m[(0, 2)].hypot(m[(1, 2)]);
     let singular = s5 < WRIST_SINGULAR;
-    let t5_plus = s5.atan2(-sigma4 * sigma5 * m[(2, 2)]);
+    let t5_plus = atan2(s5, -sigma4 * sigma5 * m[(2, 2)]);
     let t4_plus = if singular {
         seed4
     } else {
-        (sigma5 * m[(1, 2)]).atan2(sigma5 * m[(0, 2)])
+        atan2(sigma5 * m[(1, 2)], sigma5 * m[(0, 2)])
     };
     for (wi, (t4, t5)) in [
         (t4_plus, t5_plus),
@@ -234,7 +235,7 @@ fn wrist(
         }
         let r45 = r[3].transform(t4).rotation * r[4].transform(t5).rotation;
         let n = r45.matrix().transpose() * m;
-        let t6 = n[(1, 0)].atan2(n[(0, 0)]);
+        let t6 = atan2(n[(1, 0)], n[(0, 0)]);
         let branch = if wi == 0 {
             Wrist::NotFlipped
         } else {

@@ -1,6 +1,7 @@
 //! The SCARA closed form (docs/kinematics.md §9.4): revolute, revolute, prismatic,
 //! revolute, every axis parallel (α ∈ {0, π}), the prismatic row without a link length.
 
+use crate::kinematics::angles::atan2;
 use nalgebra::IsometryMatrix3;
 
 use super::{Branch, Canonical, Planar, Raw, elbow_of, planar_2r};
@@ -34,7 +35,7 @@ pub(super) fn solve(
         let t2 = c1 * pl.tb;
         let r03 = r[0].transform(pl.ta) * r[1].transform(t2) * r[2].transform(d3);
         let n = r03.rotation.matrix().transpose() * t.rotation.matrix();
-        let t4 = n[(1, 0)].atan2(n[(0, 0)]);
+        let t4 = atan2(n[(1, 0)], n[(0, 0)]);
         let vertical = (n[(2, 2)] - 1.0).abs() <= 1e-9;
         let branch = Branch {
             elbow: Some(elbow_of(1.0, r[0].a, r[1].a, pl.sign)),
