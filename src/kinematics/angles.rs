@@ -85,16 +85,18 @@ pub fn sin_cos_2(x: [f64; 2]) -> ([f64; 2], [f64; 2]) {
     (s, c)
 }
 
-/// atan2(y, x) for the closed forms' hot paths: [`atan2_poly`] on wasm, where the
-/// library's atan2 is software and the closed forms spent about a tenth of their time in
-/// it; natively the library's (glibc's, with FMA, is as fast there and correctly rounded).
+/// atan2(y, x) for the closed forms' hot paths: [`atan2_poly`] in the core's wasm (the JS
+/// API), where the library's atan2 is software and the closed forms spent about a tenth
+/// of their time in it; natively the library's (glibc's, with FMA, is as fast there and
+/// correctly rounded), and in the page too, which is built for size (the page's budget,
+/// README "Page size"; the library's atan2 is in it anyway).
 #[inline]
 pub fn atan2(y: f64, x: f64) -> f64 {
-    #[cfg(target_arch = "wasm32")]
+    #[cfg(all(target_arch = "wasm32", not(feature = "app")))]
     {
         atan2_poly(y, x)
     }
-    #[cfg(not(target_arch = "wasm32"))]
+    #[cfg(not(all(target_arch = "wasm32", not(feature = "app"))))]
     {
         y.atan2(x)
     }
@@ -112,7 +114,6 @@ pub fn atan2(y: f64, x: f64) -> f64 {
 /// use armlab::kinematics::angles::atan2_poly;
 /// assert!((atan2_poly(1.0, -2.0) - 1f64.atan2(-2.0)).abs() < 1e-15);
 /// ```
-#[inline]
 pub fn atan2_poly(y: f64, x: f64) -> f64 {
     /// atan(k/8), k = 0..=8.
     const ATAN_EIGHTHS: [f64; 9] = [

@@ -31,12 +31,16 @@ impl Twist {
     fn of(sa: f64, ca: f64) -> Twist {
         const EPS: f64 = 1e-15;
         let near = |v: f64, w: f64| (v - w).abs() <= EPS;
-        match (sa, ca) {
-            _ if near(sa, 0.0) && near(ca, 1.0) => Twist::Zero,
-            _ if near(sa, 1.0) && near(ca, 0.0) => Twist::Quarter,
-            _ if near(sa, -1.0) && near(ca, 0.0) => Twist::MinusQuarter,
-            _ if near(sa, 0.0) && near(ca, -1.0) => Twist::Half,
-            _ => Twist::General,
+        if near(sa, 0.0) && near(ca, 1.0) {
+            Twist::Zero
+        } else if near(sa, 1.0) && near(ca, 0.0) {
+            Twist::Quarter
+        } else if near(sa, -1.0) && near(ca, 0.0) {
+            Twist::MinusQuarter
+        } else if near(sa, 0.0) && near(ca, -1.0) {
+            Twist::Half
+        } else {
+            Twist::General
         }
     }
 
@@ -161,13 +165,20 @@ impl Chain {
                 (link.theta + qi, 0.0, link.d)
             };
         }
-        let mut pairs = self.sc.chunks_exact_mut(2);
-        for pair in &mut pairs {
+        // Two at a time, except in the page, which is built for size (README "Page size";
+        // the vector copy of the polynomials cost it about 370 B): there one by one.
+        let paired = if cfg!(all(target_arch = "wasm32", feature = "app")) {
+            0
+        } else {
+            self.sc.len() / 2 * 2
+        };
+        let (pairs, rest) = self.sc.split_at_mut(paired);
+        for pair in pairs.chunks_exact_mut(2) {
             let (s, c) = sin_cos_2([pair[0].0, pair[1].0]);
             pair[0] = (s[0], c[0], pair[0].2);
             pair[1] = (s[1], c[1], pair[1].2);
         }
-        for sc in pairs.into_remainder() {
+        for sc in rest {
             let (st, ct) = sin_cos(sc.0);
             *sc = (st, ct, sc.2);
         }
