@@ -58,31 +58,37 @@ pub fn nearest_equivalent_within(value: f64, current: f64, limits: &JointLimits)
 /// [`sin_cos`] of two angles at once: `(sines, cosines)`. The same reduction and
 /// polynomials written lane by lane without a branch (the quadrant taken from the rounded
 /// value's low bits), so the compiler runs both lanes in one vector register (SSE2, wasm
-/// simd128). Angles of 10⁶ or more, or NaN, go through [`sin_cos`] one by one. Equal to
-/// [`sin_cos`] bit for bit.
+/// simd128). Angles of 10⁶ or more, or NaN, go through [`sin_cos`] one by one. The same
+/// lane code as [`sin_cos`], so equal to it bit for bit.
 #[inline]
 pub fn sin_cos_2(x: [f64; 2]) -> ([f64; 2], [f64; 2]) {
     if !(x[0].abs() < 1e6 && x[1].abs() < 1e6) {
         let (a, b) = (sin_cos(x[0]), sin_cos(x[1]));
         return ([a.0, b.0], [a.1, b.1]);
     }
-    let mut s = [0.0; 2];
-    let mut c = [0.0; 2];
-    for i in 0..2 {
-        let t = x[i] * TWO_OVER_PI + ROUNDER;
-        // t's low bits hold k (the rounding to an integer happens in the addition).
-        let q = t.to_bits();
-        let k = t - ROUNDER;
-        let r = ((x[i] - k * PIO2_1) - k * PIO2_2) - k * PIO2_3;
-        let (ps, pc) = kernels(r);
-        let odd = (q & 1).wrapping_neg();
-        let (ps, pc) = (ps.to_bits(), pc.to_bits());
-        let sv = (ps & !odd) | (pc & odd);
-        let cv = (pc & !odd) | (ps & odd);
-        s[i] = f64::from_bits(sv ^ ((q & 2) << 62));
-        c[i] = f64::from_bits(cv ^ ((q.wrapping_add(1) & 2) << 62));
-    }
-    (s, c)
+    let (a, b) = (sin_cos_lane(x[0]), sin_cos_lane(x[1]));
+    ([a.0, b.0], [a.1, b.1])
+}
+
+/// [`sin_cos`] for |x| < 10⁶, without a branch: `x = k·π/2 + r`, the kernels on r, and
+/// the quadrant from the rounded value's low bits (`t = x·2/π + 1.5·2⁵²` holds k there):
+/// odd quadrants swap sin and cos by bit masks, sin is negated in quadrants 2 and 3, cos
+/// in 1 and 2. Two calls side by side run in one vector register ([`sin_cos_2`]).
+#[inline(always)]
+fn sin_cos_lane(x: f64) -> (f64, f64) {
+    let t = x * TWO_OVER_PI + ROUNDER;
+    let q = t.to_bits();
+    let k = t - ROUNDER;
+    let r = ((x - k * PIO2_1) - k * PIO2_2) - k * PIO2_3;
+    let (ps, pc) = kernels(r);
+    let odd = (q & 1).wrapping_neg();
+    let (ps, pc) = (ps.to_bits(), pc.to_bits());
+    let s = (ps & !odd) | (pc & odd);
+    let c = (pc & !odd) | (ps & odd);
+    (
+        f64::from_bits(s ^ ((q & 2) << 62)),
+        f64::from_bits(c ^ ((q.wrapping_add(1) & 2) << 62)),
+    )
 }
 
 /// atan2(y, x) for the closed forms' hot paths: [`atan2_poly`] in the core's wasm (the JS
@@ -92,15 +98,17 @@ pub fn sin_cos_2(x: [f64; 2]) -> ([f64; 2], [f64; 2]) {
 /// README "Page size"; the library's atan2 is in it anyway).
 #[inline]
 pub fn atan2(y: f64, x: f64) -> f64 {
-    #[cfg(all(target_arch = "wasm32", not(feature = "app")))]
-    {
+    if cfg!(target_arch = "wasm32") && !SIZE_OVER_SPEED {
         atan2_poly(y, x)
-    }
-    #[cfg(not(all(target_arch = "wasm32", not(feature = "app"))))]
-    {
+    } else {
         y.atan2(x)
     }
 }
+
+/// Whether this build is the page's (wasm with the app): it is built for size (opt-level
+/// "z", a budget of 1,800,000 B, README "Page size"), so the core's hot paths keep their
+/// smaller forms there ([`atan2`], the solver's sines one by one).
+pub(crate) const SIZE_OVER_SPEED: bool = cfg!(all(target_arch = "wasm32", feature = "app"));
 
 /// atan2(y, x) within 2 ulp of `f64::atan2`, without a library call (see [`atan2`]).
 /// Zeros, infinities, NaN and magnitudes beyond 10^±290 go to the library.
@@ -209,18 +217,5 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     if x.is_nan() || x.abs() >= 1e6 {
         return x.sin_cos(); // huge, infinite or NaN: the library handles it
     }
-    let k = (x * TWO_OVER_PI + ROUNDER) - ROUNDER;
-    let r = ((x - k * PIO2_1) - k * PIO2_2) - k * PIO2_3;
-    let (s, c) = kernels(r);
-    // The quadrant without a branch (random angles would mispredict one): odd quadrants
-    // swap sin and cos; sin is negated in quadrants 2 and 3, cos in 1 and 2.
-    let q = (k as i64) as u64;
-    let odd = q & 1 == 1;
-    let (s, c) = (if odd { c } else { s }, if odd { s } else { c });
-    let sign_s = (q & 2) << 62;
-    let sign_c = (q.wrapping_add(1) & 2) << 62;
-    (
-        f64::from_bits(s.to_bits() ^ sign_s),
-        f64::from_bits(c.to_bits() ^ sign_c),
-    )
+    sin_cos_lane(x)
 }

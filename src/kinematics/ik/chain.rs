@@ -6,7 +6,7 @@
 
 use nalgebra::{IsometryMatrix3, Matrix3, Matrix6, Matrix6xX, Rotation3, Translation3, Vector3};
 
-use crate::kinematics::angles::{sin_cos, sin_cos_2};
+use crate::kinematics::angles::{SIZE_OVER_SPEED, sin_cos, sin_cos_2};
 use crate::kinematics::jacobian::Task;
 use crate::kinematics::robot::{Convention, JointKind, Robot};
 
@@ -165,9 +165,9 @@ impl Chain {
                 (link.theta + qi, 0.0, link.d)
             };
         }
-        // Two at a time, except in the page, which is built for size (README "Page size";
-        // the vector copy of the polynomials cost it about 370 B): there one by one.
-        let paired = if cfg!(all(target_arch = "wasm32", feature = "app")) {
+        // Two at a time, except in the page (the vector copy of the polynomials cost it
+        // about 370 B): there one by one.
+        let paired = if SIZE_OVER_SPEED {
             0
         } else {
             self.sc.len() / 2 * 2
@@ -319,7 +319,7 @@ pub(crate) fn solve_spd6(
     f.forward::<3>(&mut y);
     f.forward::<4>(&mut y);
     f.forward::<5>(&mut y);
-    y[5] *= f.inv_d[5];
+    f.backward::<5>(&mut y);
     f.backward::<4>(&mut y);
     f.backward::<3>(&mut y);
     f.backward::<2>(&mut y);
