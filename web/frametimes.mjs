@@ -11,12 +11,21 @@
 // own main-thread milliseconds (`app` with its `ik` and `scene` parts and the rest,
 // `render`, and app + render) from
 // window.armlab.frameTimes(), one JSON line per run and one for all runs together.
+//
+// With --pin (Linux, `taskset`), each run first moves every Chromium thread and this
+// script to CPU 0 and then the page's main thread alone to CPU 1. On a 2-core machine
+// without a GPU, SwiftShader's raster threads otherwise share the main thread's core and
+// preempt it; pinned, the figures are the app's own main-thread time. Compare the two to
+// tell the app's work from that contention.
 import path from 'node:path';
+import { execFileSync } from 'node:child_process';
 import { serveDist, launchChromium } from './static-server.mjs';
 
-const [distArg, runsArg, framesArg] = process.argv.slice(2);
+const args = process.argv.slice(2);
+const pin = args.includes('--pin');
+const [distArg, runsArg, framesArg] = args.filter((a) => a !== '--pin');
 if (!distArg) {
-  console.error('usage: node web/frametimes.mjs DIST_DIR [runs] [frames]');
+  console.error('usage: node web/frametimes.mjs DIST_DIR [runs] [frames] [--pin]');
   process.exit(2);
 }
 const dist = path.resolve(distArg);
@@ -25,6 +34,26 @@ const wanted = Number(framesArg ?? 300);
 const VIEW = { width: 1400, height: 860 };
 const { server, base } = await serveDist(dist);
 const browser = await launchChromium();
+
+// The process ids of the running Chromium processes whose command line matches `pattern`.
+function pids(pattern) {
+  try {
+    return execFileSync('pgrep', ['-f', '--', pattern], { encoding: 'utf8' }).split(/\s+/).filter(Boolean);
+  } catch {
+    return [];
+  }
+}
+
+// Every Chromium thread and this script on CPU 0, then each renderer's main thread (its
+// thread id is the process id) alone on CPU 1.
+function pinRendererMainThread() {
+  const taskset = (...a) => execFileSync('taskset', a, { stdio: 'ignore' });
+  for (const p of pids('chromium')) taskset('-a', '-p', '1', p);
+  taskset('-a', '-p', '1', String(process.pid));
+  const renderers = pids('--type=renderer');
+  for (const p of renderers) taskset('-p', '2', p);
+  if (renderers.length === 0) throw new Error('--pin: no renderer process found');
+}
 
 const state = async (page) => JSON.parse(await page.evaluate(() => window.armlab.state()));
 
@@ -57,6 +86,7 @@ for (let run = 1; run <= runs; run++) {
     const text = window.armlab?.state();
     return Boolean(text) && JSON.parse(text).rendered;
   }, null, { timeout: 120000 });
+  if (pin) pinRendererMainThread();
   const t = await page.evaluate(() => window.armlab.screenPoint('target'));
   const b = await page.evaluate(() => window.armlab.screenPoint('base'));
   await page.mouse.move(t.x, t.y);
@@ -73,7 +103,7 @@ for (let run = 1; run <= runs; run++) {
   frames.push(...await page.evaluate(() => window.armlab.frameTimes()));
   await page.mouse.up();
   const s = await state(page);
-  const r = report(`run ${run}`, frames);
+  const r = report(`run ${run}${pin ? ' (main thread pinned)' : ''}`, frames);
   r.dragging_ended_reached = s.reached;
   console.log(JSON.stringify(r));
   all.push(...frames);
