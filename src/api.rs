@@ -528,7 +528,7 @@ pub fn ik(request: &str) -> Result<String, ApiError> {
                     set.solutions
                         .iter()
                         .map(|s| json!({
-                            "q": s.q, "label": s.label, "within_limits": s.within_limits,
+                            "q": s.q, "label": s.label(), "within_limits": s.within_limits,
                             "singular": s.singular, "exact": s.exact,
                             "free_joints": s.free_joints,
                             "coincident": s.coincident.iter().map(|b| b.id()).collect::<Vec<_>>(),

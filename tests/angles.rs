@@ -195,3 +195,22 @@ fn polynomial_atan2_is_within_two_ulp_of_the_library() {
     }
     assert!(atan2(f64::NAN, 1.0).is_nan() && atan2(1.0, f64::NAN).is_nan());
 }
+
+#[test]
+fn polynomial_asin_is_within_two_ulp_of_the_library() {
+    use armlab::kinematics::angles::asin_poly;
+    let mut rng = common::rng(11);
+    let mut xs: Vec<f64> = (0..100_000).map(|_| rng.uniform(-1.0, 1.0)).collect();
+    // Near ±1 (where the root is small), near 0 and tiny, and the ends.
+    xs.extend((0..2_000).map(|_| 1.0 - 10f64.powf(rng.uniform(-16.0, -1.0))));
+    xs.extend((0..2_000).map(|_| 10f64.powf(rng.uniform(-300.0, -1.0))));
+    xs.extend([0.0, 0.5, 1.0, 1.0 - f64::EPSILON / 2.0]);
+    let mut worst = 0u64;
+    for x in xs.iter().flat_map(|&x| [x, -x]) {
+        let (got, want) = (asin_poly(x), x.asin());
+        assert_eq!(got.is_sign_negative(), want.is_sign_negative(), "{x}");
+        worst = worst.max((got.to_bits() as i64 - want.to_bits() as i64).unsigned_abs());
+    }
+    assert!(worst <= 2, "largest difference {worst} ulp");
+    assert!(asin_poly(1.5).is_nan() && asin_poly(f64::NAN).is_nan());
+}

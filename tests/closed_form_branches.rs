@@ -59,7 +59,7 @@ fn scara_puma_and_stanford_round_trip_every_branch() {
             counts[set.solutions.len()] += 1;
             for s in &set.solutions {
                 let d = pose_diff(&tool_pose(&robot, &s.q), &target, robot.reach());
-                assert!(d <= 1e-9, "{id}: {} = {:?} off by {d}", s.label, s.q);
+                assert!(d <= 1e-9, "{id}: {} = {:?} off by {d}", s.label(), s.q);
             }
             let found = set
                 .solutions
@@ -74,9 +74,10 @@ fn scara_puma_and_stanford_round_trip_every_branch() {
             for (i, a) in set.solutions.iter().enumerate() {
                 for b in &set.solutions[i + 1..] {
                     assert_ne!(
-                        a.branch, b.branch,
+                        a.branch,
+                        b.branch,
                         "{id}: two solutions labelled {}",
-                        a.label
+                        a.label()
                     );
                 }
             }
@@ -139,7 +140,7 @@ fn labels_are_data_the_same_in_both_ur10_conventions_and_match_branch_of() {
                 branch_of(&modified, &s.q).unwrap(),
                 Some(s.branch),
                 "{}",
-                s.label
+                s.label()
             );
         }
     }

@@ -39,7 +39,7 @@ fn check(what: &str, robot: &Robot, q: &[f64], seed: &[f64], position_only: bool
     assert!(!set.solutions.is_empty(), "{what}");
     let reach = robot.reach();
     for s in &set.solutions {
-        assert!(s.exact, "{what}: {} not exact", s.label);
+        assert!(s.exact, "{what}: {} not exact", s.label());
         let got = tool_pose(robot, &s.q);
         let d = if position_only {
             (got.translation.vector - target.translation.vector)
@@ -52,7 +52,7 @@ fn check(what: &str, robot: &Robot, q: &[f64], seed: &[f64], position_only: bool
         assert!(
             d <= 1e-9,
             "{what}: solution {} = {:?} misses the target by {d} (relative)",
-            s.label,
+            s.label(),
             s.q
         );
     }

@@ -166,7 +166,7 @@ fn ur10_closed_form_finds_every_branch_both_conventions() {
             assert!(!set.unreachable, "{id}: reachable target flagged");
             for s in &set.solutions {
                 let d = pose_diff(&tool_pose(&robot, &s.q), &target, 1.0);
-                assert!(d <= 1e-9, "{id}: solution {} off by {d}", s.label);
+                assert!(d <= 1e-9, "{id}: solution {} off by {d}", s.label());
                 assert!(s.within_limits);
             }
             // The original q is among them.
@@ -528,7 +528,7 @@ fn rrr_closed_form_gives_four_solutions_that_verify() {
             assert!(
                 (p - target.translation.vector).abs().max() <= 1e-9,
                 "{}",
-                s.label
+                s.label()
             );
         }
         // The RRR's FK formula (docs/kinematics.md §9.2) agrees.
@@ -681,7 +681,7 @@ fn singular_configurations_give_flagged_finite_solutions() {
             for s in &set.solutions {
                 assert!(all_finite(&s.q));
                 let d = pose_diff(&tool_pose(&robot, &s.q), &target, 1.0);
-                assert!(d <= 1e-9, "{id} {q:?}: {} off by {d}", s.label);
+                assert!(d <= 1e-9, "{id} {q:?}: {} off by {d}", s.label());
             }
             let r = solve(
                 &robot,

@@ -105,6 +105,24 @@ pub fn atan2(y: f64, x: f64) -> f64 {
     }
 }
 
+/// asin(x) for the closed forms: [`asin_poly`] in the core's wasm (the library's asin is
+/// software there), the library's asin elsewhere (as [`atan2`] chooses).
+#[inline]
+pub fn asin(x: f64) -> f64 {
+    if cfg!(target_arch = "wasm32") && !SIZE_OVER_SPEED {
+        asin_poly(x)
+    } else {
+        x.asin()
+    }
+}
+
+/// asin(x) = `atan2_poly(x, √((1 − x)(1 + x)))` for |x| ≤ 1 (NaN outside). `1 − x` is
+/// exact for |x| ≥ ½ (Sterbenz), so the root keeps its accuracy near ±1, where the
+/// angle is least sensitive to it.
+pub fn asin_poly(x: f64) -> f64 {
+    atan2_poly(x, ((1.0 - x) * (1.0 + x)).sqrt())
+}
+
 /// Whether this build is the page's (wasm with the app): it is built for size (opt-level
 /// "z", a budget of 1,800,000 B, README "Page size"), so the core's hot paths keep their
 /// smaller forms there ([`atan2`], the solver's sines one by one).

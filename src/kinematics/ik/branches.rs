@@ -3,7 +3,7 @@
 
 use nalgebra::IsometryMatrix3;
 
-use super::closed_form::{ClosedFormSet, closed_form_solutions, target_for_task};
+use super::closed_form::{ClosedFormSet, closed_form_solutions, closed_form_solutions_for_task};
 use super::{IkError, closed_form_family, joint_distance};
 use crate::kinematics::fk::tool_pose;
 use crate::kinematics::jacobian::Task;
@@ -207,10 +207,7 @@ pub fn branch_step(
 ) -> Result<BranchStep, IkError> {
     robot.check_q(q_current)?;
     super::check_target(target)?;
-    let family =
-        closed_form_family(robot).ok_or_else(|| IkError::NoClosedForm(robot.name.clone()))?;
-    let cf_target = target_for_task(robot, family, target, task, q_current);
-    let set = closed_form_solutions(robot, &cf_target, q_current)?;
+    let set = closed_form_solutions_for_task(robot, target, task, q_current)?;
     let choice = follow_branch(robot, &set, previous, q_current)
         .ok_or_else(|| IkError::NoClosedForm(robot.name.clone()))?;
     let branch = if choice.vanished {

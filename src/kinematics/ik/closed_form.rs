@@ -24,7 +24,7 @@
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
-use crate::kinematics::angles::{atan2, sin_cos};
+use crate::kinematics::angles::{asin, atan2, sin_cos};
 use nalgebra::{IsometryMatrix3, Rotation3, Translation3, Vector3};
 
 mod pieper;
@@ -81,8 +81,6 @@ pub struct ClosedFormSolution {
     /// The joint vector: each revolute angle as the 2π-equivalent inside the limits
     /// nearest the seed (or nearest the seed when none lies inside).
     pub q: Vec<f64>,
-    /// The branch as an id ([`Branch::id`], `"right-up-noflip"`), for the JSON API.
-    pub label: String,
     /// The branch as data.
     pub branch: Branch,
     /// Other branches that coincide with this solution at a singularity (the elbow
@@ -100,6 +98,15 @@ pub struct ClosedFormSolution {
     /// The solution reaches the target exactly; `false` for the clamped stand-ins given
     /// when the target is out of reach (then every solution is such a stand-in).
     pub exact: bool,
+}
+
+impl ClosedFormSolution {
+    /// The branch as an id ([`Branch::id`], `"right-up-noflip"`), for the JSON API and
+    /// the solutions list. Written when asked for: a drag frame solves every branch but
+    /// names none.
+    pub fn label(&self) -> String {
+        self.branch.id()
+    }
 }
 
 /// All closed-form solutions of one target.
@@ -167,7 +174,7 @@ impl Row {
 
     /// σ = the sign of sin α (for quarter-turn rows).
     fn sigma(&self) -> f64 {
-        self.alpha.sin().signum()
+        sin_cos(self.alpha).0.signum()
     }
 }
 
@@ -196,9 +203,12 @@ impl Canonical {
 }
 
 fn rot_x_trans_x(alpha: f64, a: f64) -> IsometryMatrix3<f64> {
+    let (s, c) = sin_cos(alpha);
     IsometryMatrix3::from_parts(
         Translation3::new(a, 0.0, 0.0),
-        Rotation3::from_axis_angle(&Vector3::x_axis(), alpha),
+        Rotation3::from_matrix_unchecked(nalgebra::Matrix3::new(
+            1.0, 0.0, 0.0, 0.0, c, -s, 0.0, s, c,
+        )),
     )
 }
 
@@ -253,12 +263,12 @@ fn angle_is(x: f64, y: f64) -> bool {
 }
 
 fn quarter_turn(alpha: f64) -> bool {
-    alpha.cos().abs() < 1e-9
+    sin_cos(alpha).1.abs() < 1e-9
 }
 
 /// α = 0 or π: the next axis is parallel to this one.
 fn parallel(alpha: f64) -> bool {
-    alpha.sin().abs() < 1e-9
+    sin_cos(alpha).0.abs() < 1e-9
 }
 
 /// Which closed form the robot has, if any.
@@ -483,7 +493,7 @@ fn shoulder(
         // that the branches merge.
         ratio = ratio.signum();
     }
-    let t = ratio.asin();
+    let t = asin(ratio);
     ([phi + t, phi + PI - t], exact, singular, false)
 }
 
@@ -582,8 +592,32 @@ pub fn closed_form_solutions(
     seed: &[f64],
 ) -> Result<ClosedFormSet, IkError> {
     robot.check_q(seed)?;
-    let (family, c, scale) =
-        detect(robot).ok_or_else(|| IkError::NoClosedForm(robot.name.clone()))?;
+    let detected = detect(robot).ok_or_else(|| IkError::NoClosedForm(robot.name.clone()))?;
+    Ok(solve_detected(robot, detected, target, seed))
+}
+
+/// [`closed_form_solutions`] for `task`: a position or 5D target first gets the
+/// orientation [`target_for_task`] gives it (the robot's chain is recognised once, not
+/// once for the family and again for the solutions: a drag frame calls this).
+pub(crate) fn closed_form_solutions_for_task(
+    robot: &Robot,
+    target: &IsometryMatrix3<f64>,
+    task: Task,
+    seed: &[f64],
+) -> Result<ClosedFormSet, IkError> {
+    robot.check_q(seed)?;
+    let detected = detect(robot).ok_or_else(|| IkError::NoClosedForm(robot.name.clone()))?;
+    let target = target_for_task(robot, detected.0, target, task, seed);
+    Ok(solve_detected(robot, detected, &target, seed))
+}
+
+/// The solutions of `target` for a robot [`detect`] recognised; `seed` has been checked.
+fn solve_detected(
+    robot: &Robot,
+    (family, c, scale): (ClosedFormFamily, Canonical, f64),
+    target: &IsometryMatrix3<f64>,
+    seed: &[f64],
+) -> ClosedFormSet {
     // DH variables of the seed (offsets included), for free joints.
     let mut seed_theta = [0.0; 6];
     for (i, j) in robot.joints.iter().enumerate() {
@@ -701,7 +735,6 @@ pub fn closed_form_solutions(
         }
         solutions.push(ClosedFormSolution {
             q,
-            label: raw.branch.id(),
             branch: raw.branch,
             coincident,
             free_joints: (0..c.n).filter(|&i| raw.free[i]).collect(),
@@ -711,12 +744,12 @@ pub fn closed_form_solutions(
         });
     }
     let singular = solutions.iter().any(|s| s.singular);
-    Ok(ClosedFormSet {
+    ClosedFormSet {
         family,
         solutions,
         unreachable: !any_exact,
         singular,
-    })
+    }
 }
 
 /// The smallest `sin θ5` (UR family) below which the wrist counts as singular: θ6 and
@@ -772,7 +805,6 @@ fn ur_family(
                     Wrist::Flipped
                 }),
             };
-            let sin5 = t5.sin();
             let a5 = r[4].transform_with(t5, sc5);
             // θ6 and, from it, the frame-4 pose in frame 1: the rotation gives
             // θ2 + θ3 + θ4, the translation the planar 2R's point.
@@ -789,7 +821,9 @@ fn ur_family(
                 c.abs() <= 1.0 + 1e-10
             };
             let t6 = if !wrist_singular {
-                let k = sigma4 * sin5.signum();
+                // sin θ5 has θ5's sign: θ5 = ±atan2(s5, ·) lies in (−π, π) and is not 0
+                // off the singular wrist.
+                let k = sigma4 * t5.signum();
                 atan2(-k * sy, k * sx)
             } else {
                 // θ6 is free: the seed's value when the planar 2R then reaches its point,
@@ -872,7 +906,7 @@ fn ur_wrist_free_t6(
         if k.abs() > 1.0 + 1e-12 {
             continue;
         }
-        let asin = k.clamp(-1.0, 1.0).asin();
+        let asin = asin(k.clamp(-1.0, 1.0));
         for psi in [phi_c + asin, phi_c + PI - asin] {
             let n = rot_to5(psi).transpose() * r_target;
             let t6 = atan2(n[(1, 0)], n[(0, 0)]);

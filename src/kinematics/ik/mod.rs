@@ -706,10 +706,7 @@ impl IkSolver {
         seed: &[f64],
         settings: &IkSettings,
     ) -> Result<IkResult, IkError> {
-        let family =
-            closed_form_family(robot).ok_or_else(|| IkError::NoClosedForm(robot.name.clone()))?;
-        let cf_target = closed_form::target_for_task(robot, family, target, task, seed);
-        let set = closed_form_solutions(robot, &cf_target, seed)?;
+        let set = closed_form::closed_form_solutions_for_task(robot, target, task, seed)?;
         let tt = TaskTarget::new(target, task);
         let tol_p = settings.position_tolerance / robot.length_unit.in_metres();
         // Exact branches, inside the limits first, nearest the seed first; the first
