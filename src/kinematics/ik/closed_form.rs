@@ -906,8 +906,8 @@ fn ur_wrist_free_t6(
         if k.abs() > 1.0 + 1e-12 {
             continue;
         }
-        let asin = asin(k.clamp(-1.0, 1.0));
-        for psi in [phi_c + asin, phi_c + PI - asin] {
+        let root = asin(k.clamp(-1.0, 1.0));
+        for psi in [phi_c + root, phi_c + PI - root] {
             let n = rot_to5(psi).transpose() * r_target;
             let t6 = atan2(n[(1, 0)], n[(0, 0)]);
             let (x, y, _) = frame4(t6);
