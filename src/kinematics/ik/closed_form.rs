@@ -411,17 +411,16 @@ fn planar_2r(x: f64, y: f64, a1: f64, a2: f64, seed_a: f64, out: &mut Vec<Planar
     let s = (1.0 - c * c).max(0.0).sqrt();
     let singular = s < 1e-7;
     let scale = a1.abs() + a2.abs();
+    let at_base = r2.sqrt() <= 1e-12 * scale;
+    // Shared by both elbows; atan2 is odd in y, so the second elbow's θ_b is −θ_b.
+    let (phi, tb_up) = (atan2(y, x), atan2(s, c));
     for sign in [1.0, -1.0] {
         let sb = sign * s;
-        let tb = atan2(sb, c);
+        let tb = sign * tb_up;
         let kx = a1 + a2 * c;
         let ky = a2 * sb;
-        let free_a = r2.sqrt() <= 1e-12 * scale && kx.hypot(ky) <= 1e-12 * scale;
-        let ta = if free_a {
-            seed_a
-        } else {
-            atan2(y, x) - atan2(ky, kx)
-        };
+        let free_a = at_base && kx.hypot(ky) <= 1e-12 * scale;
+        let ta = if free_a { seed_a } else { phi - atan2(ky, kx) };
         out.push(Planar {
             ta,
             tb,
@@ -533,6 +532,10 @@ impl Raw {
     /// decisions flipped, except the branch itself.
     fn coincident(&self) -> Vec<Branch> {
         let mut out = Vec::new();
+        if !(self.merged.shoulder || self.merged.elbow || self.merged.wrist) {
+            // Off every singularity (almost every call): no other branch coincides.
+            return out;
+        }
         let flip_s = |s: Option<Shoulder>| {
             s.map(|s| match s {
                 Shoulder::Right => Shoulder::Left,
@@ -937,11 +940,14 @@ pub(crate) fn target_for_task(
     if !family.solves_pose() {
         return *target;
     }
-    let current = crate::kinematics::fk::tool_pose(robot, seed);
+    // The arm's present orientation, for the tasks that leave some of it free (a full
+    // pose, every drag frame's task on a UR arm, needs no FK).
+    let current = || crate::kinematics::fk::tool_pose(robot, seed);
     let rotation = match task {
         Task::FullPose => return *target,
-        Task::Position => current.rotation,
+        Task::Position => current().rotation,
         Task::PositionAndAxis(axis) => {
+            let current = current();
             let k = axis.index();
             let a = current.rotation.matrix().column(k).into_owned();
             let b = target.rotation.matrix().column(k).into_owned();

@@ -567,6 +567,9 @@ fn check_result(result: IkResult) -> Result<IkResult, IkError> {
 #[derive(Debug, Clone, Default)]
 pub struct IkSolver {
     ws: Workspace,
+    /// The closed form's exact branches in the order they are tried (kept between calls
+    /// so that a drag frame allocates no list).
+    order: Vec<(bool, f64, usize)>,
 }
 
 impl IkSolver {
@@ -706,22 +709,26 @@ impl IkSolver {
         seed: &[f64],
         settings: &IkSettings,
     ) -> Result<IkResult, IkError> {
-        let set = closed_form::closed_form_solutions_for_task(robot, target, task, seed)?;
+        let mut set = closed_form::closed_form_solutions_for_task(robot, target, task, seed)?;
         let tt = TaskTarget::new(target, task);
         let tol_p = settings.position_tolerance / robot.length_unit.in_metres();
         // Exact branches, inside the limits first, nearest the seed first; the first
         // that meets the task wins (2R and RRR solve positions: for a 5D or full-pose
         // task not every branch has the right orientation).
-        let mut order: Vec<(bool, f64, usize)> = set
-            .solutions
-            .iter()
-            .enumerate()
-            .filter(|(_, s)| s.exact)
-            .map(|(k, s)| (!s.within_limits, joint_distance(robot, seed, &s.q), k))
-            .collect();
-        order.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+        let order = &mut self.order;
+        order.clear();
+        order.extend(
+            set.solutions
+                .iter()
+                .enumerate()
+                .filter(|(_, s)| s.exact)
+                .map(|(k, s)| (!s.within_limits, joint_distance(robot, seed, &s.q), k)),
+        );
+        // No two keys are equal (the index is the last), so the unstable sort's order is
+        // the stable one.
+        order.sort_unstable_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
         let mut best: Option<(f64, usize, f64, f64)> = None;
-        for &(_, _, k) in &order {
+        for &(_, _, k) in order.iter() {
             let ev = evaluate(&tt, &tool_pose(robot, &set.solutions[k].q), 1.0);
             let ok = ev.position_error <= tol_p
                 && ev.orientation_error <= settings.orientation_tolerance;
@@ -735,11 +742,11 @@ impl IkSolver {
         }
         match best {
             Some((score, k, position_error, orientation_error)) => {
-                let sol = &set.solutions[k];
+                let sol = set.solutions.swap_remove(k);
                 let success = score < 0.0;
                 Ok(IkResult {
                     within_limits: sol.within_limits,
-                    q: sol.q.clone(),
+                    q: sol.q,
                     success,
                     unreachable: !success,
                     singular: sol.singular,
