@@ -98,7 +98,7 @@ fn sin_cos_lane(x: f64) -> (f64, f64) {
 /// README "Page size"; the library's atan2 is in it anyway).
 #[inline]
 pub fn atan2(y: f64, x: f64) -> f64 {
-    if cfg!(target_arch = "wasm32") && !SIZE_OVER_SPEED {
+    if OWN_INVERSE_TRIG {
         atan2_poly(y, x)
     } else {
         y.atan2(x)
@@ -106,10 +106,10 @@ pub fn atan2(y: f64, x: f64) -> f64 {
 }
 
 /// asin(x) for the closed forms: [`asin_poly`] in the core's wasm (the library's asin is
-/// software there), the library's asin elsewhere (as [`atan2`] chooses).
+/// software there), the library's asin elsewhere (as for [`atan2`]).
 #[inline]
 pub fn asin(x: f64) -> f64 {
-    if cfg!(target_arch = "wasm32") && !SIZE_OVER_SPEED {
+    if OWN_INVERSE_TRIG {
         asin_poly(x)
     } else {
         x.asin()
@@ -127,6 +127,10 @@ pub fn asin_poly(x: f64) -> f64 {
 /// "z", a budget of 1,800,000 B, README "Page size"), so the core's hot paths keep their
 /// smaller forms there ([`atan2`], the solver's sines one by one).
 pub(crate) const SIZE_OVER_SPEED: bool = cfg!(all(target_arch = "wasm32", feature = "app"));
+
+/// Whether [`atan2`] and [`asin`] use this module's polynomials: in the core's wasm, where
+/// the library's are software; not natively (glibc's are as fast) nor in the page.
+const OWN_INVERSE_TRIG: bool = cfg!(target_arch = "wasm32") && !SIZE_OVER_SPEED;
 
 /// atan2(y, x) within 2 ulp of `f64::atan2`, without a library call (see [`atan2`]).
 /// Zeros, infinities, NaN and magnitudes beyond 10^±290 go to the library.

@@ -37,13 +37,16 @@ pub(super) fn position_kind(r: &[Row; 6], tiny: f64) -> Option<PositionKind> {
     }
     if !r[2].prismatic
         && parallel(r[1].alpha)
-        && r[1].alpha.cos() > 0.0
+        && r[1].alpha_sin_cos().1 > 0.0
         && r[1].a.abs() > tiny
-        && r[2].a.hypot(r[2].alpha.sin() * r[3].d) > tiny
+        && r[2].a.hypot(r[2].alpha_sin_cos().0 * r[3].d) > tiny
     {
         return Some(PositionKind::Elbow);
     }
-    if r[2].prismatic && quarter_turn(r[1].alpha) && parallel(r[2].alpha) && r[2].alpha.cos() > 0.0
+    if r[2].prismatic
+        && quarter_turn(r[1].alpha)
+        && parallel(r[2].alpha)
+        && r[2].alpha_sin_cos().1 > 0.0
     {
         return Some(PositionKind::Boom);
     }
@@ -93,8 +96,8 @@ pub(super) fn solve(
     let w = Vector3::new(centre.x, centre.y, centre.z - r[0].d);
     let sigma1 = r[0].sigma();
     let d_sum = match kind {
-        PositionKind::Elbow => r[1].d + r[2].d + r[2].alpha.cos() * r[3].d,
-        PositionKind::Boom => r[1].d + r[1].sigma() * r[2].a * r[2].theta0.sin(),
+        PositionKind::Elbow => r[1].d + r[2].d + r[2].alpha_sin_cos().1 * r[3].d,
+        PositionKind::Boom => r[1].d + r[1].sigma() * r[2].a * sin_cos(r[2].theta0).0,
     };
     let (t1s, ok1, sing1, free1) = shoulder(w.x, w.y, sigma1, d_sum, seed_theta[0], scale);
     for (s, &t1) in t1s.iter().enumerate() {
@@ -105,7 +108,7 @@ pub(super) fn solve(
         match kind {
             PositionKind::Elbow => {
                 let ux = r[2].a;
-                let uy = -r[2].alpha.sin() * r[3].d;
+                let uy = -r[2].alpha_sin_cos().0 * r[3].d;
                 let len = ux.hypot(uy);
                 let beta = atan2(uy, ux);
                 planar.clear();
@@ -124,7 +127,7 @@ pub(super) fn solve(
                 }
             }
             PositionKind::Boom => {
-                let k = r[1].a + r[2].a * r[2].theta0.cos();
+                let k = r[1].a + r[2].a * sin_cos(r[2].theta0).1;
                 let rho2 = x1 * x1 + y1 * y1;
                 let e2 = rho2 - k * k;
                 let exact = e2 >= -1e-10 * scale * scale;

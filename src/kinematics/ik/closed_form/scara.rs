@@ -27,7 +27,7 @@ pub(super) fn solve(
     let r = &c.rows;
     let (t, row4) = c.without_last_link(target);
     let p = t.translation.vector;
-    let (c1, c2, c3) = (r[0].alpha.cos(), r[1].alpha.cos(), r[2].alpha.cos());
+    let [c1, c2, c3] = [0, 1, 2].map(|i| r[i].alpha_sin_cos().1);
     // The stroke variable (d3 with its offset) from the height.
     let d3 = (p.z - r[0].d - c1 * r[1].d) / (c1 * c2) - c3 * row4.d;
     planar_2r(p.x, p.y, r[0].a, r[1].a, seed_theta[0], planar);
