@@ -241,7 +241,7 @@ function measureFrames(name, frameMs) {
   // app_render: the main thread's time per frame, the app and the render of one frame
   // added frame by frame (issue 15's p95 target is on this sum).
   const frames = frameMs.map((f) => ({ ...f, app_render: f.app + f.render }));
-  for (const part of ['app', 'ik', 'scene', 'render', 'workspace', 'app_render']) {
+  for (const part of ['app', 'ik', 'scene', 'render', 'workspace', 'hook', 'app_render']) {
     const sorted = frames.map((f) => f[part] ?? 0).sort((x, y) => x - y);
     measurements[`${name}_${part}_ms_median`] = +sorted[Math.floor(sorted.length / 2)].toFixed(3);
     measurements[`${name}_${part}_ms_p95`] = +sorted[Math.floor(sorted.length * 0.95)].toFixed(3);

@@ -9,7 +9,7 @@
 // grabs the target ball and drags it in small steps, holding the button, until the app
 // has drawn at least `frames` frames, then prints the median, p95 and max of the app's
 // own main-thread milliseconds (`app` with its `ik` and `scene` parts and the rest,
-// `render`, and app + render) from
+// `render`, app + render, and `hook`, the tests' hook after the frame) from
 // window.armlab.frameTimes(), one JSON line per run and one for all runs together.
 //
 // With --pin (Linux, `taskset`), each run first moves every Chromium thread and this
@@ -73,6 +73,8 @@ function report(label, frames) {
     // The app's time outside the IK and the scene: egui's layout of the panels.
     panels_ms: summary(frames.map((f) => f.app - f.ik - f.scene)),
     render_ms: summary(frames.map((f) => f.render)),
+    // Publishing the state for window.armlab after the frame (not part of app).
+    hook_ms: summary(frames.map((f) => f.hook ?? 0)),
     app_plus_render_ms: summary(frames.map((f) => f.app + f.render)),
   };
 }

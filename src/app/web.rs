@@ -363,8 +363,9 @@ fn write_storage(hash: &str, now: f64) {
 }
 
 /// Publishes the state and screen points for `window.armlab`, and opens a hash the page
-/// asked for.
+/// asked for; its own time goes into the frame's [`super::FrameTime::hook_ms`].
 pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
+    let start = super::hook::now_ms();
     CTX.with(|c| {
         if c.borrow().is_none() {
             *c.borrow_mut() = Some(ctx.clone());
@@ -400,7 +401,8 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
             *f.borrow_mut() = Some(super::hook::now_ms());
         }
     });
-    if let Some(t) = app.frame_times().back().copied() {
+    if let Some(mut t) = app.frame_times().back().copied() {
+        t.hook_ms = super::hook::now_ms() - start;
         FRAMES.with(|f| {
             let mut f = f.borrow_mut();
             if f.len() >= 5000 {
@@ -488,6 +490,7 @@ fn frame_times_fn() -> JsValue {
                     ("workspace", t.workspace_ms),
                     ("motion", t.motion_ms),
                     ("motion_steps", t.motion_steps),
+                    ("hook", t.hook_ms),
                 ] {
                     set_field(&o, key, &ms.into());
                 }
