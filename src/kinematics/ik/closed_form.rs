@@ -594,9 +594,8 @@ pub fn closed_form_solutions(
     target: &IsometryMatrix3<f64>,
     seed: &[f64],
 ) -> Result<ClosedFormSet, IkError> {
-    robot.check_q(seed)?;
-    let detected = detect(robot).ok_or_else(|| IkError::NoClosedForm(robot.name.clone()))?;
-    Ok(solve_detected(robot, detected, target, seed))
+    // A full pose keeps its target as it is (`target_for_task`).
+    closed_form_solutions_for_task(robot, target, Task::FullPose, seed)
 }
 
 /// [`closed_form_solutions`] for `task`: a position or 5D target first gets the
@@ -609,18 +608,9 @@ pub(crate) fn closed_form_solutions_for_task(
     seed: &[f64],
 ) -> Result<ClosedFormSet, IkError> {
     robot.check_q(seed)?;
-    let detected = detect(robot).ok_or_else(|| IkError::NoClosedForm(robot.name.clone()))?;
-    let target = target_for_task(robot, detected.0, target, task, seed);
-    Ok(solve_detected(robot, detected, &target, seed))
-}
-
-/// The solutions of `target` for a robot [`detect`] recognised; `seed` has been checked.
-fn solve_detected(
-    robot: &Robot,
-    (family, c, scale): (ClosedFormFamily, Canonical, f64),
-    target: &IsometryMatrix3<f64>,
-    seed: &[f64],
-) -> ClosedFormSet {
+    let (family, c, scale) =
+        detect(robot).ok_or_else(|| IkError::NoClosedForm(robot.name.clone()))?;
+    let target = &target_for_task(robot, family, target, task, seed);
     // DH variables of the seed (offsets included), for free joints.
     let mut seed_theta = [0.0; 6];
     for (i, j) in robot.joints.iter().enumerate() {
@@ -747,12 +737,12 @@ fn solve_detected(
         });
     }
     let singular = solutions.iter().any(|s| s.singular);
-    ClosedFormSet {
+    Ok(ClosedFormSet {
         family,
         solutions,
         unreachable: !any_exact,
         singular,
-    }
+    })
 }
 
 /// The smallest `sin θ5` (UR family) below which the wrist counts as singular: θ6 and

@@ -95,8 +95,10 @@ pub(super) fn solve(
     let centre = t.translation.vector - z6 * row6.d;
     let w = Vector3::new(centre.x, centre.y, centre.z - r[0].d);
     let sigma1 = r[0].sigma();
+    // sin α₂, cos α₂ once: the elbow's offset along z and its link in the arm's plane.
+    let (sa2, ca2) = r[2].alpha_sin_cos();
     let d_sum = match kind {
-        PositionKind::Elbow => r[1].d + r[2].d + r[2].alpha_sin_cos().1 * r[3].d,
+        PositionKind::Elbow => r[1].d + r[2].d + ca2 * r[3].d,
         PositionKind::Boom => r[1].d + r[1].sigma() * r[2].a * sin_cos(r[2].theta0).0,
     };
     let (t1s, ok1, sing1, free1) = shoulder(w.x, w.y, sigma1, d_sum, seed_theta[0], scale);
@@ -108,7 +110,7 @@ pub(super) fn solve(
         match kind {
             PositionKind::Elbow => {
                 let ux = r[2].a;
-                let uy = -r[2].alpha_sin_cos().0 * r[3].d;
+                let uy = -sa2 * r[3].d;
                 let len = ux.hypot(uy);
                 let beta = atan2(uy, ux);
                 planar.clear();
