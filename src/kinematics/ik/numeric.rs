@@ -182,11 +182,11 @@ const LINEAR_WEIGHT: f64 = 4.0;
 /// before the joint locking of §8.9; 6 cut the Panda's p99 by about a tenth and the
 /// UR10's too, success unchanged, in the benchmark of README "Benchmarks").
 const SLOW_WINDOW: usize = 6;
-/// When a restart can follow, an attempt whose cost fell by less than a tenth over its
-/// last two iterations (a stall: steps refused, or too small to matter) is ended at once
-/// rather than at the end of its window: a fresh start is the better bet
-/// (docs/kinematics.md §8.5; the UR10's p99 in iterations 61 → 46, the Panda's 76 → 62,
-/// medians unchanged, over 100 000 targets).
+/// While restarts remain (the first half of them), an attempt whose cost fell by less
+/// than a tenth over its last two iterations (a stall: steps refused, or too small to
+/// matter) is ended at once rather than at the end of its window: a fresh start is the
+/// better bet (docs/kinematics.md §8.5; the UR10's p99 in iterations 61 → 46, the Panda's
+/// 76 → 62, medians unchanged, over 100 000 targets).
 const STALL_ITERATIONS: usize = 2;
 /// The fraction of its cost that an attempt must lose over [`STALL_ITERATIONS`].
 const STALL_FACTOR: f64 = 0.9;
@@ -329,7 +329,10 @@ impl Workspace {
             let cap = settings
                 .max_iterations
                 .min(settings.budget.saturating_sub(total));
-            let may_restart = restarts < settings.restarts;
+            // Stalled attempts end early while half the restarts remain: the rest run
+            // their whole window, so that the cap on restarts does not run out on short
+            // attempts with iterations left in the budget.
+            let may_restart = restarts < settings.restarts / 2;
             let (out, ev) = self.attempt(&ctx, cap, may_restart, record.as_deref_mut());
             total += out.iterations;
             let better = match best {
@@ -506,8 +509,8 @@ impl Workspace {
         }
     }
 
-    /// One attempt from the current `q` with at most `cap` iterations; `may_restart`:
-    /// a restart follows if it fails (a stalled attempt then ends early). Leaves the
+    /// One attempt from the current `q` with at most `cap` iterations; `may_restart`: a
+    /// stalled attempt may end early for a restart ([`STALL_ITERATIONS`]). Leaves the
     /// attempt's answer in `q` and returns its outcome and error.
     fn attempt(
         &mut self,
