@@ -2,6 +2,7 @@
 //! 2π-equivalent inside a joint's limits nearest the current value.
 
 use std::f64::consts::{PI, TAU};
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use super::robot::JointLimits;
 
@@ -76,10 +77,11 @@ pub fn sin_cos_2(x: [f64; 2]) -> ([f64; 2], [f64; 2]) {
 /// in 1 and 2. Two calls side by side run in one vector register ([`sin_cos_2`]).
 #[inline(always)]
 fn sin_cos_lane(x: f64) -> (f64, f64) {
-    let t = x * TWO_OVER_PI + ROUNDER;
+    let c = |i| REDUCTION_IN_MEMORY.get(&REDUCTION, i);
+    let t = x * c(0) + c(1);
     let q = t.to_bits();
-    let k = t - ROUNDER;
-    let r = ((x - k * PIO2_1) - k * PIO2_2) - k * PIO2_3;
+    let k = t - c(1);
+    let r = ((x - k * c(2)) - k * c(3)) - k * c(4);
     let (ps, pc) = kernels(r);
     let odd = (q & 1).wrapping_neg();
     let (ps, pc) = (ps.to_bits(), pc.to_bits());
@@ -132,6 +134,43 @@ pub(crate) const SIZE_OVER_SPEED: bool = cfg!(all(target_arch = "wasm32", featur
 /// the library's are software; not natively (glibc's are as fast) nor in the page.
 const OWN_INVERSE_TRIG: bool = cfg!(target_arch = "wasm32") && !SIZE_OVER_SPEED;
 
+/// Whether the polynomials here read their coefficients from memory ([`InMemory`]): in
+/// the core's wasm. V8 (Node, Chrome) builds every f64 constant of wasm code in two
+/// instructions (the bits into a general register, then into a vector register) and every
+/// f64x2 constant of the paired sines in four, inside the loop that uses it; a load from
+/// memory is one (docs/kinematics.md §8.8). Not natively, where constants are memory
+/// operands already, nor in the page (built for size).
+const CONSTANTS_IN_MEMORY: bool = cfg!(target_arch = "wasm32") && !SIZE_OVER_SPEED;
+
+/// A copy in memory of a table of f64 constants for a hot polynomial, which the compiler
+/// cannot fold back into immediates (atomics have interior mutability; a relaxed load is
+/// a plain load on wasm32), read where [`CONSTANTS_IN_MEMORY`]; elsewhere the table's
+/// `const` itself.
+pub(crate) struct InMemory<const N: usize>([AtomicU64; N]);
+
+impl<const N: usize> InMemory<N> {
+    /// The copy of `values`.
+    pub(crate) const fn new(values: [f64; N]) -> Self {
+        let mut memory = [const { AtomicU64::new(0) }; N];
+        let mut i = 0;
+        while i < N {
+            memory[i] = AtomicU64::new(values[i].to_bits());
+            i += 1;
+        }
+        InMemory(memory)
+    }
+
+    /// Entry `i` of `values`, the table this is a copy of.
+    #[inline(always)]
+    pub(crate) fn get(&self, values: &[f64; N], i: usize) -> f64 {
+        if CONSTANTS_IN_MEMORY {
+            f64::from_bits(self.0[i].load(Ordering::Relaxed))
+        } else {
+            values[i]
+        }
+    }
+}
+
 /// atan2(y, x) within 2 ulp of `f64::atan2`, without a library call (see [`atan2`]).
 /// Zeros, infinities, NaN and magnitudes beyond 10^±290 go to the library.
 ///
@@ -163,11 +202,31 @@ pub fn atan2_poly(y: f64, x: f64) -> f64 {
     if !(large > 1e-290 && large < 1e290) {
         return y.atan2(x);
     }
+    /// 1, 3, 5, …, 15 (the thresholds 2j − 1), then 1/3, 1/5, …, 1/15 (the series).
+    const ATAN: [f64; 15] = [
+        1.0,
+        3.0,
+        5.0,
+        7.0,
+        9.0,
+        11.0,
+        13.0,
+        15.0,
+        1.0 / 3.0,
+        1.0 / 5.0,
+        1.0 / 7.0,
+        1.0 / 9.0,
+        1.0 / 11.0,
+        1.0 / 13.0,
+        1.0 / 15.0,
+    ];
+    static ATAN_IN_MEMORY: InMemory<15> = InMemory::new(ATAN);
+    let a = |i| ATAN_IN_MEMORY.get(&ATAN, i);
     // k = round(8·small/large), counted: small/large ≥ (2j − 1)/16 for j = 1..=8.
     let s16 = 16.0 * small;
     let mut k = 0usize;
-    for j in 1..=8 {
-        k += usize::from(s16 >= (2 * j - 1) as f64 * large);
+    for j in 0..8 {
+        k += usize::from(s16 >= a(j) * large);
     }
     let c = k as f64 * 0.125;
     // c·large and c·small are exact (c has four bits).
@@ -177,10 +236,10 @@ pub fn atan2_poly(y: f64, x: f64) -> f64 {
     let u2 = u * u;
     let u4 = u2 * u2;
     let u8 = u4 * u4;
-    let p01 = 1.0 - u2 * (1.0 / 3.0);
-    let p23 = 1.0 / 5.0 - u2 * (1.0 / 7.0);
-    let p45 = 1.0 / 9.0 - u2 * (1.0 / 11.0);
-    let p67 = 1.0 / 13.0 - u2 * (1.0 / 15.0);
+    let p01 = 1.0 - u2 * a(8);
+    let p23 = a(9) - u2 * a(10);
+    let p45 = a(11) - u2 * a(12);
+    let p67 = a(13) - u2 * a(14);
     let series = u * ((p01 + u4 * p23) + u8 * (p45 + u4 * p67));
     let mut r = ATAN_EIGHTHS[k] + series;
     if ay > ax {
@@ -192,31 +251,44 @@ pub fn atan2_poly(y: f64, x: f64) -> f64 {
     r.copysign(y)
 }
 
-const TWO_OVER_PI: f64 = std::f64::consts::FRAC_2_PI;
-const PIO2_1: f64 = 1.5707963267341256; // first 33 bits of π/2
-const PIO2_2: f64 = 6.077100506303966e-11; // next 33 bits
-const PIO2_3: f64 = 2.0222662487959506e-21; // the rest
-/// 1.5·2⁵²: adding and removing it rounds to the nearest integer (no library call).
-const ROUNDER: f64 = 6755399441055744.0;
+/// The reduction's constants: 2/π; 1.5·2⁵² (adding and removing it rounds to the nearest
+/// integer, no library call); π/2 in three parts (its first 33 bits, the next 33, the
+/// rest).
+const REDUCTION: [f64; 5] = [
+    std::f64::consts::FRAC_2_PI,
+    6755399441055744.0,
+    1.5707963267341256,
+    6.077100506303966e-11,
+    2.0222662487959506e-21,
+];
+static REDUCTION_IN_MEMORY: InMemory<5> = InMemory::new(REDUCTION);
 
-/// sin r and cos r for |r| ≤ π/4 (Sun's fdlibm kernels' coefficients).
+/// The coefficients of sin r (r³ to r¹³) and cos r (r⁴ to r¹⁴) on [−π/4, π/4]: Sun's
+/// fdlibm kernels'.
+const KERNEL: [f64; 12] = [
+    -0.16666666666666632,
+    0.00833333333332249,
+    -0.0001984126982985795,
+    2.7557313707070068e-6,
+    -2.5050760253406863e-8,
+    1.58969099521155e-10,
+    0.0416666666666666,
+    -0.001388888888887411,
+    2.480158728947673e-5,
+    -2.7557314351390663e-7,
+    2.087572321298175e-9,
+    -1.1359647557788195e-11,
+];
+static KERNEL_IN_MEMORY: InMemory<12> = InMemory::new(KERNEL);
+
+/// sin r and cos r for |r| ≤ π/4 ([`KERNEL`]).
 #[inline(always)]
 fn kernels(r: f64) -> (f64, f64) {
+    let k = |i| KERNEL_IN_MEMORY.get(&KERNEL, i);
     let z = r * r;
-    let s = r + r
-        * z
-        * (-0.16666666666666632
-            + z * (0.00833333333332249
-                + z * (-0.0001984126982985795
-                    + z * (2.7557313707070068e-6
-                        + z * (-2.5050760253406863e-8 + z * 1.58969099521155e-10)))));
+    let s = r + r * z * (k(0) + z * (k(1) + z * (k(2) + z * (k(3) + z * (k(4) + z * k(5))))));
     let c = 1.0 - 0.5 * z
-        + z * z
-            * (0.0416666666666666
-                + z * (-0.001388888888887411
-                    + z * (2.480158728947673e-5
-                        + z * (-2.7557314351390663e-7
-                            + z * (2.087572321298175e-9 + z * -1.1359647557788195e-11)))));
+        + z * z * (k(6) + z * (k(7) + z * (k(8) + z * (k(9) + z * (k(10) + z * k(11))))));
     (s, c)
 }
 
