@@ -77,7 +77,18 @@ pub fn sin_cos_2(x: [f64; 2]) -> ([f64; 2], [f64; 2]) {
 /// in 1 and 2. Two calls side by side run in one vector register ([`sin_cos_2`]).
 #[inline(always)]
 fn sin_cos_lane(x: f64) -> (f64, f64) {
-    let c = |i| REDUCTION_IN_MEMORY.get(&REDUCTION, i);
+    // 2/π; 1.5·2⁵² (adding and removing it rounds to the nearest integer, no library
+    // call); π/2 in three parts (its first 33 bits, the next 33, the rest).
+    let c = constant_table!(
+        5,
+        [
+            std::f64::consts::FRAC_2_PI,
+            6755399441055744.0,
+            1.5707963267341256,
+            6.077100506303966e-11,
+            2.0222662487959506e-21,
+        ]
+    );
     let t = x * c(0) + c(1);
     let q = t.to_bits();
     let k = t - c(1);
@@ -171,6 +182,19 @@ impl<const N: usize> InMemory<N> {
     }
 }
 
+/// `constant_table!(N, [v₀, v₁, …])`: a closure `|i| vᵢ` over a table of N f64 constants
+/// for a hot polynomial, which reads them from memory where [`CONSTANTS_IN_MEMORY`]
+/// ([`InMemory`]) and is the constants themselves elsewhere. One table per use.
+macro_rules! constant_table {
+    ($n:literal, $values:expr) => {{
+        const VALUES: [f64; $n] = $values;
+        static MEMORY: $crate::kinematics::angles::InMemory<$n> =
+            $crate::kinematics::angles::InMemory::new(VALUES);
+        |i: usize| MEMORY.get(&VALUES, i)
+    }};
+}
+pub(crate) use constant_table;
+
 /// atan2(y, x) within 2 ulp of `f64::atan2`, without a library call (see [`atan2`]).
 /// Zeros, infinities, NaN and magnitudes beyond 10^±290 go to the library.
 ///
@@ -202,26 +226,27 @@ pub fn atan2_poly(y: f64, x: f64) -> f64 {
     if !(large > 1e-290 && large < 1e290) {
         return y.atan2(x);
     }
-    /// 1, 3, 5, …, 15 (the thresholds 2j − 1), then 1/3, 1/5, …, 1/15 (the series).
-    const ATAN: [f64; 15] = [
-        1.0,
-        3.0,
-        5.0,
-        7.0,
-        9.0,
-        11.0,
-        13.0,
-        15.0,
-        1.0 / 3.0,
-        1.0 / 5.0,
-        1.0 / 7.0,
-        1.0 / 9.0,
-        1.0 / 11.0,
-        1.0 / 13.0,
-        1.0 / 15.0,
-    ];
-    static ATAN_IN_MEMORY: InMemory<15> = InMemory::new(ATAN);
-    let a = |i| ATAN_IN_MEMORY.get(&ATAN, i);
+    // 1, 3, 5, …, 15 (the thresholds 2j − 1), then 1/3, 1/5, …, 1/15 (the series).
+    let a = constant_table!(
+        15,
+        [
+            1.0,
+            3.0,
+            5.0,
+            7.0,
+            9.0,
+            11.0,
+            13.0,
+            15.0,
+            1.0 / 3.0,
+            1.0 / 5.0,
+            1.0 / 7.0,
+            1.0 / 9.0,
+            1.0 / 11.0,
+            1.0 / 13.0,
+            1.0 / 15.0,
+        ]
+    );
     // k = round(8·small/large), counted: small/large ≥ (2j − 1)/16 for j = 1..=8.
     let s16 = 16.0 * small;
     let mut k = 0usize;
@@ -251,40 +276,27 @@ pub fn atan2_poly(y: f64, x: f64) -> f64 {
     r.copysign(y)
 }
 
-/// The reduction's constants: 2/π; 1.5·2⁵² (adding and removing it rounds to the nearest
-/// integer, no library call); π/2 in three parts (its first 33 bits, the next 33, the
-/// rest).
-const REDUCTION: [f64; 5] = [
-    std::f64::consts::FRAC_2_PI,
-    6755399441055744.0,
-    1.5707963267341256,
-    6.077100506303966e-11,
-    2.0222662487959506e-21,
-];
-static REDUCTION_IN_MEMORY: InMemory<5> = InMemory::new(REDUCTION);
-
-/// The coefficients of sin r (r³ to r¹³) and cos r (r⁴ to r¹⁴) on [−π/4, π/4]: Sun's
-/// fdlibm kernels'.
-const KERNEL: [f64; 12] = [
-    -0.16666666666666632,
-    0.00833333333332249,
-    -0.0001984126982985795,
-    2.7557313707070068e-6,
-    -2.5050760253406863e-8,
-    1.58969099521155e-10,
-    0.0416666666666666,
-    -0.001388888888887411,
-    2.480158728947673e-5,
-    -2.7557314351390663e-7,
-    2.087572321298175e-9,
-    -1.1359647557788195e-11,
-];
-static KERNEL_IN_MEMORY: InMemory<12> = InMemory::new(KERNEL);
-
-/// sin r and cos r for |r| ≤ π/4 ([`KERNEL`]).
+/// sin r and cos r for |r| ≤ π/4: the coefficients of sin r (r³ to r¹³) and cos r (r⁴ to
+/// r¹⁴) on [−π/4, π/4] are Sun's fdlibm kernels'.
 #[inline(always)]
 fn kernels(r: f64) -> (f64, f64) {
-    let k = |i| KERNEL_IN_MEMORY.get(&KERNEL, i);
+    let k = constant_table!(
+        12,
+        [
+            -0.16666666666666632,
+            0.00833333333332249,
+            -0.0001984126982985795,
+            2.7557313707070068e-6,
+            -2.5050760253406863e-8,
+            1.58969099521155e-10,
+            0.0416666666666666,
+            -0.001388888888887411,
+            2.480158728947673e-5,
+            -2.7557314351390663e-7,
+            2.087572321298175e-9,
+            -1.1359647557788195e-11,
+        ]
+    );
     let z = r * r;
     let s = r + r * z * (k(0) + z * (k(1) + z * (k(2) + z * (k(3) + z * (k(4) + z * k(5))))));
     let c = 1.0 - 0.5 * z

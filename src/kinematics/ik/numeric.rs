@@ -5,7 +5,7 @@ use nalgebra::{IsometryMatrix3, Matrix3, Matrix6, Matrix6xX, Vector3, Vector6};
 
 use super::chain::{Chain, solve_spd6};
 use super::{IkMethod, IkResult, IkSettings, IkStep, JacobianSource, within_limits};
-use crate::kinematics::angles::InMemory;
+use crate::kinematics::angles::constant_table;
 use crate::kinematics::fk::tool_pose;
 use crate::kinematics::jacobian::{NUMERIC_EPSILON, Task};
 use crate::kinematics::orientation::rotation_log;
@@ -77,15 +77,16 @@ const SMALL_SIN2: f64 = 0.0025;
 /// `231s¹²/13312`, is below 5·10⁻¹⁸ there.
 #[inline]
 fn asin_over_sin(s2: f64) -> f64 {
-    const SERIES: [f64; 5] = [
-        1.0 / 6.0,
-        3.0 / 40.0,
-        5.0 / 112.0,
-        35.0 / 1152.0,
-        63.0 / 2816.0,
-    ];
-    static SERIES_IN_MEMORY: InMemory<5> = InMemory::new(SERIES);
-    let k = |i| SERIES_IN_MEMORY.get(&SERIES, i);
+    let k = constant_table!(
+        5,
+        [
+            1.0 / 6.0,
+            3.0 / 40.0,
+            5.0 / 112.0,
+            35.0 / 1152.0,
+            63.0 / 2816.0
+        ]
+    );
     1.0 + s2 * (k(0) + s2 * (k(1) + s2 * (k(2) + s2 * (k(3) + s2 * k(4)))))
 }
 
@@ -96,10 +97,8 @@ fn asin_over_sin(s2: f64) -> f64 {
 /// the first omitted term is below 10⁻¹⁴ of the sum.
 #[inline]
 fn angle_over_sin(s: f64, c: f64) -> f64 {
-    const SERIES: [f64; 4] = [-1.0 / 3.0, 1.0 / 5.0, -1.0 / 7.0, 1.0 / 9.0];
-    static SERIES_IN_MEMORY: InMemory<4> = InMemory::new(SERIES);
     if c > 0.0 && s < 0.05 * c {
-        let k = |i| SERIES_IN_MEMORY.get(&SERIES, i);
+        let k = constant_table!(4, [-1.0 / 3.0, 1.0 / 5.0, -1.0 / 7.0, 1.0 / 9.0]);
         let t = s / c;
         let t2 = t * t;
         (1.0 + t2 * (k(0) + t2 * (k(1) + t2 * (k(2) + t2 * k(3))))) / c
