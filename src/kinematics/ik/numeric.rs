@@ -5,7 +5,7 @@ use nalgebra::{IsometryMatrix3, Matrix3, Matrix6, Matrix6xX, Vector3, Vector6};
 
 use super::chain::{Chain, solve_spd6};
 use super::{IkMethod, IkResult, IkSettings, IkStep, JacobianSource, within_limits};
-use crate::kinematics::angles::constant_table;
+use crate::kinematics::angles::{self, constant_table};
 use crate::kinematics::fk::tool_pose;
 use crate::kinematics::jacobian::{NUMERIC_EPSILON, Task};
 use crate::kinematics::orientation::rotation_log;
@@ -91,7 +91,9 @@ fn asin_over_sin(s2: f64) -> f64 {
 }
 
 /// `atan2(s, c) / s` for `s > 0`: below 0.05 rad a polynomial (the late iterations of a
-/// solve, where the library's atan2 was a tenth of the time), the library above.
+/// solve, where the library's atan2 was a tenth of the time), [`angles::atan2`] above
+/// (the library's natively; in the core's wasm the polynomial one, within 2 ulp, as the
+/// library's is software there).
 ///
 /// With `t = s/c`, `atan(t)/s = (1/c)·(1 − t²/3 + t⁴/5 − t⁶/7 + t⁸/9 − …)`; for t < 0.05
 /// the first omitted term is below 10⁻¹⁴ of the sum.
@@ -103,7 +105,7 @@ fn angle_over_sin(s: f64, c: f64) -> f64 {
         let t2 = t * t;
         (1.0 + t2 * (k(0) + t2 * (k(1) + t2 * (k(2) + t2 * k(3))))) / c
     } else {
-        s.atan2(c) / s
+        angles::atan2(s, c) / s
     }
 }
 
