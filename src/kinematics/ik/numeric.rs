@@ -111,7 +111,8 @@ fn angle_over_sin(s: f64, c: f64) -> f64 {
 
 /// The rotation vector turning unit axis `a` onto unit axis `b` (perpendicular to `a`,
 /// of length the angle), and the angle; `fallback` is a unit vector perpendicular to `a`
-/// used when they are opposite.
+/// used when they are opposite. The angle's atan2 is [`angles::atan2`], as in
+/// [`angle_over_sin`].
 fn axis_rotation(
     a: &Vector3<f64>,
     b: &Vector3<f64>,
@@ -119,7 +120,7 @@ fn axis_rotation(
 ) -> (Vector3<f64>, f64) {
     let c = a.cross(b);
     let s = c.norm();
-    let angle = s.atan2(a.dot(b));
+    let angle = angles::atan2(s, a.dot(b));
     if s > 1e-300 {
         (c * (angle / s), angle)
     } else if angle > 1.0 {
