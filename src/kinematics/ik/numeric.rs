@@ -203,6 +203,10 @@ const SLOW_WINDOW: usize = 6;
 const STALL_ITERATIONS: usize = 2;
 /// The fraction of its cost that an attempt must lose over [`STALL_ITERATIONS`].
 const STALL_FACTOR: f64 = 0.9;
+/// An attempt ended by [`SLOW_WINDOW`] or [`STALL_ITERATIONS`] whose cost is still above
+/// this fraction of the cost it is compared with (less than 1 % lower) stopped at a
+/// minimum, not just slowly ("stationary").
+const AT_A_MINIMUM: f64 = 0.99;
 
 /// The workspace of the numeric methods, sized to the robot on first use.
 #[derive(Debug, Clone)]
@@ -627,15 +631,14 @@ impl Workspace {
                 let slot = out.iterations % STALL_ITERATIONS;
                 let before = recent[slot];
                 if out.iterations >= STALL_ITERATIONS && ev.cost > STALL_FACTOR * before {
-                    out.stationary = ev.cost > 0.99 * before;
+                    out.stationary = ev.cost > AT_A_MINIMUM * before;
                     break;
                 }
                 recent[slot] = ev.cost;
             }
             if damped && out.iterations.is_multiple_of(SLOW_WINDOW) {
                 if ev.cost > 0.5 * checkpoint {
-                    // Less than 1 % lower over the window: a minimum, not just slow.
-                    out.stationary = ev.cost > 0.99 * checkpoint;
+                    out.stationary = ev.cost > AT_A_MINIMUM * checkpoint;
                     break;
                 }
                 checkpoint = ev.cost;
