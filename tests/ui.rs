@@ -228,6 +228,67 @@ fn ur10_snapshot_on_the_software_vulkan_adapter() {
     h.snapshot("ur10");
 }
 
+/// The 3D view's pixels (RGBA, row by row), as egui's painter shows them this frame.
+fn view_pixels(h: &mut Harness<'_, ArmLabApp>) -> Vec<u8> {
+    let rect = h.state().viewport().rect().expect("the view was laid out");
+    let image = h.render().expect("a frame");
+    let rect = rect * h.ctx.pixels_per_point();
+    let xs = (rect.left().ceil() as u32)..(rect.right().floor() as u32).min(image.width());
+    let ys = (rect.top().ceil() as u32)..(rect.bottom().floor() as u32).min(image.height());
+    ys.flat_map(|y| xs.clone().map(move |x| (x, y)))
+        .flat_map(|(x, y)| image.get_pixel(x, y).0)
+        .collect()
+}
+
+#[test]
+fn the_view_draws_a_pass_only_when_its_scene_changes_and_never_shows_a_stale_arm() {
+    let mut h = harness("#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2");
+    h.run_steps(2);
+    let first = view_pixels(&mut h);
+    let passes = h.state().viewport().scene_passes();
+    assert!(passes >= 1, "the scene was drawn");
+    // Frames with nothing new for the view (egui repaints after every event, and a
+    // pointer over a side panel changes only the panel) reuse the picture.
+    h.event(egui::Event::PointerMoved(egui::pos2(150.0, 300.0)));
+    h.run_steps(5);
+    assert_eq!(
+        h.state().viewport().scene_passes(),
+        passes,
+        "no pass for an unchanged scene"
+    );
+    assert!(
+        view_pixels(&mut h) == first,
+        "the reused picture is the same"
+    );
+    // A new q: the next frame draws the moved arm.
+    h.state_mut()
+        .model_mut()
+        .set_q(vec![0.9, -1.1, 1.3, -1.6, -1.4, 0.2]);
+    h.run_steps(1);
+    assert_eq!(
+        h.state().viewport().scene_passes(),
+        passes + 1,
+        "one pass for the new scene"
+    );
+    let moved = view_pixels(&mut h);
+    let changed = first
+        .chunks(4)
+        .zip(moved.chunks(4))
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(
+        changed > 500,
+        "the arm moved in the picture: {changed} pixels changed"
+    );
+    // Back to the first q: the picture is the first one again, pixel for pixel.
+    h.state_mut()
+        .model_mut()
+        .set_q(vec![0.4, -1.1, 1.3, -1.6, -1.4, 0.2]);
+    h.run_steps(3);
+    assert_eq!(h.state().viewport().scene_passes(), passes + 2);
+    assert!(view_pixels(&mut h) == first, "the first arm is drawn again");
+}
+
 #[test]
 fn metrover_snapshot_with_its_part_sizes() {
     let mut h = harness("#robot=metrover&q=0.5,0.9,0.6,0.3,0.2&task=position");

@@ -143,6 +143,13 @@ pub struct SceneRenderer {
     texture_id: Option<egui::TextureId>,
     raw_instances: Vec<InstanceRaw>,
     raw_lines: Vec<LineVertex>,
+    /// Everything the render pass of the picture in the texture read, as bytes (empty
+    /// before the first picture and after the targets were made anew).
+    drawn: Vec<u8>,
+    /// The same bytes for the frame being drawn.
+    next: Vec<u8>,
+    /// Render passes drawn so far.
+    passes: u64,
 }
 
 /// The uniform buffer of [`Globals`] and its bind group.
@@ -402,7 +409,16 @@ impl SceneRenderer {
             texture_id: None,
             raw_instances: Vec::new(),
             raw_lines: Vec::new(),
+            drawn: Vec::new(),
+            next: Vec::new(),
+            passes: 0,
         }
+    }
+
+    /// The render passes drawn so far: one for each frame whose scene differed from the
+    /// picture already in the texture.
+    pub fn passes(&self) -> u64 {
+        self.passes
     }
 
     /// Whether the scene is antialiased (4× MSAA).
@@ -460,6 +476,7 @@ impl SceneRenderer {
                     ));
                 }
             }
+            self.drawn.clear();
             self.targets = Some(Targets {
                 size,
                 msaa,
@@ -471,6 +488,12 @@ impl SceneRenderer {
     }
 
     /// Draws `scene` at `size` pixels and returns the egui texture that holds the picture.
+    ///
+    /// A scene whose pass would read exactly what the picture in the texture was drawn
+    /// from is not drawn again. egui repaints twice more after every input event (and
+    /// for its own animations), so two frames in three of a drag or a hover change nothing
+    /// in the 3D view; on WebGL2 each pass is GL calls on the main thread, and without a
+    /// GPU the pixels are the CPU's work too.
     pub fn render(
         &mut self,
         render_state: &RenderState,
@@ -478,8 +501,8 @@ impl SceneRenderer {
         scene: &Scene,
     ) -> egui::TextureId {
         let texture_id = self.ensure_targets(render_state, size);
-        let ranges = self.upload_instances(render_state, scene);
-        self.upload_lines(render_state, scene);
+        let ranges = self.group_instances(scene);
+        self.line_vertices(scene);
         let globals = Globals {
             view_proj: scene.view_proj.into(),
             light_dir: [
@@ -490,6 +513,24 @@ impl SceneRenderer {
             ],
             eye: [scene.eye[0], scene.eye[1], scene.eye[2], 1.0],
         };
+        self.next.clear();
+        self.next.extend_from_slice(bytemuck::bytes_of(&globals));
+        self.next.extend_from_slice(&scene.background);
+        for range in &ranges {
+            let (start, end) = (range.instances.start, range.instances.end);
+            let words = [u32::from(range.on_top), range.mesh as u32, start, end];
+            self.next.extend_from_slice(bytemuck::bytes_of(&words));
+        }
+        self.next
+            .extend_from_slice(bytemuck::cast_slice(&self.raw_instances));
+        self.next
+            .extend_from_slice(bytemuck::cast_slice(&self.raw_lines));
+        if self.next == self.drawn {
+            return texture_id;
+        }
+        std::mem::swap(&mut self.next, &mut self.drawn);
+        self.passes += 1;
+        self.upload(render_state);
         render_state
             .queue
             .write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
@@ -504,9 +545,9 @@ impl SceneRenderer {
         texture_id
     }
 
-    /// Writes the scene's instances grouped by shape, on-top ones last, into the instance
-    /// buffer (grown as needed); returns the draw ranges.
-    fn upload_instances(&mut self, render_state: &RenderState, scene: &Scene) -> Vec<DrawRange> {
+    /// Lists the scene's instances grouped by shape, on-top ones last; returns the draw
+    /// ranges.
+    fn group_instances(&mut self, scene: &Scene) -> Vec<DrawRange> {
         self.raw_instances.clear();
         let mut ranges = Vec::with_capacity(8);
         for on_top in [false, true] {
@@ -527,6 +568,25 @@ impl SceneRenderer {
                 }
             }
         }
+        ranges
+    }
+
+    /// Lists the two ends of each of the scene's lines.
+    fn line_vertices(&mut self, scene: &Scene) {
+        self.raw_lines.clear();
+        for line in &scene.lines {
+            let color = linear_color(line.color);
+            for end in line.ends {
+                self.raw_lines.push(LineVertex {
+                    position: end,
+                    color,
+                });
+            }
+        }
+    }
+
+    /// Writes the listed instances and line ends into their buffers (grown as needed).
+    fn upload(&mut self, render_state: &RenderState) {
         if self.raw_instances.len() > self.instance_capacity {
             self.instance_capacity = self.raw_instances.len().next_power_of_two();
             self.instance_buffer = vertex_buffer(
@@ -540,21 +600,6 @@ impl SceneRenderer {
                 0,
                 bytemuck::cast_slice(&self.raw_instances),
             );
-        }
-        ranges
-    }
-
-    /// Writes the scene's lines into the line buffer (grown as needed).
-    fn upload_lines(&mut self, render_state: &RenderState, scene: &Scene) {
-        self.raw_lines.clear();
-        for line in &scene.lines {
-            let color = linear_color(line.color);
-            for end in line.ends {
-                self.raw_lines.push(LineVertex {
-                    position: end,
-                    color,
-                });
-            }
         }
         if self.raw_lines.len() > self.line_capacity {
             self.line_capacity = self.raw_lines.len().next_power_of_two();

@@ -90,6 +90,12 @@ impl Viewport {
         self.rendered
     }
 
+    /// The 3D render passes drawn so far (frames whose scene changed; 0 without a
+    /// renderer).
+    pub fn scene_passes(&self) -> u64 {
+        self.renderer.as_ref().map_or(0, SceneRenderer::passes)
+    }
+
     /// The view's rectangle last frame (egui points).
     pub fn rect(&self) -> Option<Rect> {
         self.rect
