@@ -12,7 +12,7 @@ pub mod mesh;
 use eframe::egui_wgpu::RenderState;
 use eframe::wgpu;
 use eframe::wgpu::util::DeviceExt;
-use nalgebra::{Matrix3, Matrix4};
+use nalgebra::Matrix4;
 
 use mesh::{Mesh, Vertex};
 
@@ -101,7 +101,6 @@ struct Globals {
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct InstanceRaw {
     model: [[f32; 4]; 4],
-    normal: [[f32; 4]; 3],
     color: [f32; 4],
 }
 
@@ -289,8 +288,7 @@ impl Pipelines {
         };
         let mesh_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
         let instance_attrs = wgpu::vertex_attr_array![
-            2 => Float32x4, 3 => Float32x4, 4 => Float32x4, 5 => Float32x4,
-            6 => Float32x4, 7 => Float32x4, 8 => Float32x4, 9 => Float32x4
+            2 => Float32x4, 3 => Float32x4, 4 => Float32x4, 5 => Float32x4, 6 => Float32x4
         ];
         let line_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x4];
         let mesh_buffers = [
@@ -692,14 +690,8 @@ fn vertex_buffer(device: &wgpu::Device, bytes: usize) -> wgpu::Buffer {
 }
 
 fn raw_instance(inst: &Instance) -> InstanceRaw {
-    let m = inst.model;
-    let linear: Matrix3<f32> = m.fixed_view::<3, 3>(0, 0).into_owned();
-    // Normals transform by the inverse transpose; a degenerate (zero-scale) model keeps its own.
-    let normal = linear.try_inverse().map_or(linear, |inv| inv.transpose());
-    let col = |c: usize| [normal[(0, c)], normal[(1, c)], normal[(2, c)], 0.0];
     InstanceRaw {
-        model: m.into(),
-        normal: [col(0), col(1), col(2)],
+        model: inst.model.into(),
         color: linear_color(inst.color),
     }
 }

@@ -25,10 +25,7 @@ struct MeshIn {
     @location(3) m1: vec4<f32>,
     @location(4) m2: vec4<f32>,
     @location(5) m3: vec4<f32>,
-    @location(6) n0: vec4<f32>,
-    @location(7) n1: vec4<f32>,
-    @location(8) n2: vec4<f32>,
-    @location(9) color: vec4<f32>,
+    @location(6) color: vec4<f32>,
 };
 
 struct MeshOut {
@@ -41,7 +38,15 @@ struct MeshOut {
 @vertex
 fn vs_mesh(v: MeshIn) -> MeshOut {
     let model = mat4x4<f32>(v.m0, v.m1, v.m2, v.m3);
-    let normal_matrix = mat3x3<f32>(v.n0.xyz, v.n1.xyz, v.n2.xyz);
+    // Normals transform by the inverse transpose of the model's 3×3 part, M⁻ᵀ = cof(M) / det M.
+    // The cofactor matrix (columns b×c, c×a, a×b for M's columns a, b, c) has the same
+    // directions: the length goes in the fragment's normalize, and the sign in its
+    // two-sided test. It needs no division, so a flat (zero-scale) part keeps the normal
+    // of its face.
+    let a = v.m0.xyz;
+    let b = v.m1.xyz;
+    let c = v.m2.xyz;
+    let normal_matrix = mat3x3<f32>(cross(b, c), cross(c, a), cross(a, b));
     let world = model * vec4<f32>(v.position, 1.0);
     var out: MeshOut;
     out.clip = globals.view_proj * world;
