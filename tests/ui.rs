@@ -1867,3 +1867,44 @@ fn on_a_full_hd_screen_the_dh_table_has_one_line_per_joint() {
         );
     }
 }
+
+#[test]
+fn on_a_projector_the_replay_of_a_solve_fits_its_column() {
+    // The replay's slider (its name, rail and value) and the error plot stay inside the
+    // left column: nothing runs past its edge, and the column needs no sideways scrolling.
+    for size in [[1024.0, 768.0], [1280.0, 720.0], [1366.0, 768.0]] {
+        let mut h = harness_at(
+            "#robot=ur10&q=0,-1,1.2,-1.5,-1.2,0.3&task=full&method=dls&panels=ik,matrices",
+            size,
+        );
+        let mut target = *h.state().model().target();
+        target.translation.vector += nalgebra::Vector3::new(-120.0, 80.0, 60.0);
+        h.state_mut().model_mut().set_target(target);
+        h.run_steps(1);
+        h.get_by_label("Solve").click();
+        h.run_steps(3);
+        assert!(
+            h.query_by_role_and_label(Role::Slider, "iteration")
+                .is_some(),
+            "{size:?}: the replay is shown"
+        );
+        let view = h.state().viewport().rect().expect("the view was laid out");
+        let edge = view.left() - 3.0;
+        let mut outside = Vec::new();
+        for node in h.query_all(egui_kittest::kittest::by()) {
+            let ak = node.accesskit_node();
+            if ak.bounding_box().is_none() || ak.role() == Role::Splitter {
+                continue;
+            }
+            let r = node.rect();
+            if r.top() < view.top() || r.left() < 30.0 || r.left() >= edge {
+                continue;
+            }
+            let sideways_bar = ak.role() == Role::ScrollBar && r.width() > r.height();
+            if r.right() > edge + 0.5 || sideways_bar {
+                outside.push(format!("{:?} {:?} {r:?}", ak.role(), ak.label()));
+            }
+        }
+        assert!(outside.is_empty(), "{size:?}, edge {edge}: {outside:#?}");
+    }
+}

@@ -266,10 +266,11 @@ fn replay_ui(replay: &mut Replay, model: &mut Model, ui: &mut egui::Ui) {
     ));
     let last = run.trace.len() - 1;
     let mut step = replay.step.min(last);
-    let changed = ui
-        .add(egui::Slider::new(&mut step, 0..=last).text(tr(model, Key::Iteration)))
-        .on_hover_text(tr(model, Key::ReplayHint))
-        .changed();
+    let name = (tr(model, Key::Iteration), tr(model, Key::ReplayHint));
+    let changed = style::named_slider(ui, name, &last.to_string(), |ui| {
+        ui.add(egui::Slider::new(&mut step, 0..=last))
+    })
+    .changed();
     let s = &run.trace[step];
     ui.monospace(trf(
         model,

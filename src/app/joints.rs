@@ -129,7 +129,7 @@ fn speed_rail(ui: &mut egui::Ui, model: &Model) {
         .unwrap_or_default();
     let font = egui::TextStyle::Body.resolve(ui.style());
     let name_width = style::text_width(ui, "q̇00", &font);
-    fit_rail(ui, name_width, &widest);
+    style::fit_rail(ui, name_width, &widest);
 }
 
 /// The joint sliders' rail: what the visible room leaves beside the widest name (the
@@ -154,55 +154,21 @@ fn joints_rail(ui: &mut egui::Ui, model: &Model) {
     let name = format!("θ{}", robot.dof());
     let font = egui::TextStyle::Body.resolve(ui.style());
     let name_width = style::text_width(ui, &name, &font).max(ui.spacing().interact_size.x);
-    fit_rail(ui, name_width, &widest);
-}
-
-/// Sets the slider rail to what the visible room leaves on a row beside a name
-/// `name_width` wide and a value as wide as `value` (with the value box's padding and the
-/// gaps between), at least 40 points; returns what the room left.
-fn fit_rail(ui: &mut egui::Ui, name_width: f32, value: &str) -> f32 {
-    let font = egui::TextStyle::Body.resolve(ui.style());
-    let spacing = ui.spacing();
-    let taken = name_width
-        + style::text_width(ui, value, &font)
-        + 2.0 * spacing.button_padding.x
-        + 3.0 * spacing.item_spacing.x;
-    let left = style::room(ui) - taken;
-    ui.spacing_mut().slider_width = left.clamp(40.0, 320.0);
-    left
+    style::fit_rail(ui, name_width, &widest);
 }
 
 /// The self-motion slider (±3 rad, in steps of 0.05 rad: an arrow key moves it by one
-/// step whatever the rail's width), with its name beside it where the row leaves the rail
-/// 60 points, else above it (a projector's column).
+/// step whatever the rail's width), named as [`style::named_slider`] places it.
 fn self_motion_slider(ui: &mut egui::Ui, model: &Model, s: &mut f64) -> egui::Response {
-    let name = tr(model, Key::SelfMotion);
-    let value = "-3.00 rad";
-    let slider = |ui: &mut egui::Ui, s: &mut f64, label: egui::Id| {
+    let (name, hint) = (tr(model, Key::SelfMotion), tr(model, Key::SelfMotionHint));
+    style::named_slider(ui, (name, hint), "-3.00 rad", |ui| {
         ui.add(
             egui::Slider::new(s, -3.0..=3.0)
                 .suffix(" rad")
                 .step_by(0.05)
                 .fixed_decimals(2),
         )
-        .labelled_by(label)
-    };
-    ui.scope(|ui| {
-        let hint = tr(model, Key::SelfMotionHint);
-        let font = egui::TextStyle::Body.resolve(ui.style());
-        if fit_rail(ui, style::text_width(ui, name, &font), value) >= 60.0 {
-            ui.horizontal(|ui| {
-                let label = ui.label(name).on_hover_text(hint);
-                slider(ui, s, label.id)
-            })
-            .inner
-        } else {
-            let label = ui.label(name).on_hover_text(hint);
-            fit_rail(ui, 0.0, value);
-            slider(ui, s, label.id)
-        }
     })
-    .inner
 }
 
 impl JointsPanel {

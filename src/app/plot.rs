@@ -24,7 +24,7 @@ impl PlotBox {
     /// ranges are the data's (an empty range is widened so nothing divides by zero).
     pub fn allocate(ui: &mut egui::Ui, height: f32, x: (f64, f64), y: (f64, f64)) -> PlotBox {
         let (rect, _) = ui.allocate_exact_size(
-            egui::vec2(ui.available_width().min(300.0), height),
+            egui::vec2(super::style::room(ui).min(300.0), height),
             egui::Sense::hover(),
         );
         ui.painter_at(rect).rect_stroke(

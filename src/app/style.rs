@@ -158,6 +158,48 @@ pub fn room(ui: &egui::Ui) -> f32 {
     ui.available_width().min(visible).max(0.0)
 }
 
+/// Sets the slider rail to what the visible room leaves on a row beside a name
+/// `name_width` wide and a value as wide as `value` (with the value box's padding and the
+/// gaps between), at least 40 points; returns what the room left.
+pub fn fit_rail(ui: &mut egui::Ui, name_width: f32, value: &str) -> f32 {
+    let font = egui::TextStyle::Body.resolve(ui.style());
+    let spacing = ui.spacing();
+    let taken = name_width
+        + text_width(ui, value, &font)
+        + 2.0 * spacing.button_padding.x
+        + 3.0 * spacing.item_spacing.x;
+    let left = room(ui) - taken;
+    ui.spacing_mut().slider_width = left.clamp(40.0, 320.0);
+    left
+}
+
+/// A slider (`add` draws it) after its name (with its hover `hint`), the rail fitted to
+/// the visible room ([`fit_rail`]; values up to `widest` wide): beside the name where the
+/// row leaves the rail 60 points, else under it (a projector's column). The slider is
+/// labelled by the name for screen readers and the tests, and shows the hint too.
+pub fn named_slider(
+    ui: &mut egui::Ui,
+    (name, hint): (&str, &str),
+    widest: &str,
+    add: impl FnOnce(&mut egui::Ui) -> egui::Response,
+) -> egui::Response {
+    ui.scope(|ui| {
+        let font = egui::TextStyle::Body.resolve(ui.style());
+        if fit_rail(ui, text_width(ui, name, &font), widest) >= 60.0 {
+            ui.horizontal(|ui| {
+                let label = ui.label(name).on_hover_text(hint);
+                add(ui).labelled_by(label.id).on_hover_text(hint)
+            })
+            .inner
+        } else {
+            let label = ui.label(name).on_hover_text(hint);
+            fit_rail(ui, 0.0, widest);
+            add(ui).labelled_by(label.id).on_hover_text(hint)
+        }
+    })
+    .inner
+}
+
 /// Lays out `add` unless it would be out of sight: a side panel scrolls, and its blocks
 /// below the fold (the A_i and T_0i of a six-joint arm, about twelve framed matrices) cost
 /// egui's layout and text shaping in every frame while the arm moves, unseen. The size
