@@ -335,8 +335,11 @@ impl ArmLabApp {
                 &mut self.points,
             ),
         }
+        // No fill: the 3D view's picture covers the whole panel (and without a renderer the
+        // view fills it itself). A fill under it was a screen of pixels drawn for nothing
+        // in every frame: about a fifth of the page's drawing with software WebGL.
         egui::CentralPanel::default()
-            .frame(egui::Frame::NONE.fill(style::background(self.model.settings().presentation)))
+            .frame(egui::Frame::NONE)
             .show(ui, |ui| {
                 self.viewport.ui(
                     &mut self.model,
