@@ -29,6 +29,44 @@ fn wrap_covers_interval_ends() {
     }
 }
 
+/// Within a turn or so of (−π, π], wrapping subtracts or adds exactly one 2π (without the
+/// remainder loop) and agrees with the remainder `rem_euclid` gives to its last bit.
+#[test]
+fn wrapping_a_turn_off_is_one_exact_turn() {
+    let by_remainder = |x: f64| {
+        let r = x.rem_euclid(TAU);
+        if r > PI { r - TAU } else { r }
+    };
+    let mut rng = common::rng(41);
+    for k in 0..20_000 {
+        let x = match k {
+            0 => 3.0 * PI,
+            1 => -3.0 * PI,
+            2 => TAU,
+            3 => -TAU,
+            4 => 4.0 * PI,
+            5 => -4.0 * PI,
+            _ => rng.uniform(-4.0 * PI, 4.0 * PI),
+        };
+        let w = wrap_to_pi(x);
+        assert!(w > -PI && w <= PI, "wrap({x}) = {w}");
+        let turns = x - w;
+        assert!(
+            [0.0, TAU, -TAU, 2.0 * TAU, -2.0 * TAU].contains(&turns),
+            "wrap({x}) = {w}: off by {turns}, not whole turns"
+        );
+        let r = by_remainder(x);
+        // Bit for bit, but for the remainder's −0 at x = −2π.
+        if r != 0.0 {
+            assert_eq!(
+                w.to_bits(),
+                r.to_bits(),
+                "wrap({x}) = {w}, by the remainder {r}"
+            );
+        }
+    }
+}
+
 #[test]
 fn nearest_equivalent_prefers_the_current_side() {
     let wide = JointLimits {

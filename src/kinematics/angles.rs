@@ -18,6 +18,16 @@ pub fn wrap_to_pi(x: f64) -> f64 {
     if x > -PI && x <= PI {
         return x;
     }
+    // About one turn off (a difference of two wrapped angles, as in every joint distance):
+    // for π ≤ |x| ≤ 4π, x ∓ 2π is exact (Sterbenz: |x| lies within a factor of two of 2π),
+    // so it is the number the remainder below gives (at x = −2π, +0 for its −0), without
+    // the library's remainder loop: 3–4 % of a closed-form drag step (ikbench).
+    if x.abs() <= 4.0 * PI {
+        let r = if x > 0.0 { x - TAU } else { x + TAU };
+        if r > -PI && r <= PI {
+            return r;
+        }
+    }
     let r = x.rem_euclid(TAU); // [0, 2π)
     if r > PI { r - TAU } else { r }
 }
