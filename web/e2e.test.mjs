@@ -307,7 +307,7 @@ test('dragging the target with the mouse moves the arm; far out of reach it stre
   await page.evaluate(() => window.armlab.frameTimes());
   await page.mouse.move(40 + 340, 80, { steps: 8 });
   for (let i = 0; i < 10; i++) await page.mouse.move(380 + (i % 2), 80);
-  // The page's second drag: its code is warm, and the IK runs all its iterations every
+  // A later drag: its code is warm, and the IK runs all its iterations every
   // frame without reaching the target.
   measureFrames('stretch_drag', await page.evaluate(() => window.armlab.frameTimes()));
   await page.mouse.up();
