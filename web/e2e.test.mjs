@@ -255,6 +255,20 @@ function measureFrames(name, frameMs) {
   }
 }
 
+/**
+ * Presses the mouse at `from`, moves it to `to` in `steps` steps and then nudges it by a
+ * pixel `nudges` times, and returns the app's frame times of that drag alone (those
+ * before the press are cleared). The button stays down: the caller releases it.
+ */
+async function heldDrag(page, from, to, steps, nudges = 0) {
+  await page.mouse.move(from.x, from.y);
+  await page.mouse.down();
+  await page.evaluate(() => window.armlab.frameTimes()); // clears what came before the drag
+  await page.mouse.move(to.x, to.y, { steps });
+  for (let i = 0; i < nudges; i++) await page.mouse.move(to.x + (i % 2), to.y);
+  return page.evaluate(() => window.armlab.frameTimes());
+}
+
 test('dragging the target with the mouse moves the arm; far out of reach it stretches without jumping', async () => {
   const { page, ctx } = await open('#robot=ur10&q=0,-1,1.2,-1.5,-1.2,0.3&task=position');
   const q0 = (await state(page)).q;
@@ -267,14 +281,9 @@ test('dragging the target with the mouse moves the arm; far out of reach it stre
     requestAnimationFrame(tick);
   });
   const dropAt = { x: t.x + (b.x - t.x) * 0.25, y: t.y + (b.y - t.y) * 0.25 };
-  await page.mouse.move(t.x, t.y);
-  await page.mouse.down();
-  await page.evaluate(() => window.armlab.frameTimes()); // clears what came before the drag
   // Each mouse move costs the software renderer about a hundred milliseconds of
   // full-canvas frames: 14 steps and 8 nudges give about 65 measured frames.
-  await page.mouse.move(dropAt.x, dropAt.y, { steps: 14 });
-  for (let i = 0; i < 8; i++) await page.mouse.move(dropAt.x + (i % 2), dropAt.y);
-  const frameMs = await page.evaluate(() => window.armlab.frameTimes());
+  const frameMs = await heldDrag(page, t, dropAt, 14, 8);
   await page.mouse.up();
   await settle(page);
   let s = await state(page);
@@ -289,12 +298,7 @@ test('dragging the target with the mouse moves the arm; far out of reach it stre
   // The same drag back, measured apart: the page's first drag runs much of its code in
   // V8's baseline compiler (functions are optimised once they have run enough), so its
   // slowest frames say more about the JIT's warm-up than about the frame's own work.
-  await page.mouse.move(dropAt.x, dropAt.y);
-  await page.mouse.down();
-  await page.evaluate(() => window.armlab.frameTimes());
-  await page.mouse.move(t.x, t.y, { steps: 14 });
-  for (let i = 0; i < 8; i++) await page.mouse.move(t.x + (i % 2), t.y);
-  const againMs = await page.evaluate(() => window.armlab.frameTimes());
+  const againMs = await heldDrag(page, dropAt, t, 14, 8);
   await page.mouse.up();
   await settle(page);
   assert.equal((await state(page)).reached, true, 'the dragged-back target is reached');
@@ -302,14 +306,9 @@ test('dragging the target with the mouse moves the arm; far out of reach it stre
 
   // Now far away, out of reach: flagged, and no joint jumps between frames.
   const t2 = await point(page, 'target');
-  await page.mouse.move(t2.x, t2.y);
-  await page.mouse.down();
-  await page.evaluate(() => window.armlab.frameTimes());
-  await page.mouse.move(40 + 340, 80, { steps: 8 });
-  for (let i = 0; i < 10; i++) await page.mouse.move(380 + (i % 2), 80);
   // A later drag: its code is warm, and the IK runs all its iterations every
   // frame without reaching the target.
-  measureFrames('stretch_drag', await page.evaluate(() => window.armlab.frameTimes()));
+  measureFrames('stretch_drag', await heldDrag(page, t2, { x: 380, y: 80 }, 8, 10));
   await page.mouse.up();
   await settle(page);
   s = await state(page);
@@ -726,11 +725,8 @@ test('dragging with the ghosts shown: the frame times are measured', async () =>
   const { page, ctx, errors } = await open('#robot=ur10&q=0,-1,1.2,-1.5,-1.2,0.3&show=ghosts&panels=ik');
   const t = await point(page, 'target');
   const b = await point(page, 'base');
-  await page.mouse.move(t.x, t.y);
-  await page.mouse.down();
-  await page.evaluate(() => window.armlab.frameTimes());
-  await page.mouse.move(t.x + (b.x - t.x) * 0.2, t.y + (b.y - t.y) * 0.2, { steps: 14 });
-  measureFrames('ghost_drag', await page.evaluate(() => window.armlab.frameTimes()));
+  const to = { x: t.x + (b.x - t.x) * 0.2, y: t.y + (b.y - t.y) * 0.2 };
+  measureFrames('ghost_drag', await heldDrag(page, t, to, 14));
   await page.mouse.up();
   await settle(page);
   const s = await state(page);
