@@ -395,6 +395,9 @@ test('DH values typed at full speed: the last one applies and the wasm memory do
     await page.mouse.click(cell.x, cell.y);
     await page.keyboard.press('Control+A');
     await page.keyboard.type(value);
+    // eframe cancels its animation frame and asks for another when the tab is hidden or
+    // shown: the frame it cancels may be one the back-pressure has put off.
+    await page.evaluate(() => document.dispatchEvent(new Event('visibilitychange')));
   }
   await settle(page, 4);
   const s = await state(page);
