@@ -383,7 +383,7 @@ test('a bad DH cell typed with the keyboard shows a message and the robot stays'
 });
 
 // index.html's back-pressure: a frame starts only while fewer than two are unfinished on
-// the GPU. Without it, SwiftShader fell about 90 frames behind fast typing, each holding
+// the GPU. Without it, SwiftShader fell about 60 frames behind fast typing, each holding
 // its vertex upload in wasm memory: these six values grew the memory by 3.6 MB.
 test('DH values typed at full speed: the last one applies and the wasm memory does not grow', async () => {
   const { page, ctx, errors } = await open('#robot=ur10');
