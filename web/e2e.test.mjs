@@ -361,12 +361,18 @@ async function typeIntoDhCell(page, cellName, text) {
   const header = await point(page, 'dh-header');
   await page.mouse.click(header.x, header.y);
   await settle(page);
+  await retype(page, cellName, text, () => settle(page));
+  await settle(page, 4);
+}
+
+/** Clicks the DH cell `cellName` (then runs `afterClick`), selects all of it and types
+ * `text` in its place at the keyboard's full speed. */
+async function retype(page, cellName, text, afterClick = async () => {}) {
   const cell = await point(page, cellName);
   await page.mouse.click(cell.x, cell.y);
-  await settle(page);
+  await afterClick();
   await page.keyboard.press('Control+A');
   await page.keyboard.type(text);
-  await settle(page, 4);
 }
 
 test('a bad DH cell typed with the keyboard shows a message and the robot stays', async () => {
@@ -391,10 +397,7 @@ test('DH values typed at full speed: the last one applies and the wasm memory do
   const before = await page.evaluate(() => window.armlab.memoryBytes());
   const values = ['0.11', '0.12', '0.13', '0.14', '0.15', '0.1625'];
   for (const value of values) {
-    const cell = await point(page, 'dh-1-2');
-    await page.mouse.click(cell.x, cell.y);
-    await page.keyboard.press('Control+A');
-    await page.keyboard.type(value);
+    await retype(page, 'dh-1-2', value);
     // eframe cancels its animation frame and asks for another when the tab is hidden or
     // shown: the frame it cancels may be one the back-pressure has put off.
     await page.evaluate(() => document.dispatchEvent(new Event('visibilitychange')));
