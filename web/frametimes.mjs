@@ -10,7 +10,9 @@
 // has drawn at least `frames` frames, then prints the median, p95 and max of the app's
 // own main-thread milliseconds (`app` with its `ik` and `scene` parts and the rest,
 // `render`, app + render, and `hook`, the tests' hook after the frame) from
-// window.armlab.frameTimes(), one JSON line per run and one for all runs together.
+// window.armlab.frameTimes(), and of the whole animation-frame callbacks (`callback`:
+// also egui's paint and index.html's shims, which frameTimes() leaves out), one JSON line
+// per run and one for all runs together.
 //
 // With --pin (Linux, `taskset`), each run first moves every Chromium thread and this
 // script to CPU 0 and then the page's main thread alone to CPU 1. On a 2-core machine
@@ -63,7 +65,7 @@ function summary(values) {
   return { median: +pick(0.5).toFixed(3), p95: +pick(0.95).toFixed(3), max: +pick(1).toFixed(3) };
 }
 
-function report(label, frames) {
+function report(label, frames, callbacks) {
   return {
     label,
     frames: frames.length,
@@ -76,12 +78,32 @@ function report(label, frames) {
     // Publishing the state for window.armlab after the frame (not part of app).
     hook_ms: summary(frames.map((f) => f.hook ?? 0)),
     app_plus_render_ms: summary(frames.map((f) => f.app + f.render)),
+    // The whole animation-frame callbacks of the drag (see the init script below).
+    callbacks: callbacks.length,
+    callback_ms: summary(callbacks),
   };
 }
 
+// Times every animation-frame callback whole, from a script that runs before the page's:
+// the app and the render (what frameTimes() measures) and also egui's paint and
+// index.html's shims, so a change that moves work out of the app's frame shows here.
+// Callbacks under 0.3 ms (put off by the back-pressure, or with nothing to draw) are
+// left out: a drawn frame takes longer.
+function timeCallbacks() {
+  const times = (window.__armlabCallbackMs = []);
+  const request = window.requestAnimationFrame.bind(window);
+  window.requestAnimationFrame = (callback) => request((time) => {
+    const start = performance.now();
+    try { callback(time); } finally { times.push(performance.now() - start); }
+  });
+}
+const takeCallbacks = (page) => page.evaluate(() => window.__armlabCallbackMs.splice(0).filter((ms) => ms >= 0.3));
+
 const all = [];
+const allCallbacks = [];
 for (let run = 1; run <= runs; run++) {
   const ctx = await browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
+  await ctx.addInitScript(timeCallbacks);
   const page = await ctx.newPage();
   await page.goto(`${base}#robot=ur10&q=0,-1,1.2,-1.5,-1.2,0.3&task=position`, { waitUntil: 'domcontentloaded' });
   await page.waitForFunction(() => {
@@ -94,6 +116,7 @@ for (let run = 1; run <= runs; run++) {
   await page.mouse.move(t.x, t.y);
   await page.mouse.down();
   await page.evaluate(() => window.armlab.frameTimes());
+  await takeCallbacks(page);
   const frames = [];
   // Back and forth along the line toward the base, a pixel or two per event.
   for (let i = 0; frames.length < wanted && i < 20 * wanted; i++) {
@@ -103,14 +126,16 @@ for (let run = 1; run <= runs; run++) {
     if (i % 20 === 19) frames.push(...await page.evaluate(() => window.armlab.frameTimes()));
   }
   frames.push(...await page.evaluate(() => window.armlab.frameTimes()));
+  const callbacks = await takeCallbacks(page);
   await page.mouse.up();
   const s = await state(page);
-  const r = report(`run ${run}${pin ? ' (main thread pinned)' : ''}`, frames);
+  const r = report(`run ${run}${pin ? ' (main thread pinned)' : ''}`, frames, callbacks);
   r.dragging_ended_reached = s.reached;
   console.log(JSON.stringify(r));
   all.push(...frames);
+  allCallbacks.push(...callbacks);
   await ctx.close();
 }
-console.log(JSON.stringify(report(`all ${runs} runs of ${dist}`, all)));
+console.log(JSON.stringify(report(`all ${runs} runs of ${dist}`, all, allCallbacks)));
 await browser.close();
 server.close();
