@@ -10,7 +10,7 @@
 // has drawn at least `frames` frames, then prints the median, p95 and max of the app's
 // own main-thread milliseconds (`app` with its `ik` and `scene` parts and the rest,
 // `render`, app + render, and `hook`, the tests' hook after the frame) from
-// window.armlab.frameTimes(), and of the whole animation-frame callbacks (`callback`:
+// window.armlab.frameTimes(), and of the whole animation-frame callbacks (`callback_ms`:
 // also egui's paint and index.html's shims, which frameTimes() leaves out), one JSON line
 // per run and one for all runs together.
 //
