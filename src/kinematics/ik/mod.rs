@@ -69,7 +69,7 @@ pub enum JacobianSource {
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum IkMethod {
     /// Damped least squares / Levenberg–Marquardt, `Δq = Jᵀ(J·Jᵀ + λ²I)⁻¹·e`, with
-    /// `λ² = μ·(½‖e‖² + λ²_min)`: μ shrinks after a step that lowers the error and grows
+    /// `λ² = μ·(‖e‖ + 10⁻⁶)`: μ shrinks after a step that lowers the error and grows
     /// after one that does not (the step is then retried). The robust default.
     #[default]
     DampedLeastSquares,

@@ -177,12 +177,14 @@ struct Outcome {
     stationary: bool,
 }
 
-// Damped least squares: λ² = μ·(½‖e‖² + DLS_FLOOR), μ adapted in [DLS_MU_MIN, DLS_MU_MAX].
+// Damped least squares: λ² = μ·(‖e‖ + DLS_FLOOR), μ adapted in [DLS_MU_MIN, DLS_MU_MAX]
+// (docs/kinematics.md §8.3: the damping in proportion to ‖e‖, not to ½‖e‖², took the
+// UR10's median from 9 to 8 iterations).
 const DLS_FLOOR: f64 = 1e-6;
-const DLS_MU_START: f64 = 0.3;
+const DLS_MU_START: f64 = 0.15;
 const DLS_MU_MIN: f64 = 1e-3;
 const DLS_MU_MAX: f64 = 1e8;
-const DLS_MU_DOWN: f64 = 0.6;
+const DLS_MU_DOWN: f64 = 0.7;
 const DLS_MU_UP: f64 = 10.0;
 /// An accepted step lowering the cost by less than this fraction means a minimum.
 const DLS_STATIONARY: f64 = 1e-9;
@@ -573,7 +575,7 @@ impl Workspace {
                     self.back_substitute(&(ev.e * alpha))
                 }
                 _ => {
-                    let lambda2 = mu * (ev.cost + DLS_FLOOR);
+                    let lambda2 = mu * ((2.0 * ev.cost).sqrt() + DLS_FLOOR);
                     damping = lambda2.sqrt();
                     match self.damped_step(ctx, lambda2, &ev.e) {
                         Some(step) => step,
