@@ -289,14 +289,19 @@ impl Chain {
 /// Solves `(A + shift·I)·y = b` for a symmetric 6×6 `A` with `A + shift·I` positive
 /// definite (docs/kinematics.md §8.8, step 4): by block elimination on the 3×3 blocks
 /// ([`solve_spd6_blocks`]) when both blocks it inverts are well conditioned, else by the
-/// `L·D·Lᵀ` factorisation ([`solve_spd6_ldl`]). `None` when `A + shift·I` is not positive
+/// `L·D·Lᵀ` factorisation ([`solve_spd6_ldl`]), which the page's build
+/// ([`SIZE_OVER_SPEED`]) uses alone. `None` when `A + shift·I` is not positive
 /// definite to working precision.
 pub(crate) fn solve_spd6(
     a: &Matrix6<f64>,
     shift: f64,
     b: &nalgebra::Vector6<f64>,
 ) -> Option<[f64; 6]> {
-    solve_spd6_blocks(a, shift, b).or_else(|| solve_spd6_ldl(a, shift, b))
+    // The page (built for size) keeps the factorisation alone: one iteration a frame.
+    if !SIZE_OVER_SPEED && let Some(y) = solve_spd6_blocks(a, shift, b) {
+        return Some(y);
+    }
+    solve_spd6_ldl(a, shift, b)
 }
 
 /// `(A + shift·I)·y = b` by block elimination: with `A + shift·I = [P Q; Qᵀ R]`, `P⁻¹` from
