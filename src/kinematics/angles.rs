@@ -148,7 +148,10 @@ pub fn asin_poly(x: f64) -> f64 {
 
 /// Whether this build is the page's (wasm with the app): it is built for size (opt-level
 /// "z", a budget of 1,800,000 B, README "Page size"), so the core's hot paths keep their
-/// smaller forms there ([`atan2`], the solver's sines one by one).
+/// smaller forms there ([`atan2`], the solver's sines one by one, its `L·D·Lᵀ` solve, and
+/// its loop's functions out of line). Attributes cannot read a `const`: the solver's
+/// `#[cfg_attr(not(all(target_arch = "wasm32", feature = "app")), inline(always))]`
+/// (`ik::chain`, `ik::numeric`) repeats this condition, and must change with it.
 pub(crate) const SIZE_OVER_SPEED: bool = cfg!(all(target_arch = "wasm32", feature = "app"));
 
 /// Whether [`atan2`] and [`asin`] use this module's polynomials: in the core's wasm, where

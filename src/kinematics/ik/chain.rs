@@ -154,8 +154,7 @@ impl Chain {
 
     /// Forward kinematics at `q` (one entry per joint): the tool pose, and each joint's
     /// axis and point for [`Chain::task_jacobian`].
-    // Inlined into the solver's loop (docs/kinematics.md §8.8), but not in the page's
-    // build, which is for size (`angles::SIZE_OVER_SPEED`).
+    // Inlined into the solver's loop except in the page (`angles::SIZE_OVER_SPEED`).
     #[cfg_attr(not(all(target_arch = "wasm32", feature = "app")), inline(always))]
     pub fn update(&mut self, q: &[f64]) {
         // Every joint's sine and cosine first, in a loop of independent work (the chain
@@ -230,8 +229,7 @@ impl Chain {
     /// The task rows of the geometric Jacobian at the last update into `jt` (linear rows
     /// times `inv_len`, a prismatic joint's column per step unit of `1/inv_len` so that
     /// it is its unit axis; unused rows zero), and `m = jt·jtᵀ`.
-    // Inlined into the solver's loop (docs/kinematics.md §8.8), but not in the page's
-    // build, which is for size (`angles::SIZE_OVER_SPEED`).
+    // Inlined into the solver's loop except in the page (`angles::SIZE_OVER_SPEED`).
     #[cfg_attr(not(all(target_arch = "wasm32", feature = "app")), inline(always))]
     pub fn task_jacobian(
         &self,

@@ -45,8 +45,7 @@ pub(crate) struct Eval {
 }
 
 /// `vee(log R)`, fast for rotations below ~170° and through [`rotation_log`] beyond.
-// Inlined into the solver's loop (docs/kinematics.md §8.8), but not in the page's build,
-// which is for size (`angles::SIZE_OVER_SPEED`).
+// Inlined into the solver's loop except in the page (`angles::SIZE_OVER_SPEED`).
 #[cfg_attr(not(all(target_arch = "wasm32", feature = "app")), inline(always))]
 pub(crate) fn rotation_vector(r: &Matrix3<f64>) -> Vector3<f64> {
     let v = 0.5
@@ -134,8 +133,7 @@ fn axis_rotation(
 }
 
 /// The task error of `pose` against `tt`, linear rows multiplied by `inv_len`.
-// Inlined into the solver's loop (docs/kinematics.md §8.8), but not in the page's build,
-// which is for size (`angles::SIZE_OVER_SPEED`).
+// Inlined into the solver's loop except in the page (`angles::SIZE_OVER_SPEED`).
 #[cfg_attr(not(all(target_arch = "wasm32", feature = "app")), inline(always))]
 pub(crate) fn evaluate(tt: &TaskTarget, pose: &IsometryMatrix3<f64>, inv_len: f64) -> Eval {
     let dp = tt.position - pose.translation.vector;
