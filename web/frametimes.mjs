@@ -3,7 +3,7 @@
 // the test command). Headless Chromium draws through SwiftShader here, so compare runs
 // made one after the other on the same machine, and read no difference under ~1 ms.
 //
-//   node web/frametimes.mjs DIST_DIR [runs=3] [frames=300]
+//   node web/frametimes.mjs DIST_DIR [runs=3] [frames=300] [--pin] [--eager]
 //
 // Each run opens the page at 1400×860 with the arm, the target and the DH frames shown,
 // grabs the target ball and drags it in small steps, holding the button, until the app
@@ -19,15 +19,21 @@
 // without a GPU, SwiftShader's raster threads otherwise share the main thread's core and
 // preempt it; pinned, the figures are the app's own main-thread time. Compare the two to
 // tell the app's work from that contention.
+//
+// With --eager, Chromium runs with V8's `--no-wasm-dynamic-tiering`: every wasm function is
+// compiled by the optimising compiler in the background from the start, instead of running
+// in the baseline compiler's code until it has run enough (V8's default, which no page can
+// change). Compared with a run without it, the difference is V8's warm-up, not the app's.
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { serveDist, launchChromium } from './static-server.mjs';
 
 const args = process.argv.slice(2);
 const pin = args.includes('--pin');
-const [distArg, runsArg, framesArg] = args.filter((a) => a !== '--pin');
+const eager = args.includes('--eager');
+const [distArg, runsArg, framesArg] = args.filter((a) => a !== '--pin' && a !== '--eager');
 if (!distArg) {
-  console.error('usage: node web/frametimes.mjs DIST_DIR [runs] [frames] [--pin]');
+  console.error('usage: node web/frametimes.mjs DIST_DIR [runs] [frames] [--pin] [--eager]');
   process.exit(2);
 }
 const dist = path.resolve(distArg);
@@ -35,7 +41,7 @@ const runs = Number(runsArg ?? 3);
 const wanted = Number(framesArg ?? 300);
 const VIEW = { width: 1400, height: 860 };
 const { server, base } = await serveDist(dist);
-const browser = await launchChromium();
+const browser = await launchChromium(eager ? ['--js-flags=--no-wasm-dynamic-tiering'] : []);
 
 // The process ids of the running Chromium processes whose command line matches `pattern`.
 function pids(pattern) {
@@ -129,7 +135,8 @@ for (let run = 1; run <= runs; run++) {
   const callbacks = await takeCallbacks(page);
   await page.mouse.up();
   const s = await state(page);
-  const r = report(`run ${run}${pin ? ' (main thread pinned)' : ''}`, frames, callbacks);
+  const how = [pin && 'main thread pinned', eager && 'wasm optimised up front'].filter(Boolean).join(', ');
+  const r = report(`run ${run}${how ? ` (${how})` : ''}`, frames, callbacks);
   r.dragging_ended_reached = s.reached;
   console.log(JSON.stringify(r));
   all.push(...frames);
