@@ -324,17 +324,16 @@ fn solve_spd6_blocks(a: &Matrix6<f64>, shift: f64, b: &nalgebra::Vector6<f64>) -
         p[k][k] += shift;
         r[k][k] += shift;
     }
+    let qt: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|k| q[k][i]));
     let p_inv = inverse_spd3(&p)?;
     // X = P⁻¹·Q and z = P⁻¹·b₁.
     let x: [[f64; 3]; 3] =
         std::array::from_fn(|i| std::array::from_fn(|j| dot3(&p_inv[i], |k| q[k][j])));
     let z: [f64; 3] = std::array::from_fn(|i| dot3(&p_inv[i], |k| b[k]));
     // S = R − Qᵀ·X (symmetric) and r₂ = b₂ − Qᵀ·z.
-    let s: [[f64; 3]; 3] = std::array::from_fn(|i| {
-        std::array::from_fn(|j| r[i][j] - dot3(&[q[0][i], q[1][i], q[2][i]], |k| x[k][j]))
-    });
-    let r2: [f64; 3] =
-        std::array::from_fn(|i| b[3 + i] - dot3(&[q[0][i], q[1][i], q[2][i]], |k| z[k]));
+    let s: [[f64; 3]; 3] =
+        std::array::from_fn(|i| std::array::from_fn(|j| r[i][j] - dot3(&qt[i], |k| x[k][j])));
+    let r2: [f64; 3] = std::array::from_fn(|i| b[3 + i] - dot3(&qt[i], |k| z[k]));
     let s_inv = inverse_spd3(&s)?;
     let y2: [f64; 3] = std::array::from_fn(|i| dot3(&s_inv[i], |k| r2[k]));
     let y1: [f64; 3] = std::array::from_fn(|i| z[i] - dot3(&x[i], |k| y2[k]));
