@@ -3,6 +3,7 @@
 //! here), so the 3D viewport runs its real pipeline.
 #![cfg(not(target_arch = "wasm32"))]
 
+use armlab_text::Sentence;
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
@@ -13,7 +14,7 @@ use armlab::app::joints::JointsPanel;
 use armlab::app::model::{MessageKind, Model};
 use armlab::app::session::Session;
 use armlab::app::{ArmLabApp, Panel};
-use armlab::kinematics::ik::Reach;
+use armlab_core::ik::Reach;
 
 const SIZE: [f32; 2] = [1400.0, 860.0];
 
@@ -73,7 +74,7 @@ fn choosing_a_preset_swaps_the_robot() {
     assert_eq!(model.robot().name, "Puma 560");
     // It opens at its own home pose and default task, the target on the new gripper.
     assert_eq!(model.q(), model.robot().home().as_slice());
-    assert_eq!(model.task(), armlab::kinematics::Task::FullPose);
+    assert_eq!(model.task(), armlab_core::Task::FullPose);
     assert_eq!(model.ik().reach, Reach::Reached);
     // The matrices are the Puma's: at q = 0 (the Zero button) its T_06 has
     // p = (0.4521, −0.15005, 1.10363) m with R = I.
@@ -315,7 +316,7 @@ fn the_native_file_dialog_saves_and_opens_a_robot_file() {
     h.run_steps(2);
     let saved = dir.join("my scara.json");
     let text = std::fs::read_to_string(&saved).expect("the dialog wrote the file");
-    let robot = armlab::kinematics::robot_from_json(&text).expect("a valid robot file");
+    let robot = armlab_core::robot_from_json(&text).expect("a valid robot file");
     assert_eq!(
         &robot,
         h.state().model().robot(),
@@ -412,7 +413,7 @@ fn the_joints_panel_alone_changes_only_the_models_q() {
     assert!(model.q()[1] > before[1] + 1e-3, "θ2 grew");
     assert_eq!(model.q()[0], before[0]);
     assert_eq!(model.q()[2], before[2]);
-    let fresh = armlab::kinematics::tool_pose(model.robot(), model.q());
+    let fresh = armlab_core::tool_pose(model.robot(), model.q());
     assert_eq!(
         model.fk().base_from_tool,
         fresh,
@@ -444,7 +445,7 @@ fn the_ik_panel_alone_solves_and_replays_its_run() {
     h.run_steps(2);
     let model = &h.state().model;
     assert_eq!(model.ik().reach, Reach::Reached);
-    let tool = armlab::kinematics::tool_pose(model.robot(), model.q());
+    let tool = armlab_core::tool_pose(model.robot(), model.q());
     assert!((tool.translation.vector - target.translation.vector).norm() < 1e-3);
     let run = h
         .state()
@@ -483,16 +484,16 @@ fn a_link_naming_only_the_robot_opens_its_default_task() {
     let model = h.state().model();
     assert_eq!(
         model.task(),
-        armlab::kinematics::Task::Position,
+        armlab_core::Task::Position,
         "five joints: position only"
     );
     assert_eq!(model.q(), model.robot().home().as_slice());
     let h = harness("#robot=panda");
-    assert_eq!(h.state().model().task(), armlab::kinematics::Task::FullPose);
+    assert_eq!(h.state().model().task(), armlab_core::Task::FullPose);
     let h = harness("#robot=planar-2r&task=full");
     assert_eq!(
         h.state().model().task(),
-        armlab::kinematics::Task::FullPose,
+        armlab_core::Task::FullPose,
         "a task the link names wins"
     );
 }
@@ -975,7 +976,7 @@ fn the_workspace_cloud_fills_over_frames_and_says_where_the_target_lies() {
     // the cloud grows over frames and is not full at once (the sampler is fast enough to
     // fill all 20 000 samples within one real frame's budget on some machines).
     // The other measure starts a new cloud.
-    use armlab::kinematics::WorkspaceMeasure;
+    use armlab_core::WorkspaceMeasure;
     let m = measure(h.state().model());
     let other = match m {
         WorkspaceMeasure::Manipulability => WorkspaceMeasure::SigmaMin,
@@ -1064,7 +1065,7 @@ fn the_metrover_reaches_only_some_tool_directions_at_its_target_and_the_ur10_all
 
 #[test]
 fn with_move_on_the_arm_drives_to_the_answer_and_the_motion_panel_plots_it() {
-    use armlab::kinematics::motion::Controller;
+    use armlab_core::motion::Controller;
     let mut h = harness("#robot=rrr&q=0,0.5,-1&panels=ik,motion");
     h.get_by_label("Move: drive to the IK answer").click();
     h.run_steps(1);
@@ -1165,8 +1166,8 @@ fn the_motion_panel_fits_a_projector_and_a_phone() {
 
 #[test]
 fn a_motion_into_the_base_stops_at_the_last_free_pose_and_names_the_parts() {
-    use armlab::kinematics::ForwardKinematics;
-    use armlab::kinematics::collision::CollisionChecker;
+    use armlab_core::ForwardKinematics;
+    use armlab_core::collision::CollisionChecker;
     let mut h = harness("#robot=ur10&move=on&collide=on&ctrl=quintic&panels=motion");
     let robot = h.state().model().robot().clone();
     // The folded UR10 of tests/collision.rs: the wrist comes down onto the base.
@@ -1227,8 +1228,8 @@ fn adding_or_removing_a_joint_in_the_dh_editor_keeps_the_other_joints_values() {
     assert_eq!(model.robot().dof(), 4);
     assert_eq!(model.q(), &[0.3, -0.4, 0.5, 0.0], "the new joint at 0");
     // The tool follows the kept pose: the RRR's first three joints where they were.
-    let rrr = armlab::kinematics::preset("rrr").expect("a preset");
-    let before = armlab::kinematics::ForwardKinematics::new(&rrr, &[0.3, -0.4, 0.5])
+    let rrr = armlab_core::preset("rrr").expect("a preset");
+    let before = armlab_core::ForwardKinematics::new(&rrr, &[0.3, -0.4, 0.5])
         .expect("a pose")
         .tool_position();
     assert!((model.fk().tool_position() - before).norm() < 1e-9);
@@ -1387,9 +1388,9 @@ fn a_robot_file_brings_its_keep_out_boxes_and_a_bad_box_leaves_the_last_good_rob
     use armlab::app::robot_panel::RobotPanel;
     let mut model = Model::new(Session::for_preset("ur10").expect("a preset"));
     let mut panel = RobotPanel::new(model.robot());
-    let ur10 = armlab::kinematics::preset("ur10").expect("the UR10");
+    let ur10 = armlab_core::preset("ur10").expect("the UR10");
     let mut file: serde_json::Value =
-        serde_json::from_str(&armlab::kinematics::robot_to_json(&ur10)).expect("JSON");
+        serde_json::from_str(&armlab_core::robot_to_json(&ur10)).expect("JSON");
     file["name"] = "UR10 in a cell".into();
     file["keep_out"] = serde_json::json!([{ "centre": [900, 0, 400], "size": [200, 400, 800] }]);
     assert!(panel.load_robot_text(&mut model, &file.to_string()));
@@ -1422,8 +1423,8 @@ fn a_robot_file_brings_its_keep_out_boxes_and_a_bad_box_leaves_the_last_good_rob
 
 #[test]
 fn both_paths_are_drawn_side_by_side_the_line_says_where_it_fails_and_waypoints_are_visited() {
-    use armlab::kinematics::path::PathKind;
-    use armlab::kinematics::tool_pose;
+    use armlab_core::path::PathKind;
+    use armlab_core::tool_pose;
     let mut h = harness("#robot=ur10&q=0.3,-1.2,1.4,-1.8,-1.5,0&panels=motion");
     h.get_by_label("Paths and waypoints").click();
     h.run_steps(2);
@@ -1448,7 +1449,7 @@ fn both_paths_are_drawn_side_by_side_the_line_says_where_it_fails_and_waypoints_
     assert_eq!(plan.joint.points.len(), 201);
     assert_eq!(plan.line.points.len(), 201);
     let first = plan.line.problems.first().expect("the line has a problem");
-    let sentence = first.sentence(armlab::i18n::Lang::En);
+    let sentence = first.sentence(armlab_text::Lang::En);
     assert!(
         h.query_by_label(&sentence).is_some(),
         "the panel says: {sentence}"

@@ -10,8 +10,8 @@ use egui_kittest::kittest::{By, NodeT, Queryable};
 use armlab::app::ArmLabApp;
 use armlab::app::files::{FileDialog, Mode};
 use armlab::app::model::MessageKind;
-use armlab::i18n::{Key, Lang, places, text};
-use armlab::kinematics::ik::Reach;
+use armlab_core::ik::Reach;
+use armlab_text::{Key, Lang, places, text};
 
 const SIZE: [f32; 2] = [1400.0, 860.0];
 
@@ -316,12 +316,12 @@ fn a_broken_link_and_a_failed_solve_say_so_in_finnish() {
 #[test]
 fn the_json_api_answers_in_english_whatever_the_app_shows() {
     let _finnish_app = harness("#robot=ur10&lang=fi");
-    let err = armlab::api::fk(r#"{"robot": "ur10", "q": [1, 2]}"#).expect_err("two values");
+    let err = armlab_api::fk(r#"{"robot": "ur10", "q": [1, 2]}"#).expect_err("two values");
     assert_eq!(
         err.to_string(),
         "The robot has 6 joints but 2 joint values were given."
     );
-    let err = armlab::api::ik(
+    let err = armlab_api::ik(
         r#"{"robot": "panda", "target": {"position": [1, 2, 3]}, "method": "closed"}"#,
     )
     .expect_err("no closed form");
@@ -330,7 +330,7 @@ fn the_json_api_answers_in_english_whatever_the_app_shows() {
             .starts_with("\"Franka Panda\" has no closed-form IK in ArmLab"),
         "{err}"
     );
-    let err = armlab::api::robot(r#"{"robot": {"name": "x"}}"#).expect_err("no convention");
+    let err = armlab_api::robot(r#"{"robot": {"name": "x"}}"#).expect_err("no convention");
     assert_eq!(
         err.to_string(),
         "In the robot, the field \"convention\" is missing."

@@ -126,18 +126,18 @@ build_web() {
 # leaves). Trunk runs this as a build hook (Trunk.toml), so `trunk build` and `trunk serve`
 # make it too, beside the page and with its settings: build_web's profile variables, and in
 # release wasm-opt with index.html's data-wasm-opt level and data-wasm-opt-params. Its own
-# target folder inside the page's: the page's binary and this library are both armlab.wasm,
-# and one would overwrite the other. Writes $TRUNK_STAGING_DIR/urdf/armlab_urdf.js and
+# target folder inside the page's, so that the two builds' settings do not rebuild each
+# other. Writes $TRUNK_STAGING_DIR/urdf/armlab_urdf.js and
 # armlab_urdf-HASH_bg.wasm (HASH from cargo's wasm, so a new build never pairs with an old
 # cached wasm); the bindgen'd and optimised result is kept per HASH, so a build that changes
 # nothing here costs cargo's freshness check and a copy.
 build_urdf_module() {
   local out="${TRUNK_STAGING_DIR:?set by trunk: build_urdf_module is its build hook (Trunk.toml)}/urdf"
   local target="$CARGO_TARGET_DIR/urdf-module" profile=release
-  local flags=(--lib --crate-type cdylib --target wasm32-unknown-unknown --no-default-features --features js,urdf --locked)
+  local flags=(-p armlab-js --lib --crate-type cdylib --target wasm32-unknown-unknown --features urdf --locked)
   if [ "${TRUNK_PROFILE:-release}" = release ]; then flags+=(--release); else profile=debug; fi
   (cd "$ROOT" && CARGO_TARGET_DIR="$target" cargo rustc -q "${flags[@]}") || return 1
-  local wasm="$target/wasm32-unknown-unknown/$profile/armlab.wasm"
+  local wasm="$target/wasm32-unknown-unknown/$profile/armlab_js.wasm"
   local hash; hash="$(sha256sum "$wasm" | cut -c1-16)"
   local kept="$target/bindgen/$hash"
   if [ ! -f "$kept/armlab_urdf.js" ]; then

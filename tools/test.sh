@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Runs every test (installing what is missing): fmt, clippy (native, core-only, wasm32),
-# the core's tests natively and as wasm in Node (same count), the UI tests (egui_kittest on
-# lavapipe), the JS API in Node, and the built page in headless Chromium.
+# Runs every test (installing what is missing): fmt, clippy (native and wasm32, every
+# crate), the libraries' tests natively and as wasm in Node (same count), the UI tests
+# (egui_kittest on lavapipe), the JS API in Node, and the built page in headless Chromium.
 set -euo pipefail
 # egui_kittest overwrites a mismatching snapshot and passes when this is set (and the
 # browser test compares against the same image): never in a test run.
@@ -68,59 +68,70 @@ snapshots_hash() { # the snapshot images and their contents (new files count too
 }
 SNAPSHOTS_BEFORE="$(snapshots_hash)"
 
-run fmt cargo fmt --check
-run clippy-native cargo clippy --all-targets -- -D warnings
-run clippy-core cargo clippy --no-default-features --all-targets -- -D warnings
-run clippy-wasm-app cargo clippy --target wasm32-unknown-unknown --lib --bins --tests -- -D warnings
-run clippy-wasm-core cargo clippy --target wasm32-unknown-unknown --no-default-features --features js --lib --tests -- -D warnings
-# URDF support is an opt-in feature (it doubles the JS API's wasm): lint and test it on its own.
-run clippy-urdf cargo clippy --no-default-features --features js,urdf --all-targets -- -D warnings
+# The library crates (everything but the app): they build without the GUI, natively and as
+# wasm; their tests run both ways in equal numbers.
+LIBS=(-p armlab-core -p armlab-text -p armlab-session -p armlab-api -p armlab-urdf -p armlab-bench)
 
-say "the core has no GUI or web dependency"
-if cargo tree --no-default-features -e normal --prefix none | grep -E '^(egui|eframe|wgpu|web-sys|wasm-bindgen|js-sys)[ -]'; then
-  echo "FAILED: the core build pulls in GUI or web crates (above)"; exit 1
-fi
-if grep -rnE '\b(egui|eframe|wgpu|web_sys|wasm_bindgen|js_sys)::' src/kinematics; then
-  echo "FAILED: src/kinematics imports GUI or web crates (above)"; exit 1
-fi
+run fmt cargo fmt --all --check
+run clippy-native cargo clippy --workspace --all-targets --features armlab-js/urdf,armlab-bench/frame -- -D warnings
+run clippy-wasm-app cargo clippy --target wasm32-unknown-unknown -p armlab --lib --bins --tests -- -D warnings
+run clippy-wasm-libs cargo clippy --target wasm32-unknown-unknown "${LIBS[@]}" -p armlab-js --features armlab-js/urdf --lib --tests -- -D warnings
 
-say "the docs build without warnings (core and app)"
-run doc-core env RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --no-default-features --lib -q
-run doc-app env RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib -q
-
-say "every test file is built: a test binary of Cargo.toml or a module of tests/core.rs"
-test_targets="$(awk '/^\[\[test\]\]/ { t = 1; next } /^\[/ { t = 0 } t && /^name = / { gsub(/"/, "", $3); print $3 }' Cargo.toml)"
-for f in tests/*.rs; do
-  name="$(basename "$f" .rs)"
-  if ! grep -qx "mod $name;" tests/core.rs && ! grep -qx "$name" <<<"$test_targets"; then
-    echo "FAILED: $f is in no test binary (add 'mod $name;' to tests/core.rs, or a [[test]] to Cargo.toml)"; exit 1
+# The manifests keep the boundaries (crates/armlab-core/Cargo.toml names no GUI, web or
+# text crate); this checks it a second time, on what cargo resolves and on the sources.
+say "the core has no GUI, web or text dependency; no library has a GUI one"
+for lib in armlab-core armlab-text armlab-session armlab-api armlab-urdf armlab-bench; do
+  if cargo tree -p "$lib" -e normal --prefix none | grep -E '^(egui|eframe|wgpu|web-sys|wasm-bindgen|js-sys)[ -]'; then
+    echo "FAILED: $lib pulls in GUI or web crates (above)"; exit 1
   fi
 done
+if cargo tree -p armlab-core -e normal --prefix none | grep -E '^armlab-text '; then
+  echo "FAILED: the core depends on the text catalogue"; exit 1
+fi
+if grep -rnE '\b(egui|eframe|wgpu|web_sys|wasm_bindgen|js_sys|armlab_text)::' crates/armlab-core/src; then
+  echo "FAILED: crates/armlab-core imports GUI, web or text crates (above)"; exit 1
+fi
 
-run core-native cargo test --no-default-features --tests
-run core-doc cargo test --no-default-features --doc
-add core-native; add core-doc
-run core-urdf cargo test --no-default-features --features urdf --test urdf
-add core-urdf
+say "the docs build without warnings"
+run doc env RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --workspace --features armlab-js/urdf -q
+
+say "every test file is built: a test binary of its crate or a module of one"
+for dir in . crates/*; do
+  [ -d "$dir/tests" ] || continue
+  test_paths="$(awk '/^\[\[test\]\]/ { t = 1; next } /^\[/ { t = 0 } t && /^path = / { gsub(/"/, "", $3); print $3 }' "$dir/Cargo.toml")"
+  test_names="$(awk '/^\[\[test\]\]/ { t = 1; next } /^\[/ { t = 0 } t && /^name = / { gsub(/"/, "", $3); print $3 }' "$dir/Cargo.toml")"
+  for f in "$dir"/tests/*.rs; do
+    name="$(basename "$f" .rs)"
+    if grep -qx "tests/$name.rs" <<<"$test_paths" || grep -qx "$name" <<<"$test_names" \
+      || cat "$dir"/tests/*.rs | grep -qx "mod $name;"; then
+      continue
+    fi
+    echo "FAILED: $f is in no test binary (add 'mod $name;' to its crate's test binary, or a [[test]])"; exit 1
+  done
+done
+
+run libs-native cargo test "${LIBS[@]}" --tests
+run libs-doc cargo test "${LIBS[@]}" --doc
+add libs-native; add libs-doc
 
 await_background apt
-run ui cargo test --lib --test ui --test ui_finnish
+run ui cargo test -p armlab --lib --test ui --test ui_finnish
 add ui
 
 await_background wasm-bindgen
-run core-wasm cargo test --profile wasm-test --no-default-features --tests --target wasm32-unknown-unknown
-read -r native _ < <(count "$LOG/core-native.log")
-read -r wasm _ < <(count "$LOG/core-wasm.log")
-say "core tests: $native passed natively, $wasm passed as wasm in Node"
+run libs-wasm cargo test --profile wasm-test "${LIBS[@]}" --tests --target wasm32-unknown-unknown
+read -r native _ < <(count "$LOG/libs-native.log")
+read -r wasm _ < <(count "$LOG/libs-wasm.log")
+say "library tests: $native passed natively, $wasm passed as wasm in Node"
 if [ "$native" -eq 0 ] || [ "$native" != "$wasm" ]; then
-  echo "FAILED: the core's tests must pass in the same number natively and as wasm"; exit 1
+  echo "FAILED: the libraries' tests must pass in the same number natively and as wasm"; exit 1
 fi
-add core-wasm
+add libs-wasm
 
 say "the JS API in Node"
-cargo rustc --lib --crate-type cdylib --release --target wasm32-unknown-unknown --no-default-features --features js
-wasm-bindgen --target nodejs --out-dir "$CARGO_TARGET_DIR/armlab-node" \
-  "$CARGO_TARGET_DIR/wasm32-unknown-unknown/release/armlab.wasm"
+cargo rustc -p armlab-js --lib --crate-type cdylib --release --target wasm32-unknown-unknown
+wasm-bindgen --target nodejs --out-dir "$CARGO_TARGET_DIR/armlab-node" --out-name armlab \
+  "$CARGO_TARGET_DIR/wasm32-unknown-unknown/release/armlab_js.wasm"
 export ARMLAB_NODE_PKG="$CARGO_TARGET_DIR/armlab-node/armlab.js"
 run js-api node --test web/api.test.mjs
 add js-api
@@ -140,6 +151,6 @@ fi
 
 say "all tests passed in $((SECONDS - START)) s"
 printf 'suites:%s\n' "$SUITES"
-# The core's tests run twice (natively and as wasm): the distinct tests count them once.
-echo "distinct tests: $((passed - wasm)) (the $wasm core tests run natively and as wasm)"
+# The libraries' tests run twice (natively and as wasm): the distinct tests count them once.
+echo "distinct tests: $((passed - wasm)) (the $wasm library tests run natively and as wasm)"
 echo "$passed passed, $failed failed"

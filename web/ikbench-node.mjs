@@ -1,10 +1,10 @@
 // The IK benchmark (TRAC-IK protocol) in Node: the core compiled to wasm
 // (wasm-bindgen --target nodejs), timed with performance.now(). Prints the same JSON as
-// the native `cargo run --release --no-default-features --bin ikbench`.
+// the native `cargo run --release -p armlab-bench --bin ikbench`.
 //
 // Build, then run from the repository root:
-//   cargo rustc --lib --crate-type cdylib --release --target wasm32-unknown-unknown --no-default-features --features js
-//   wasm-bindgen --target nodejs --out-dir target/armlab-node target/wasm32-unknown-unknown/release/armlab.wasm
+//   cargo rustc -p armlab-js --lib --crate-type cdylib --release --target wasm32-unknown-unknown
+//   wasm-bindgen --target nodejs --out-dir target/armlab-node --out-name armlab target/wasm32-unknown-unknown/release/armlab_js.wasm
 //   node web/ikbench-node.mjs [samples] [budget]
 // ARMLAB_NODE_PKG points at another build's armlab.js.
 import { createRequire } from 'node:module';

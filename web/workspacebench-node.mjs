@@ -1,6 +1,6 @@
 // The workspace benchmark in Node: the core compiled to wasm (wasm-bindgen --target
 // nodejs), timed with performance.now(). Prints the same JSON as the native
-// `cargo run --release --no-default-features --bin workspacebench [samples] [repeats]`.
+// `cargo run --release -p armlab-bench --bin workspacebench [samples] [repeats]`.
 // Build as for web/ikbench-node.mjs, then run from the repository root:
 //   node web/workspacebench-node.mjs [samples] [repeats]
 // ARMLAB_NODE_PKG points at another build's armlab.js (e.g. one built like the page,

@@ -4,9 +4,9 @@
 
 use nalgebra::Point3;
 
-use crate::i18n::Key;
-use crate::kinematics::convention::frames_in_both_conventions;
-use crate::kinematics::{Convention, Robot};
+use armlab_core::convention::frames_in_both_conventions;
+use armlab_core::{Convention, Robot};
+use armlab_text::Key;
 
 use super::format::{error_value, number};
 use super::matrices::overlay_checkbox;

@@ -7,12 +7,13 @@
 //! sentence instead of its numbers, the 3D view no DH frames and no other-convention
 //! frames, and the link names only the exercise (`exercise=`), never the table.
 
+use armlab_text::Sentence;
 use nalgebra::{Point3, Vector3};
 
-use crate::i18n::Key;
-use crate::kinematics::exercise::Verdict;
-use crate::kinematics::{Convention, ForwardKinematics, Robot, preset_names};
-use crate::link::exercise::ExerciseId;
+use armlab_core::exercise::Verdict;
+use armlab_core::{Convention, ForwardKinematics, Robot, preset_names};
+use armlab_session::exercise::ExerciseId;
+use armlab_text::Key;
 
 use super::format::number;
 use super::hook::ScreenPoints;
@@ -355,7 +356,7 @@ pub fn draw_in_view(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::kinematics::{ForwardKinematics, JointKind, preset};
+    use armlab_core::{ForwardKinematics, JointKind, preset};
 
     fn lengths(id: &str, q: &[f64]) -> Vec<(f64, Option<f64>)> {
         let robot = preset(id).expect("a preset");

@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::i18n::{Key, Lang, fill, text};
+use armlab_text::{Key, Lang, fill, text};
 
 /// Open a robot file, or save the current robot.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

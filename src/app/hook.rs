@@ -1,9 +1,10 @@
 //! What the browser tests (and the UI tests) read: the state as JSON and the screen
 //! positions of the target marker's handles and of the tool point.
 
+use armlab_text::Sentence;
 use serde_json::json;
 
-use crate::kinematics::ik::Reach;
+use armlab_core::ik::Reach;
 
 use super::ArmLabApp;
 use super::session::RobotSource;
@@ -86,7 +87,7 @@ pub fn state_json(app: &ArmLabApp) -> String {
     let model = app.model();
     let t = model.target();
     let p = t.translation.vector;
-    let e = crate::kinematics::EulerParameters::from_rotation(t.rotation.matrix());
+    let e = armlab_core::EulerParameters::from_rotation(t.rotation.matrix());
     let tool = model.fk().tool_position();
     let r = t.rotation.matrix();
     let robot = model.robot();
@@ -98,7 +99,7 @@ pub fn state_json(app: &ArmLabApp) -> String {
         "exercise": model.exercise().map(|e| json!({
             "id": e.id.id(),
             "solved": e.solved,
-            "verdict": e.verdict.map(|v| v.sentence(crate::i18n::Lang::En)),
+            "verdict": e.verdict.map(|v| v.sentence(armlab_text::Lang::En)),
         })),
         "dof": robot.dof(),
         "length_unit": robot.length_unit.symbol(),

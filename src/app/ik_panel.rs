@@ -2,10 +2,11 @@
 //! target to gripper", and a full solve whose iterations can be replayed step by step with
 //! the error per iteration. The drag step itself is the model's ([`Model::drag_step`]).
 
-use crate::kinematics::ik::{IkResult, Reach};
-use crate::kinematics::{IkMethod, Task, wrapped_equivalent};
+use armlab_core::ik::{IkResult, Reach};
+use armlab_core::{IkMethod, Task, wrapped_equivalent};
+use armlab_text::Labelled;
 
-use crate::i18n::Key;
+use armlab_text::Key;
 
 use super::format::{error_value, fixed};
 use super::hook::ScreenPoints;
@@ -41,7 +42,7 @@ pub struct IkPanel {
 struct MenuWidths {
     /// What they were measured for: the language, the button font's size and the points
     /// per pixel as bits, and the chosen task and method.
-    key: (crate::i18n::Lang, u32, u32, Task, IkMethod),
+    key: (armlab_text::Lang, u32, u32, Task, IkMethod),
     label: f32,
     menu: f32,
     need: f32,

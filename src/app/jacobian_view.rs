@@ -7,9 +7,9 @@ use nalgebra::{Matrix3, Matrix6xX, Point3, Rotation3, Vector3};
 
 use super::scene::{arrow, instance, segment};
 use super::settings::{Overlay, OverlaySet};
-use crate::kinematics::redundancy::null_direction;
-use crate::kinematics::{ForwardKinematics, Robot, Task, tool_velocity};
 use crate::render::{Instance, Shape};
+use armlab_core::redundancy::null_direction;
+use armlab_core::{ForwardKinematics, Robot, Task, tool_velocity};
 
 /// The colours of the Jacobian's columns (joint 1, 2, …; repeating after eight), in the
 /// 3D view and the matrices panel's legend alike.

@@ -1,8 +1,9 @@
 //! The joint panel: a slider and a number field per joint within its limits, degrees or
 //! radians, prismatic joints in length units; zero and home.
 
-use crate::kinematics::redundancy::{SelfMotionError, self_motion};
-use crate::kinematics::{Joint, JointKind, tool_velocity};
+use armlab_core::redundancy::{SelfMotionError, self_motion};
+use armlab_core::{Joint, JointKind, tool_velocity};
+use armlab_text::Sentence;
 
 use super::format::number;
 use super::hook::ScreenPoints;
@@ -10,7 +11,7 @@ use super::matrices::overlay_checkbox;
 use super::model::{HoverSource, Model};
 use super::settings::Overlay;
 use super::{Panel, style, tr, trf};
-use crate::i18n::Key;
+use armlab_text::Key;
 
 /// The joint sliders, the self-motion slider of a redundant arm and the joint-speed rows.
 /// Every joint value is the model's q; the panel keeps its sliders' ids (so a shortcut

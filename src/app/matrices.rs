@@ -4,12 +4,12 @@
 
 use nalgebra::DMatrix;
 
-use crate::kinematics::{
+use armlab_core::{
     Convention, JacobianAnalysis, JacobianMeasures, JointKind, Orientation, Robot, Task,
 };
 
-use crate::i18n::text as text_of;
-use crate::i18n::{Key, Lang, fill, text};
+use armlab_text::text as text_of;
+use armlab_text::{Key, Lang, fill, text};
 
 use super::format::{fixed, number};
 use super::hook::ScreenPoints;
@@ -19,7 +19,7 @@ use super::settings::{Hidden, HiddenSet, MatrixId, Overlay};
 use super::style::NameRow;
 use super::symbolic_view::{SymbolicCache, symbolic_block};
 use super::{Panel, style, tr, trf};
-use crate::kinematics::symbolic::SymbolicChain;
+use armlab_core::symbolic::SymbolicChain;
 
 /// Plain text rows, space-aligned.
 pub fn to_plain(m: &DMatrix<f64>, decimals: usize) -> String {
@@ -576,7 +576,7 @@ pub fn finish_numbers(ctx: &egui::Context) {
 }
 
 fn homogeneous(pose: &nalgebra::IsometryMatrix3<f64>) -> DMatrix<f64> {
-    let h = crate::kinematics::fk::homogeneous(pose);
+    let h = armlab_core::fk::homogeneous(pose);
     DMatrix::from_fn(4, 4, |r, c| h[(r, c)])
 }
 

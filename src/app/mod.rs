@@ -19,7 +19,7 @@ pub mod exercise_view;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod files;
 // The link format lives beside the core (no GUI): the app uses it under its old paths.
-pub use crate::link::{format, session, settings};
+pub use armlab_session::{format, session, settings};
 pub mod hook;
 pub mod ik_panel;
 pub mod jacobian_view;
@@ -50,16 +50,16 @@ use model::{Message, Model};
 use session::Session;
 use settings::PanelKind;
 
-use crate::i18n::Key;
+use armlab_text::Key;
 
 /// The text of `key` in the model's language.
 pub fn tr(model: &Model, key: Key) -> &'static str {
-    crate::i18n::text(model.settings().lang, key)
+    armlab_text::text(model.settings().lang, key)
 }
 
 /// The text of `key` in the model's language, its places filled by `args`.
 pub fn trf(model: &Model, key: Key, args: &[&dyn std::fmt::Display]) -> String {
-    crate::i18n::fill(model.settings().lang, key, args)
+    armlab_text::fill(model.settings().lang, key, args)
 }
 
 /// Main-thread milliseconds of one frame of the app, in parts.
@@ -93,7 +93,7 @@ pub struct FrameTime {
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Preferences {
     /// The first of the browser's languages that ArmLab has (English when none).
-    pub lang: crate::i18n::Lang,
+    pub lang: armlab_text::Lang,
     /// A touch screen: thumb-sized controls.
     pub touch: bool,
 }
@@ -188,7 +188,7 @@ impl ArmLabApp {
                     .trim_start_matches('#')
                     .split('&')
                     .find_map(|part| part.strip_prefix("lang="))
-                    .and_then(crate::i18n::Lang::from_id);
+                    .and_then(armlab_text::Lang::from_id);
                 if let Some(lang) = asked {
                     let mut settings = self.model.settings().clone();
                     settings.lang = lang;

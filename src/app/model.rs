@@ -5,18 +5,19 @@
 //! (FK and the Jacobian when q or the robot changes; the IK status when q, the robot, the
 //! target or the task changes). No egui here: the model is tested without a window.
 
+use armlab_text::Sentence;
 use nalgebra::{IsometryMatrix3, Matrix6xX, Point3, Vector3};
 
-use crate::kinematics::ik::{
+use armlab_core::ik::{
     Branch, IkError, IkResult, IkSettings, IkSolver, REACHED_ORIENTATION_TOLERANCE,
     REACHED_POSITION_TOLERANCE_M, Reach, branch_of, closed_form_family, closed_form_solutions,
     distinct_solutions, joint_distance, pose_error,
 };
-use crate::kinematics::workspace::{
+use armlab_core::workspace::{
     DirectionReach, WorkspaceCloud, WorkspaceMeasure, direction_reachability,
     joints_held_at_limits, sphere_directions,
 };
-use crate::kinematics::{
+use armlab_core::{
     ForwardKinematics, IkMethod, Robot, SplitMix64, Task, ToolAxis, geometric_jacobian_into,
     tool_pose,
 };
@@ -26,8 +27,8 @@ use super::path_lab::PathLab;
 use super::session::{RobotSource, Session};
 pub use super::settings::Settings;
 use super::settings::{CameraPose, DisplayPatch};
-use crate::kinematics::exercise::{Verdict, check_table};
-use crate::link::exercise::ExerciseId;
+use armlab_core::exercise::{Verdict, check_table};
+use armlab_session::exercise::ExerciseId;
 
 /// The IK state as the user sees it: the marker's colour and the IK panel's numbers.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -439,7 +440,7 @@ impl Model {
 
     /// What a link carries, as a session.
     pub fn session(&self) -> Session {
-        let mut motion = crate::link::motion::MotionPatch::of(
+        let mut motion = armlab_session::motion::MotionPatch::of(
             self.motion.on(),
             self.motion.settings(),
             self.motion.time_scale(),
@@ -940,7 +941,7 @@ impl Model {
     }
 
     /// Chooses how the arm goes from one pose to the next.
-    pub fn set_path_kind(&mut self, kind: crate::kinematics::path::PathKind) {
+    pub fn set_path_kind(&mut self, kind: armlab_core::path::PathKind) {
         self.paths.set_kind(kind);
     }
 
@@ -950,7 +951,7 @@ impl Model {
     }
 
     /// Stores the target's pose as the last waypoint.
-    pub fn add_waypoint(&mut self) -> Result<(), crate::kinematics::motion::MotionError> {
+    pub fn add_waypoint(&mut self) -> Result<(), armlab_core::motion::MotionError> {
         self.paths.waypoints_mut().push(self.target)
     }
 
@@ -959,7 +960,7 @@ impl Model {
         &mut self,
         index: usize,
         pose: IsometryMatrix3<f64>,
-    ) -> Result<(), crate::kinematics::motion::MotionError> {
+    ) -> Result<(), armlab_core::motion::MotionError> {
         self.paths.waypoints_mut().set(index, pose).map(|_| ())
     }
 
@@ -982,7 +983,7 @@ impl Model {
 
     /// Turns "move" on and drives the arm through every waypoint in order along the
     /// chosen path kind.
-    pub fn visit_waypoints(&mut self) -> Result<(), crate::kinematics::motion::MotionError> {
+    pub fn visit_waypoints(&mut self) -> Result<(), armlab_core::motion::MotionError> {
         self.set_motion_on(true);
         self.motion.sync(&self.robot, &self.q, self.robot_changes);
         let goal =
@@ -997,12 +998,11 @@ impl Model {
 
     /// Takes the link's path kind and waypoints (a link without them has none, and goes
     /// in joint space); the values it left out get a sentence.
-    fn open_paths(&mut self, patch: &crate::link::motion::MotionPatch) {
+    fn open_paths(&mut self, patch: &armlab_session::motion::MotionPatch) {
         self.paths.stop_visit();
         self.paths.set_kind(patch.path_kind.unwrap_or_default());
         let poses = patch.waypoints.clone().unwrap_or_default();
-        *self.paths.waypoints_mut() =
-            crate::kinematics::path::Waypoints::new(poses).unwrap_or_default();
+        *self.paths.waypoints_mut() = armlab_core::path::Waypoints::new(poses).unwrap_or_default();
         if !patch.dropped.is_empty() {
             let lang = self.settings.lang;
             let mut reasons: Vec<String> = patch
@@ -1012,15 +1012,15 @@ impl Model {
                 .map(|e| e.sentence(lang))
                 .collect();
             if patch.dropped.len() > 3 {
-                reasons.push(crate::i18n::fill(
+                reasons.push(armlab_text::fill(
                     lang,
-                    crate::i18n::Key::PathMoreIssues,
+                    armlab_text::Key::PathMoreIssues,
                     &[&(patch.dropped.len() - 3)],
                 ));
             }
-            self.message = Some(Message::warning(crate::i18n::fill(
+            self.message = Some(Message::warning(armlab_text::fill(
                 lang,
-                crate::i18n::Key::LinkPartDropped,
+                armlab_text::Key::LinkPartDropped,
                 &[&reasons.join("; ")],
             )));
         }
@@ -1053,7 +1053,7 @@ impl Model {
             return;
         };
         let band = match sim.settings().controller {
-            crate::kinematics::motion::Controller::OnOff { dead_band } => dead_band,
+            armlab_core::motion::Controller::OnOff { dead_band } => dead_band,
             _ => 0.0,
         }
         .max(super::path_lab::STOP_ERROR);
@@ -1083,16 +1083,13 @@ impl Model {
     /// good ones stay and the error says why.
     pub fn set_motion_settings(
         &mut self,
-        settings: crate::kinematics::motion::MotionSettings,
-    ) -> Result<(), crate::kinematics::motion::MotionError> {
+        settings: armlab_core::motion::MotionSettings,
+    ) -> Result<(), armlab_core::motion::MotionError> {
         self.motion.set_settings(settings)
     }
 
     /// Takes a time scale (0 pauses, 1 is real time, at most 10).
-    pub fn set_time_scale(
-        &mut self,
-        scale: f64,
-    ) -> Result<(), crate::kinematics::motion::MotionError> {
+    pub fn set_time_scale(&mut self, scale: f64) -> Result<(), armlab_core::motion::MotionError> {
         self.motion.set_time_scale(scale)
     }
 
@@ -1100,14 +1097,14 @@ impl Model {
     pub fn set_motion_goal(
         &mut self,
         goal: &[f64],
-    ) -> Result<(), crate::kinematics::motion::MotionError> {
+    ) -> Result<(), armlab_core::motion::MotionError> {
         self.paths.stop_visit();
         self.motion.sync(&self.robot, &self.q, self.robot_changes);
         self.motion.set_goal(goal, None)
     }
 
     /// Takes the motion lab's fields a link names (already checked by the link parser).
-    fn open_motion(&mut self, patch: &crate::link::motion::MotionPatch) {
+    fn open_motion(&mut self, patch: &armlab_session::motion::MotionPatch) {
         if let Some(settings) = patch.settings {
             let _ = self.motion.set_settings(settings);
         }
@@ -1231,8 +1228,8 @@ impl Model {
     /// Replaces the keep-out boxes; on an error the old ones stay.
     pub fn set_keep_outs(
         &mut self,
-        boxes: Vec<crate::kinematics::collision::KeepOut>,
-    ) -> Result<(), crate::kinematics::motion::MotionError> {
+        boxes: Vec<armlab_core::collision::KeepOut>,
+    ) -> Result<(), armlab_core::motion::MotionError> {
         self.motion.set_keep_outs(boxes)?;
         self.update_collisions();
         Ok(())
@@ -1273,9 +1270,9 @@ impl Model {
         self.recompute_reach();
         self.motion.stop_at(&self.q);
         self.motion.keep_report_at(&self.q);
-        self.message = Some(Message::warning(crate::i18n::fill(
+        self.message = Some(Message::warning(armlab_text::fill(
             lang,
-            crate::i18n::Key::CollisionStopped,
+            armlab_text::Key::CollisionStopped,
             &[&contact],
         )));
     }
@@ -1306,7 +1303,7 @@ impl Model {
 
     /// Starts an exercise: its robot becomes the model's robot (at its home pose, its
     /// table hidden).
-    pub fn start_exercise(&mut self, id: ExerciseId) -> Result<(), crate::kinematics::RobotError> {
+    pub fn start_exercise(&mut self, id: ExerciseId) -> Result<(), armlab_core::RobotError> {
         let robot = id.robot()?;
         self.load_robot(robot, RobotSource::Custom);
         self.exercise = Some(ExerciseState {
@@ -1444,8 +1441,8 @@ impl Model {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::kinematics::ik::{Elbow, Shoulder, Wrist};
-    use crate::kinematics::{SplitMix64, geometric_jacobian, preset, preset_ids, tool_pose};
+    use armlab_core::ik::{Elbow, Shoulder, Wrist};
+    use armlab_core::{SplitMix64, geometric_jacobian, preset, preset_ids, tool_pose};
 
     /// One call of the model's writing API, drawn at random.
     fn random_call(model: &mut Model, rng: &mut SplitMix64) {

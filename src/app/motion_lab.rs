@@ -8,14 +8,14 @@ use std::collections::VecDeque;
 
 use nalgebra::{IsometryMatrix3, Point3};
 
-use crate::i18n::Lang;
-use crate::kinematics::collision::{
+use armlab_core::collision::{
     CollisionChecker, CollisionReport, KeepOut, Obstacle, TOUCH_TOLERANCE,
 };
-use crate::kinematics::parts::{Part, robot_parts};
+use armlab_core::parts::{Part, robot_parts};
+use armlab_text::Lang;
 
-use crate::kinematics::motion::{MotionError, MotionSettings, MotionSim, check_time_scale};
-use crate::kinematics::{ForwardKinematics, Robot};
+use armlab_core::motion::{MotionError, MotionSettings, MotionSim, check_time_scale};
+use armlab_core::{ForwardKinematics, Robot};
 
 /// The most tool positions the trail keeps (the oldest are dropped).
 pub const TRAIL_POINTS: usize = 4000;
@@ -119,7 +119,7 @@ impl MotionLab {
             return false;
         };
         let band = match sim.settings().controller {
-            crate::kinematics::motion::Controller::OnOff { dead_band } => dead_band.max(REST_ERROR),
+            armlab_core::motion::Controller::OnOff { dead_band } => dead_band.max(REST_ERROR),
             _ => REST_ERROR,
         };
         sim.qd().iter().any(|v| v.abs() > REST_SPEED) || sim.error().iter().any(|e| e.abs() > band)
@@ -312,7 +312,7 @@ impl MotionLab {
             return true;
         };
         c.report = report;
-        c.sentence = c.report.sentence(checker.parts(), lang);
+        c.sentence = armlab_text::contact_sentence(&c.report, checker.parts(), lang);
         c.checked_q = q.to_vec();
         let free = c.report.is_free();
         if free {

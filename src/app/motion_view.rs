@@ -8,15 +8,16 @@
 //! Numbers are typed as text: a value that is not a number, or that the core's checks
 //! refuse, gets a sentence under its field and the last good value stays in force.
 
+use armlab_text::Sentence;
 use std::collections::HashMap;
 
 use egui::{Color32, Stroke};
 
-use crate::i18n::{Key, echo};
-use crate::kinematics::JointKind;
-use crate::kinematics::collision::KeepOut;
-use crate::kinematics::motion::{Controller, MotionSettings, PidGains, Series};
-use crate::kinematics::profile::ProfileShape;
+use armlab_core::JointKind;
+use armlab_core::collision::KeepOut;
+use armlab_core::motion::{Controller, MotionSettings, PidGains, Series};
+use armlab_core::profile::ProfileShape;
+use armlab_text::{Key, echo};
 
 use super::format::error_value;
 use super::hook::ScreenPoints;
@@ -387,7 +388,7 @@ impl MotionPanel {
         if changed {
             let lang = model.settings().lang;
             draft.error = match draft.text.trim().parse::<f64>() {
-                Err(_) => Some(crate::i18n::fill(
+                Err(_) => Some(armlab_text::fill(
                     lang,
                     Key::MotionNotNumber,
                     &[&echo::text(&draft.text)],
@@ -463,8 +464,8 @@ impl MotionPanel {
                 }
                 (CheckerState::Failed(why), _) => {
                     let lang = model.settings().lang;
-                    let why = crate::i18n::echo::text_within(&why, 60);
-                    let sentence = crate::i18n::fill(lang, Key::MotionCollisionsFailed, &[&why]);
+                    let why = armlab_text::echo::text_within(&why, 60);
+                    let sentence = armlab_text::fill(lang, Key::MotionCollisionsFailed, &[&why]);
                     ui.colored_label(style::ERROR, sentence);
                 }
                 (CheckerState::Ready, Some(contact)) => {
@@ -566,7 +567,7 @@ impl MotionPanel {
             let v: f64 = part
                 .trim()
                 .parse()
-                .map_err(|_| crate::i18n::fill(lang, Key::MotionNotNumber, &[&echo::text(part)]))?;
+                .map_err(|_| armlab_text::fill(lang, Key::MotionNotNumber, &[&echo::text(part)]))?;
             goal.push(v);
         }
         let degrees = model.settings().degrees;
@@ -729,16 +730,16 @@ fn box_text(b: &KeepOut) -> String {
 }
 
 /// Reads a typed box (`x, y, z, sx, sy, sz`); box `index` (0-based) in the sentence.
-fn parse_box(index: usize, text: &str, lang: crate::i18n::Lang) -> Result<KeepOut, String> {
+fn parse_box(index: usize, text: &str, lang: armlab_text::Lang) -> Result<KeepOut, String> {
     let mut v = Vec::new();
     for part in text.split([',', ';', ' ']).filter(|p| !p.is_empty()) {
         v.push(
             part.parse::<f64>()
-                .map_err(|_| crate::i18n::fill(lang, Key::MotionNotNumber, &[&echo::text(part)]))?,
+                .map_err(|_| armlab_text::fill(lang, Key::MotionNotNumber, &[&echo::text(part)]))?,
         );
     }
     if v.len() != 6 {
-        return Err(crate::i18n::fill(lang, Key::MotionBoxSix, &[&v.len()]));
+        return Err(armlab_text::fill(lang, Key::MotionBoxSix, &[&v.len()]));
     }
     KeepOut::new(
         index + 1,

@@ -6,8 +6,8 @@
 
 use nalgebra::{Matrix3, Vector3};
 
-use crate::kinematics::ik::target_pose;
-use crate::kinematics::{IkMethod, IkResult, IkSettings, Objective, Task, preset};
+use armlab_core::ik::target_pose;
+use armlab_core::{IkMethod, IkResult, IkSettings, Objective, Task, preset};
 
 use super::model::Model;
 use super::session::RobotSource;

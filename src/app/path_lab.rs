@@ -11,12 +11,10 @@
 
 use nalgebra::IsometryMatrix3;
 
-use crate::kinematics::Robot;
-use crate::kinematics::ik::IkSolver;
-use crate::kinematics::motion::MotionError;
-use crate::kinematics::path::{
-    CartesianSettings, Path, PathKind, Waypoints, joint_gap, waypoint_path,
-};
+use armlab_core::Robot;
+use armlab_core::ik::IkSolver;
+use armlab_core::motion::MotionError;
+use armlab_core::path::{CartesianSettings, Path, PathKind, Waypoints, joint_gap, waypoint_path};
 
 /// How far ahead of the arm (the largest joint distance, radians; a prismatic joint this
 /// fraction of π of its stroke) the goal of a visit runs along the path.
@@ -259,9 +257,9 @@ fn follow(robot: &Robot, visit: &mut Visit, q: &[f64], arrived: bool) -> Option<
 mod tests {
     use super::*;
     use crate::app::model::Model;
-    use crate::kinematics::ik::{REACHED_ORIENTATION_TOLERANCE, REACHED_POSITION_TOLERANCE_M};
-    use crate::kinematics::tool_pose;
-    use crate::link::session::Session;
+    use armlab_core::ik::{REACHED_ORIENTATION_TOLERANCE, REACHED_POSITION_TOLERANCE_M};
+    use armlab_core::tool_pose;
+    use armlab_session::session::Session;
     #[cfg(target_arch = "wasm32")]
     use wasm_bindgen_test::wasm_bindgen_test as test;
 
@@ -393,7 +391,7 @@ mod tests {
         bad.translation.vector.x = f64::NAN;
         let e = model.set_waypoint(1, bad).expect_err("NaN is refused");
         assert!(
-            e.sentence(crate::i18n::Lang::En).contains("waypoint 2"),
+            armlab_text::Sentence::sentence(&e, armlab_text::Lang::En).contains("waypoint 2"),
             "{e}"
         );
         assert_eq!(model.paths().waypoints().poses()[1], poses[1]);

@@ -6,12 +6,14 @@
 //! A typed coordinate that is not a number, or a pose the core refuses, gets a sentence
 //! under its row and the last good value stays in force.
 
+use armlab_text::Name;
+use armlab_text::Sentence;
 use egui::{Color32, Stroke};
 use nalgebra::Point3;
 
-use crate::i18n::{Key, echo};
-use crate::kinematics::path::{Path, PathKind, issue_text};
 use crate::render::{Instance, Line, Shape};
+use armlab_core::path::{Path, PathKind};
+use armlab_text::{Key, echo};
 
 use super::format::number;
 use super::hook::ScreenPoints;
@@ -119,7 +121,7 @@ impl PathPanel {
                 let lang = model.settings().lang;
                 let draft = &mut row[c];
                 draft.error = match draft.text.trim().parse::<f64>() {
-                    Err(_) => Some(crate::i18n::fill(
+                    Err(_) => Some(armlab_text::fill(
                         lang,
                         Key::MotionNotNumber,
                         &[&echo::text(&draft.text)],
@@ -266,7 +268,7 @@ fn problem_places(model: &Model) -> Vec<(Point3<f64>, String)> {
     let lang = model.settings().lang;
     let mut places: Vec<(usize, Point3<f64>, String)> = Vec::new();
     for p in problem_path(model).map_or(&[][..], |path| &path.problems) {
-        let name = issue_text(p.issue, lang);
+        let name = p.issue.name(lang);
         match places.last_mut() {
             Some((index, _, names)) if *index == p.index => *names = format!("{names}, {name}"),
             _ => {

@@ -3,13 +3,14 @@
 //! loading robot files. Every way of loading a robot goes through
 //! [`RobotPanel::load_robot`].
 
-use crate::kinematics::edit::{insert_joint, remove_joint, switch_convention};
-use crate::kinematics::{
+use armlab_core::edit::{insert_joint, remove_joint, switch_convention};
+use armlab_core::{
     Convention, DhRow, Joint, JointKind, JointLimits, Robot, RobotError, preset, preset_names,
     robot_from_json, robot_to_json,
 };
+use armlab_text::Sentence;
 
-use crate::i18n::{Key, Lang, fill};
+use armlab_text::{Key, Lang, fill};
 
 use super::format::number;
 use super::hook::ScreenPoints;
@@ -904,14 +905,14 @@ fn dh_header_row(model: &Model, ui: &mut egui::Ui) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::kinematics::preset_ids;
+    use armlab_core::preset_ids;
 
     #[test]
     fn every_preset_has_its_description_in_the_catalogue() {
         for id in preset_ids() {
             let robot = preset(id).expect("presets load");
             let key = preset_description(id).expect("a description");
-            assert_eq!(crate::i18n::text(Lang::En, key), robot.description, "{id}");
+            assert_eq!(armlab_text::text(Lang::En, key), robot.description, "{id}");
         }
     }
 

@@ -6,11 +6,11 @@
 
 use nalgebra::{Matrix4, Point3, Rotation3, Unit, Vector3};
 
-pub(crate) use crate::kinematics::parts::rotation_to;
-use crate::kinematics::parts::{Part, PartKind, PartShape, Proportions, robot_parts};
-use crate::kinematics::{ForwardKinematics, Robot};
 use crate::render::camera::OrbitCamera;
 use crate::render::{Instance, Line, Scene, Shape};
+pub(crate) use armlab_core::parts::rotation_to;
+use armlab_core::parts::{Part, PartKind, PartShape, Proportions, robot_parts};
+use armlab_core::{ForwardKinematics, Robot};
 
 const LINK: [u8; 4] = [196, 202, 210, 255];
 const JOINT: [u8; 4] = [52, 120, 196, 255];

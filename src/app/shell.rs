@@ -9,7 +9,7 @@ use super::layout::{Column, EDGE_TAB_WIDTH, Plan, Side};
 use super::model::Model;
 use super::settings::PanelKind;
 use super::{ik_panel, joints, matrices, motion_view, robot_panel, tr as t};
-use crate::i18n::Key;
+use armlab_text::Key;
 
 /// The four side panels.
 pub struct SidePanels {

@@ -3,11 +3,11 @@
 //! restarts; a click moves the arm to a solution, and the 3D view draws the others as
 //! ghosts.
 
-use crate::i18n::Key;
-use crate::kinematics::{
+use armlab_core::{
     Branch, Elbow, IkSettings, Shoulder, Wrist, closed_form_solutions, distinct_solutions,
     ik::joint_distance,
 };
+use armlab_text::Key;
 
 use super::format::number;
 use super::matrices::overlay_checkbox;
@@ -155,7 +155,7 @@ fn rows_ui(model: &mut Model, ui: &mut egui::Ui) {
             .iter()
             .zip(&model.robot().joints)
             .map(|(v, j)| match j.kind {
-                crate::kinematics::JointKind::Revolute if degrees => {
+                armlab_core::JointKind::Revolute if degrees => {
                     format!("{}°", rounded(v.to_degrees(), 1))
                 }
                 _ => rounded(*v, 3),

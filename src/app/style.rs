@@ -2,7 +2,7 @@
 
 use egui::Color32;
 
-use crate::kinematics::ik::Reach;
+use armlab_core::ik::Reach;
 
 /// Error text.
 pub const ERROR: Color32 = Color32::from_rgb(255, 130, 110);

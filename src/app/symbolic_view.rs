@@ -3,8 +3,8 @@
 //! entries that depend on the joint under the pointer (its slider, its link in 3D or its
 //! matrix) highlighted, each matrix copyable as LaTeX.
 
-use crate::i18n::{Key, Lang, fill, text};
-use crate::kinematics::symbolic::{EntryText, SymbolicChain, SymbolicMatrix, symbolic_chain};
+use armlab_core::symbolic::{EntryText, SymbolicChain, SymbolicMatrix, symbolic_chain};
+use armlab_text::{Key, Lang, fill, text};
 
 use super::style;
 
@@ -18,11 +18,7 @@ pub struct SymbolicCache {
 impl SymbolicCache {
     /// The chain of the robot with this change count (built once per robot: a few
     /// milliseconds for seven joints).
-    pub fn chain(
-        &mut self,
-        robot: &crate::kinematics::Robot,
-        robot_changes: u64,
-    ) -> &SymbolicChain {
+    pub fn chain(&mut self, robot: &armlab_core::Robot, robot_changes: u64) -> &SymbolicChain {
         if self.made_for != Some(robot_changes) {
             self.made_for = Some(robot_changes);
             self.chain = None;

@@ -2,8 +2,8 @@
 //! "Copy link", the shortcut keys, and the message of the moment drawn by its kind. On a
 //! narrow screen everything but the name and "Fit" goes into a menu.
 
-use crate::i18n::{Key, Lang};
 use crate::render::camera::StandardView;
+use armlab_text::{Key, Lang};
 
 use super::hook;
 use super::model::{Message, MessageKind, Model};

@@ -56,7 +56,7 @@ thread_local! {
     /// The model's robot-change count at the last frame.
     static ROBOT_CHANGES: Cell<u64> = const { Cell::new(0) };
     /// The interface language at the last frame, for the crash sentence.
-    static LANG: Cell<crate::i18n::Lang> = const { Cell::new(crate::i18n::Lang::En) };
+    static LANG: Cell<armlab_text::Lang> = const { Cell::new(armlab_text::Lang::En) };
     /// Set by `window.armlab.panicForTest()`: the next frame panics.
     static PANIC_REQUESTED: Cell<bool> = const { Cell::new(false) };
     /// `performance.now()` at the first drawn frame.
@@ -114,10 +114,10 @@ fn install_crash_screen() {
             .map(|s| s.to_string())
             .or_else(|| info.payload().downcast_ref::<String>().cloned())
             .unwrap_or_else(|| "panic".to_string());
-        let what = crate::i18n::echo::text_within(&what, 80);
+        let what = armlab_text::echo::text_within(&what, 80);
         show_crash(
-            &crate::i18n::fill(lang, crate::i18n::Key::CrashSentence, &[&what]),
-            crate::i18n::text(lang, crate::i18n::Key::CrashReload),
+            &armlab_text::fill(lang, armlab_text::Key::CrashSentence, &[&what]),
+            armlab_text::text(lang, armlab_text::Key::CrashReload),
         );
     }));
 }
@@ -266,7 +266,7 @@ fn browser_preferences(window: &web_sys::Window) -> super::Preferences {
         .flatten()
         .is_some_and(|m| m.matches());
     super::Preferences {
-        lang: crate::i18n::Lang::from_tags(tags.iter().map(String::as_str)),
+        lang: armlab_text::Lang::from_tags(tags.iter().map(String::as_str)),
         touch,
     }
 }
@@ -525,8 +525,8 @@ fn view_rect_fn() -> JsValue {
 /// milliseconds each, one thread.
 fn install_workspace_benchmark(obj: &js_sys::Object) {
     let bench = Closure::<dyn Fn(u32) -> JsValue>::new(|samples: u32| {
-        use crate::kinematics::workspace::{WorkspaceCloud, WorkspaceMeasure};
-        let Ok(robot) = crate::kinematics::preset("ur10") else {
+        use armlab_core::workspace::{WorkspaceCloud, WorkspaceMeasure};
+        let Ok(robot) = armlab_core::preset("ur10") else {
             return JsValue::NULL;
         };
         let o = js_sys::Object::new();
@@ -553,18 +553,18 @@ fn install_workspace_benchmark(obj: &js_sys::Object) {
 /// back included); `null` until the module is loaded.
 fn install_collision_benchmark(obj: &js_sys::Object) {
     let bench = Closure::<dyn Fn(String, u32) -> JsValue>::new(|id: String, poses: u32| {
-        use crate::kinematics::collision::CollisionChecker;
+        use armlab_core::collision::CollisionChecker;
         let (Ok(robot), Ok(mut checker)) = (
-            crate::kinematics::preset(&id),
+            armlab_core::preset(&id),
             CollisionChecker::new(true, Vec::new()),
         ) else {
             return JsValue::NULL;
         };
-        let mut rng = crate::kinematics::rng::SplitMix64::new(7);
+        let mut rng = armlab_core::rng::SplitMix64::new(7);
         let qs: Vec<Vec<f64>> = (0..poses.max(1))
             .map(|_| rng.joint_vector(&robot))
             .collect();
-        let Ok(mut fk) = crate::kinematics::ForwardKinematics::new(&robot, &robot.home()) else {
+        let Ok(mut fk) = armlab_core::ForwardKinematics::new(&robot, &robot.home()) else {
             return JsValue::NULL;
         };
         let (mut colliding, start) = (0usize, super::hook::now_ms());
@@ -785,7 +785,7 @@ async fn import_urdf(text: String) {
                     },
                     _ => FileEvent::UrdfUnavailable(format!(
                         "urdf_import answered {}",
-                        crate::i18n::echo::text_within(&answer, 40)
+                        armlab_text::echo::text_within(&answer, 40)
                     )),
                 }
             }
@@ -911,11 +911,11 @@ fn load_collision_module() {
 /// Checks `parts` in the module (synchronously once it is loaded; the first call of the
 /// visit starts loading it and answers `None`, as every call does until it is there).
 pub fn collide_parts(
-    checker: &crate::kinematics::collision::CollisionChecker,
-    parts: &[crate::kinematics::parts::Part],
+    checker: &armlab_core::collision::CollisionChecker,
+    parts: &[armlab_core::parts::Part],
     tolerance: f64,
-) -> Option<crate::kinematics::collision::CollisionReport> {
-    use crate::kinematics::collision_wire::{decode_report, encode_request};
+) -> Option<armlab_core::collision::CollisionReport> {
+    use armlab_core::collision_wire::{decode_report, encode_request};
     let function = COLLIDE.with(|c| match &*c.borrow() {
         CollideModule::Ready(f) => Some(f.clone()),
         _ => None,

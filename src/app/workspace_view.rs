@@ -5,8 +5,8 @@
 
 use nalgebra::{Point3, Rotation3, Vector3};
 
-use crate::i18n::Key;
-use crate::kinematics::workspace::WorkspaceMeasure;
+use armlab_core::workspace::WorkspaceMeasure;
+use armlab_text::Key;
 
 use super::format::number;
 use super::matrices::overlay_checkbox;

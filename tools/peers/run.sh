@@ -26,7 +26,7 @@ if ! "$VENV/bin/python" -c "import roboticstoolbox as r; assert r.__version__ ==
 fi
 
 say "building ikbench (release, core only)"
-(cd "$ROOT" && cargo build -q --release --no-default-features --bin ikbench)
+(cd "$ROOT" && cargo build -q --release -p armlab-bench --bin ikbench)
 
 say "running: RTB and ikbench alternate, a few seconds per round"
 "$VENV/bin/python" "$HERE/rtb_ik.py" --ikbench "$CARGO_TARGET_DIR/release/ikbench" "$@"

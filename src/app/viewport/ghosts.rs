@@ -8,9 +8,9 @@ use super::marker::{ViewGeometry, dist_to_segment};
 use crate::app::model::Model;
 use crate::app::scene;
 use crate::app::settings::Overlay;
-use crate::kinematics::ForwardKinematics;
-use crate::kinematics::ik::joint_distance;
 use crate::render::Instance;
+use armlab_core::ForwardKinematics;
+use armlab_core::ik::joint_distance;
 
 /// A ghost within the limits, and one with a joint outside them.
 const GHOST: [u8; 4] = [150, 200, 255, 70];

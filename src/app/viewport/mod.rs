@@ -15,9 +15,9 @@ use eframe::egui_wgpu::RenderState;
 use egui::{Color32, Pos2, Rect, Sense};
 use nalgebra::{Point3, Vector3};
 
-use crate::kinematics::Task;
 use crate::render::SceneRenderer;
 use crate::render::camera::OrbitCamera;
+use armlab_core::Task;
 
 use super::FrameTime;
 use super::convention_view;
@@ -160,7 +160,7 @@ impl Viewport {
             let t0 = hook::now_ms();
             model.drag_step();
             timing.ik_ms += hook::now_ms() - t0;
-            if model.ik().reach == crate::kinematics::ik::Reach::Pending {
+            if model.ik().reach == armlab_core::ik::Reach::Pending {
                 ui.ctx().request_repaint();
             }
         }

@@ -7,8 +7,8 @@ use egui::{Color32, Rect};
 use crate::app::format::number;
 use crate::app::model::Model;
 use crate::app::{style, tr, trf};
-use crate::i18n::{Key, Lang, fill};
-use crate::kinematics::ik::Reach;
+use armlab_core::ik::Reach;
+use armlab_text::{Key, Lang, fill};
 
 /// Draws the labels over the picture; `touch` names finger gestures instead of the mouse.
 pub fn draw(model: &Model, painter: &egui::Painter, rect: Rect, grid_step: f64, touch: bool) {

@@ -1,0 +1,572 @@
+//! What a link carries: the robot (a preset id or a whole edited table), the joint vector,
+//! the target pose and the IK mode. Written as a URL hash and stored as the last session.
+//!
+//! Format (documented in the README): `#robot=ur10&q=0,-1.2,...&target=x,y,z,rx,ry,rz&task=full&method=dls`
+//! - `robot`: a preset id, or `custom` with `dh=` the robot file's JSON, percent-encoded;
+//! - `q`: joint values in the core's units (radians, the robot's length unit);
+//! - `target`: position in the robot's length unit and Z-Y-X Euler angles α, β, γ in
+//!   radians (`R = Rz(α)·Ry(β)·Rx(γ)`);
+//! - `task`: `position`, `axis-x`, `axis-y`, `axis-z` or `full` (without it, the robot's
+//!   default: position only below six joints, the full pose from six);
+//! - `method`: `dls`, `pinv`, `gradient` or `closed`;
+//! - display: `units=deg|rad`, `frames=on|off`, `decimals=0..8`, `present=on|off`,
+//!   `lang=en|fi`, `panels=` and `ppanels=` (the open panels of the normal and the
+//!   presentation layout: `joints,ik,matrices,robot` or `none`); each is optional, and a
+//!   field a link lacks keeps the viewer's own setting (the language: the browser's);
+//! - `camera=yaw,pitch,distance,x,y,z`: the 3D view's direction (radians), distance and
+//!   focus (robot units); without it the view frames the arm.
+
+use armlab_text::Sentence;
+use nalgebra::IsometryMatrix3;
+
+use armlab_core::{
+    IkMethod, Robot, RobotError, Task, ZyxEuler, preset, robot_from_json, robot_to_json,
+};
+
+use armlab_text::echo::Text;
+use armlab_text::{Key, Lang, fill, text};
+
+use super::exercise::ExerciseId;
+use super::format::number_list;
+use super::motion::{MotionLinkError, MotionPatch};
+use super::settings::{CameraPose, DisplayPatch, HiddenSet};
+
+/// Decimals of the numbers a link writes (1e-6 rad, 1e-6 of a length unit).
+const LINK_DECIMALS: usize = 6;
+
+/// What is wrong with a link; each reads as the middle of the sentence "This link could
+/// not be opened (…)". `Display` is English; the app shows [`LinkError::sentence`]. The
+/// link's own text is repeated through [`armlab_text::echo`] (40 characters at most, no
+/// control characters).
+#[derive(Debug, Clone, PartialEq)]
+pub enum LinkError {
+    /// A `key=value` part without `=`.
+    NoEquals(String),
+    /// A key the format does not have.
+    UnknownPart(String),
+    /// A broken `%XX` escape.
+    BrokenEscape,
+    /// Escapes that do not decode to UTF-8 text.
+    NotUtf8,
+    /// A list item that is not a finite number.
+    NotANumber {
+        /// `q`, `target` or `camera`.
+        field: &'static str,
+        /// The item as written.
+        text: String,
+    },
+    /// A target that is not six numbers.
+    TargetLength,
+    /// A task id that is not known.
+    UnknownTask(String),
+    /// A display field whose value is not one of those allowed.
+    BadValue {
+        /// The field's key.
+        field: String,
+        /// The value as written.
+        text: String,
+        /// The catalogue's text of the values it can have.
+        allowed: Key,
+    },
+    /// A camera that is not six numbers with a positive distance.
+    BadCamera,
+    /// A method id that is not known.
+    UnknownMethod(String),
+    /// `robot=` is missing.
+    NoRobot,
+    /// `robot=custom` without its table.
+    CustomWithoutTable,
+    /// The robot (a preset id, a table) or the joint vector is not valid.
+    Robot(RobotError),
+    /// A motion lab field (`move`, `ctrl`, `gains`, `plant`, `timescale`, `collide`,
+    /// `keepout`) is not valid.
+    Motion(MotionLinkError),
+    /// `exercise=` names neither a preset nor `mystery-SEED`.
+    UnknownExercise(String),
+    /// `exercise=` with `robot=` or `dh=`: an exercise's link names no table.
+    ExerciseWithRobot,
+    /// An item of `hide=` that is not a matrix, an entry or a Jacobian column.
+    BadHidden(String),
+}
+
+impl LinkError {
+    /// The reason in `lang`, as the middle of [`Key::LinkNotOpened`].
+    pub fn sentence(&self, lang: Lang) -> String {
+        let plain = |key| text(lang, key).to_string();
+        match self {
+            LinkError::NoEquals(part) => fill(lang, Key::LinkNoEquals, &[&Text(part)]),
+            LinkError::UnknownPart(part) => fill(lang, Key::LinkUnknownPart, &[&Text(part)]),
+            LinkError::BrokenEscape => plain(Key::LinkBrokenEscape),
+            LinkError::NotUtf8 => plain(Key::LinkNotUtf8),
+            LinkError::NotANumber { field, text } => {
+                fill(lang, Key::LinkNotANumber, &[field, &Text(text)])
+            }
+            LinkError::TargetLength => plain(Key::LinkTargetLength),
+            LinkError::UnknownTask(task) => fill(lang, Key::LinkUnknownTask, &[&Text(task)]),
+            LinkError::BadValue {
+                field,
+                text,
+                allowed,
+            } => fill(
+                lang,
+                Key::LinkBadValue,
+                &[
+                    &Text(field),
+                    &Text(text),
+                    &armlab_text::text(lang, *allowed),
+                ],
+            ),
+            LinkError::BadCamera => plain(Key::LinkBadCamera),
+            LinkError::UnknownMethod(method) => {
+                fill(lang, Key::LinkUnknownMethod, &[&Text(method)])
+            }
+            LinkError::NoRobot => plain(Key::LinkNoRobot),
+            LinkError::CustomWithoutTable => plain(Key::LinkCustomWithoutTable),
+            LinkError::Robot(e) => e.sentence(lang),
+            LinkError::Motion(e) => e.sentence(lang),
+            LinkError::UnknownExercise(id) => fill(lang, Key::LinkUnknownExercise, &[&Text(id)]),
+            LinkError::ExerciseWithRobot => plain(Key::LinkExerciseWithRobot),
+            LinkError::BadHidden(item) => fill(lang, Key::LinkBadHidden, &[&Text(item)]),
+        }
+    }
+}
+
+impl std::fmt::Display for LinkError {
+    /// The English reason.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.sentence(Lang::En))
+    }
+}
+
+impl std::error::Error for LinkError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            LinkError::Robot(e) => Some(e),
+            _ => None,
+        }
+    }
+}
+
+impl From<RobotError> for LinkError {
+    fn from(e: RobotError) -> Self {
+        LinkError::Robot(e)
+    }
+}
+
+/// Where the robot came from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RobotSource {
+    /// A preset, by id.
+    Preset(String),
+    /// A table the user edited or loaded.
+    Custom,
+}
+
+/// Everything a link restores.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Session {
+    /// The robot.
+    pub robot: Robot,
+    /// Preset or custom.
+    pub source: RobotSource,
+    /// Joint values.
+    pub q: Vec<f64>,
+    /// The target pose in the base frame; `None` = at the tool.
+    pub target: Option<IsometryMatrix3<f64>>,
+    /// IK task.
+    pub task: Task,
+    /// IK method.
+    pub method: IkMethod,
+    /// The display settings the link names (the rest keep the viewer's own).
+    pub display: DisplayPatch,
+    /// The camera, if the link names one.
+    pub camera: Option<CameraPose>,
+    /// The motion lab's fields the link names.
+    pub motion: MotionPatch,
+    /// The DH-table exercise this robot is (`exercise=`): the link then names no table.
+    pub exercise: Option<ExerciseId>,
+}
+
+/// The preset the app opens with, and falls back to when a link is broken.
+pub const DEFAULT_PRESET: &str = "ur10";
+
+impl Session {
+    /// A preset at its home pose, target at the tool.
+    pub fn for_preset(id: &str) -> Result<Session, RobotError> {
+        let robot = preset(id)?;
+        let robot_dof = robot.dof();
+        Ok(Session {
+            q: robot.home(),
+            robot,
+            source: RobotSource::Preset(id.to_string()),
+            target: None,
+            task: Task::default_for(robot_dof),
+            method: IkMethod::DampedLeastSquares,
+            display: DisplayPatch::default(),
+            camera: None,
+            motion: MotionPatch::default(),
+            exercise: None,
+        })
+    }
+
+    /// The default session (the UR10 at home).
+    pub fn default_session() -> Session {
+        match Session::for_preset(DEFAULT_PRESET) {
+            Ok(s) => s,
+            // The presets are compiled in and tested; this cannot happen in a release.
+            Err(e) => panic!("the default preset does not load: {e}"),
+        }
+    }
+
+    /// The URL hash (without `#`).
+    pub fn to_hash(&self) -> String {
+        let mut parts = Vec::new();
+        match &self.source {
+            // An exercise's link names its robot, never its table.
+            _ if self.exercise.is_some() => {
+                let id = self
+                    .exercise
+                    .as_ref()
+                    .map(ExerciseId::id)
+                    .unwrap_or_default();
+                parts.push(format!("exercise={id}"));
+            }
+            RobotSource::Preset(id) => parts.push(format!("robot={id}")),
+            RobotSource::Custom => {
+                parts.push("robot=custom".to_string());
+                let compact: String = robot_to_json(&self.robot)
+                    .lines()
+                    .map(str::trim)
+                    .collect::<Vec<_>>()
+                    .join("");
+                parts.push(format!("dh={}", percent_encode(&compact)));
+            }
+        }
+        parts.push(format!("q={}", number_list(&self.q, LINK_DECIMALS)));
+        if let Some(t) = &self.target {
+            parts.push(format!(
+                "target={}",
+                number_list(&target_to_array(t), LINK_DECIMALS)
+            ));
+        }
+        parts.push(format!("task={}", self.task.id()));
+        parts.push(format!("method={}", self.method.id()));
+        parts.extend(self.display.to_parts());
+        if let Some(c) = &self.camera {
+            parts.push(format!(
+                "camera={}",
+                number_list(&c.to_array(), LINK_DECIMALS)
+            ));
+        }
+        parts.extend(self.motion.to_parts());
+        parts.join("&")
+    }
+
+    /// Reads a URL hash (with or without `#`). An empty hash gives `Ok(None)`.
+    pub fn from_hash(hash: &str) -> Result<Option<Session>, LinkError> {
+        let hash = hash.trim().trim_start_matches('#');
+        if hash.is_empty() {
+            return Ok(None);
+        }
+        let parts = LinkParts::parse(hash)?;
+        let mut session = match parts.robot.as_deref() {
+            _ if parts.exercise.is_some() => {
+                if parts.robot.is_some() || parts.dh.is_some() {
+                    return Err(LinkError::ExerciseWithRobot);
+                }
+                let id = parts.exercise.clone().ok_or(LinkError::NoRobot)?;
+                let robot = id.robot()?;
+                Session {
+                    q: robot.home(),
+                    task: Task::default_for(robot.dof()),
+                    robot,
+                    source: RobotSource::Custom,
+                    target: None,
+                    method: parts.method,
+                    display: DisplayPatch::default(),
+                    camera: None,
+                    motion: MotionPatch::default(),
+                    exercise: Some(id),
+                }
+            }
+            Some("custom") => {
+                let text = parts.dh.ok_or(LinkError::CustomWithoutTable)?;
+                let robot = robot_from_json(&text)?;
+                Session {
+                    q: robot.home(),
+                    task: Task::default_for(robot.dof()),
+                    robot,
+                    source: RobotSource::Custom,
+                    target: None,
+                    method: parts.method,
+                    display: DisplayPatch::default(),
+                    camera: None,
+                    motion: MotionPatch::default(),
+                    exercise: None,
+                }
+            }
+            Some(id) => Session::for_preset(id)?,
+            None => return Err(LinkError::NoRobot),
+        };
+        if let Some(q) = parts.q {
+            session.robot.check_q(&q)?;
+            session.q = q;
+        }
+        session.target = parts.target.as_ref().map(target_from_array);
+        // A link that names no task opens the robot's own default task.
+        session.task = parts.task.unwrap_or(session.task);
+        session.method = parts.method;
+        session.display = parts.display;
+        session.camera = parts.camera;
+        session.motion = parts.motion;
+        Ok(Some(session))
+    }
+}
+
+/// The parts of a link, read but not yet checked against the robot.
+struct LinkParts {
+    robot: Option<String>,
+    dh: Option<String>,
+    q: Option<Vec<f64>>,
+    target: Option<[f64; 6]>,
+    task: Option<Task>,
+    method: IkMethod,
+    display: DisplayPatch,
+    camera: Option<CameraPose>,
+    motion: MotionPatch,
+    exercise: Option<ExerciseId>,
+}
+
+impl LinkParts {
+    fn parse(hash: &str) -> Result<LinkParts, LinkError> {
+        let mut parts = LinkParts {
+            robot: None,
+            dh: None,
+            q: None,
+            target: None,
+            task: None,
+            method: IkMethod::DampedLeastSquares,
+            display: DisplayPatch::default(),
+            camera: None,
+            motion: MotionPatch::default(),
+            exercise: None,
+        };
+        for part in hash.split('&').filter(|p| !p.is_empty()) {
+            let (key, value) = part
+                .split_once('=')
+                .ok_or_else(|| LinkError::NoEquals(part.to_string()))?;
+            match key {
+                "robot" => parts.robot = Some(value.to_string()),
+                "dh" => parts.dh = Some(percent_decode(value)?),
+                "q" => parts.q = Some(parse_numbers(value, "q")?),
+                "target" => {
+                    let t = parse_numbers(value, "target")?;
+                    parts.target = Some(t.try_into().map_err(|_| LinkError::TargetLength)?);
+                }
+                "task" => {
+                    parts.task = Some(
+                        Task::from_id(value)
+                            .ok_or_else(|| LinkError::UnknownTask(value.to_string()))?,
+                    );
+                }
+                "method" => {
+                    parts.method = IkMethod::from_id(value)
+                        .ok_or_else(|| LinkError::UnknownMethod(value.to_string()))?;
+                }
+                "camera" => {
+                    let c: [f64; 6] = parse_numbers(value, "camera")?
+                        .try_into()
+                        .map_err(|_| LinkError::BadCamera)?;
+                    parts.camera = Some(CameraPose::from_array(c).ok_or(LinkError::BadCamera)?);
+                }
+                "exercise" => parts.exercise = Some(ExerciseId::parse(value)?),
+                "hide" => {
+                    let hidden = HiddenSet::from_link(value).map_err(LinkError::BadHidden)?;
+                    parts.display.hidden = Some(hidden);
+                }
+                other if parts.motion.read(other, value).map_err(LinkError::Motion)? => {}
+                other => {
+                    let read = parts.display.read(other, value).map_err(|allowed| {
+                        LinkError::BadValue {
+                            field: other.to_string(),
+                            text: value.to_string(),
+                            allowed,
+                        }
+                    })?;
+                    if !read {
+                        return Err(LinkError::UnknownPart(other.to_string()));
+                    }
+                }
+            }
+        }
+        parts.motion.finish().map_err(LinkError::Motion)?;
+        Ok(parts)
+    }
+}
+
+fn parse_numbers(text: &str, field: &'static str) -> Result<Vec<f64>, LinkError> {
+    text.split(',')
+        .map(|s| match s.trim().parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(v),
+            _ => Err(LinkError::NotANumber {
+                field,
+                text: s.to_string(),
+            }),
+        })
+        .collect()
+}
+
+/// A target pose from `[x, y, z, α, β, γ]` (Z-Y-X Euler angles, radians).
+pub fn target_from_array(t: &[f64; 6]) -> IsometryMatrix3<f64> {
+    let r = ZyxEuler {
+        alpha: t[3],
+        beta: t[4],
+        gamma: t[5],
+        degenerate: false,
+    }
+    .to_rotation();
+    IsometryMatrix3::from_parts(
+        nalgebra::Translation3::new(t[0], t[1], t[2]),
+        nalgebra::Rotation3::from_matrix_unchecked(r),
+    )
+}
+
+/// `[x, y, z, α, β, γ]` of a pose.
+pub fn target_to_array(pose: &IsometryMatrix3<f64>) -> [f64; 6] {
+    let e = ZyxEuler::from_rotation(pose.rotation.matrix());
+    let p = pose.translation.vector;
+    [p.x, p.y, p.z, e.alpha, e.beta, e.gamma]
+}
+
+/// Percent-encodes everything but unreserved characters (RFC 3986).
+pub fn percent_encode(text: &str) -> String {
+    let mut out = String::with_capacity(text.len() * 3);
+    for b in text.bytes() {
+        if b.is_ascii_alphanumeric() || b"-_.~".contains(&b) {
+            out.push(b as char);
+        } else {
+            out.push_str(&format!("%{b:02X}"));
+        }
+    }
+    out
+}
+
+/// Decodes `%XX` escapes (and `+` as space); fails on broken escapes or invalid UTF-8.
+pub fn percent_decode(text: &str) -> Result<String, LinkError> {
+    let bytes = text.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'%' => {
+                let hex = text
+                    .get(i + 1..i + 3)
+                    .and_then(|h| u8::from_str_radix(h, 16).ok())
+                    .ok_or(LinkError::BrokenEscape)?;
+                out.push(hex);
+                i += 3;
+            }
+            b'+' => {
+                out.push(b' ');
+                i += 1;
+            }
+            b => {
+                out.push(b);
+                i += 1;
+            }
+        }
+    }
+    String::from_utf8(out).map_err(|_| LinkError::NotUtf8)
+}
+
+/// Where the native app keeps the last session's link hash:
+/// `$XDG_CONFIG_HOME/armlab/session` (or `~/.config/armlab/session`; `%APPDATA%` on Windows).
+#[cfg(not(target_arch = "wasm32"))]
+pub fn native_session_file() -> Option<std::path::PathBuf> {
+    let env = |key: &str| std::env::var_os(key).filter(|v| !v.is_empty());
+    let config = env("XDG_CONFIG_HOME")
+        .map(std::path::PathBuf::from)
+        .or_else(|| env("APPDATA").map(std::path::PathBuf::from))
+        .or_else(|| env("HOME").map(|home| std::path::PathBuf::from(home).join(".config")))?;
+    Some(config.join("armlab").join("session"))
+}
+
+#[cfg(test)]
+// On wasm the tests are wasm_bindgen_tests (run in Node like the other core tests).
+#[cfg_attr(
+    target_arch = "wasm32",
+    allow(clippy::unwrap_used, clippy::expect_used)
+)]
+mod tests {
+    use super::*;
+    #[cfg(target_arch = "wasm32")]
+    use wasm_bindgen_test::wasm_bindgen_test as test;
+
+    #[test]
+    fn every_allowed_value_list_of_the_display_fields_is_in_the_catalogue() {
+        for key in [
+            "units", "frames", "present", "decimals", "lang", "panels", "ppanels",
+        ] {
+            let allowed = DisplayPatch::default()
+                .read(key, "bogus")
+                .expect_err("a bad value");
+            assert!(!text(Lang::En, allowed).is_empty(), "{key}: {allowed:?}");
+        }
+    }
+
+    #[test]
+    fn a_link_error_reads_in_english_and_in_finnish() {
+        let e = Session::from_hash("#robot=ur10&q=1,2,banana").expect_err("a bad link");
+        assert_eq!(
+            e.to_string(),
+            "the link's q has \"banana\", which is not a number"
+        );
+        assert_eq!(
+            e.sentence(Lang::Fi),
+            "linkin kentässä q on \"banana\", joka ei ole luku"
+        );
+        let e = Session::from_hash("#robot=ur10&units=grad").expect_err("a bad link");
+        assert_eq!(
+            e.to_string(),
+            "the link's units is \"grad\"; it can be deg or rad"
+        );
+        assert!(e.sentence(Lang::Fi).ends_with("deg tai rad"));
+        let e = Session::from_hash("#robot=ur10&q=1,2").expect_err("a bad link");
+        assert_eq!(
+            e.to_string(),
+            "The robot has 6 joints but 2 joint values were given."
+        );
+        assert!(e.sentence(Lang::Fi).starts_with("Robotilla on 6 niveltä"));
+    }
+
+    #[test]
+    fn a_link_error_repeats_at_most_forty_characters_and_no_control_character() {
+        let long = "z".repeat(1000);
+        let e = Session::from_hash(&format!("#robot=ur10&{long}=1")).expect_err("a bad link");
+        assert_eq!(
+            e.to_string(),
+            format!("the link has an unknown part \"{}…\"", "z".repeat(39))
+        );
+        let e = Session::from_hash("#robot=ur10&task=a%0Ab%1B").expect_err("a bad link");
+        assert_eq!(e.to_string(), "the link's task \"a%0Ab%1B\" is not known");
+        let e = Session::from_hash("#robot=ur10&method=\u{7}x\ry").expect_err("a bad link");
+        assert_eq!(
+            e.to_string(),
+            "the link's method \"\u{25A1}x\u{25A1}y\" is not known"
+        );
+        let e = Session::from_hash(&format!("#robot=ur10&q=1,{long}")).expect_err("a bad link");
+        assert_eq!(
+            e.sentence(Lang::Fi),
+            format!(
+                "linkin kentässä q on \"{}…\", joka ei ole luku",
+                "z".repeat(39)
+            )
+        );
+        // A custom robot's prismatic joint outside its stroke gets the core's sentence.
+        let e = Session::from_hash("#robot=scara&q=0,0,5,0").expect_err("a bad link");
+        assert_eq!(
+            e.to_string(),
+            "The value 5 of joint 3 lies outside its stroke 0 … 0.21."
+        );
+    }
+}
