@@ -638,6 +638,16 @@ fn pseudo_inverse_and_gradient_round_trip_the_ur10() {
             };
             let r = solve(&robot, &target, Task::FullPose, &seed, method, &settings).unwrap();
             assert!(r.success, "{method:?}: {r:?}");
+            // The pose reached, by the tests' own FK, orientation included: within the
+            // tolerances that success claims (1e-6 m, 1e-6 rad).
+            common::assert_own_pose_near(
+                &format!("UR10 {method:?} from {seed:?}"),
+                &robot,
+                &r.q,
+                &target,
+                tolerance_in_units(&robot, &settings) * 1.0001,
+                settings.orientation_tolerance * 1.0001,
+            );
         }
     }
 }
