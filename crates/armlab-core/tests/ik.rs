@@ -638,6 +638,16 @@ fn pseudo_inverse_and_gradient_round_trip_the_ur10() {
             };
             let r = solve(&robot, &target, Task::FullPose, &seed, method, &settings).unwrap();
             assert!(r.success, "{method:?}: {r:?}");
+            // The pose reached, by the tests' own FK, orientation included: within the
+            // tolerances that success claims (1e-6 m, 1e-6 rad).
+            common::assert_own_pose_near(
+                &format!("UR10 {method:?} from {seed:?}"),
+                &robot,
+                &r.q,
+                &target,
+                tolerance_in_units(&robot, &settings) * 1.0001,
+                settings.orientation_tolerance * 1.0001,
+            );
         }
     }
 }
@@ -865,17 +875,36 @@ fn unreachable_targets_give_the_closest_pose_flagged_without_nan() {
     assert!(r.unreachable && !r.success && all_finite(&r.q));
 }
 
+/// How far (mm) the tool may be from the circle halfway (in joint space) between two
+/// drag frames: the chord of 3° of the 200 mm circle runs 0.07 mm inside it, the arm's
+/// joint-space midpoint 0.10 mm; an arm that swung off the circle and back between two
+/// frames would be much further.
+const HALFWAY_OFF_CIRCLE: f64 = 0.2;
+
 #[test]
 fn drag_follows_a_circle_on_one_branch_within_the_joint_limit() {
     let robot = preset("ur10").unwrap();
     let down = Matrix3::new(1.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, -1.0);
+    let (centre, radius, height) = (Vector3::new(700.0, -200.0, 0.0), 200.0, 400.0);
     let point = |k: usize| {
         let a = std::f64::consts::TAU * k as f64 / 120.0;
         target_pose(
-            Vector3::new(700.0 + 200.0 * a.cos(), -200.0 + 200.0 * a.sin(), 400.0),
+            Vector3::new(
+                centre.x + radius * a.cos(),
+                centre.y + radius * a.sin(),
+                height,
+            ),
             down,
         )
     };
+    // The tool's distance from the circle (mm), by the tests' own FK.
+    let off_circle = |q: &[f64]| {
+        let p = common::own_fk(&robot, q).tool.translation.vector;
+        let across = (p - centre).xy().norm() - radius;
+        across.hypot(p.z - height)
+    };
+    let settings = IkSettings::drag();
+    let tol_p = tolerance_in_units(&robot, &settings);
     let mut solver = IkSolver::new();
     for method in [IkMethod::DampedLeastSquares, IkMethod::ClosedForm] {
         let start = solver
@@ -891,16 +920,19 @@ fn drag_follows_a_circle_on_one_branch_within_the_joint_limit() {
         let mut q = start.q.clone();
         for k in 1..=120 {
             let r = solver
-                .drag_step(
-                    &robot,
-                    &q,
-                    &point(k),
-                    Task::FullPose,
-                    method,
-                    &IkSettings::drag(),
-                )
+                .drag_step(&robot, &q, &point(k), Task::FullPose, method, &settings)
                 .unwrap();
             assert!(r.success, "{method:?} step {k}: {r:?}");
+            // Every step reaches its own point of the circle, hand down, by the tests'
+            // own FK: a step that kept the previous pose or stopped short fails here.
+            common::assert_own_pose_near(
+                &format!("{method:?} step {k}"),
+                &robot,
+                &r.q,
+                &point(k),
+                tol_p * 1.0001,
+                settings.orientation_tolerance * 1.0001,
+            );
             let moved = robot
                 .joints
                 .iter()
@@ -908,6 +940,20 @@ fn drag_follows_a_circle_on_one_branch_within_the_joint_limit() {
                 .map(|(j, (a, b))| j.change(*a, *b).abs())
                 .fold(0.0, f64::max);
             assert!(moved <= 0.1, "{method:?} step {k}: moved {moved}");
+            // On the circle at the step, and near it halfway to the step before.
+            let halfway: Vec<f64> = robot
+                .joints
+                .iter()
+                .zip(q.iter().zip(&r.q))
+                .map(|(j, (a, b))| a + 0.5 * j.change(*a, *b))
+                .collect();
+            let at_step = off_circle(&r.q);
+            let between = off_circle(&halfway);
+            assert!(
+                at_step <= tol_p * 1.0001 && between <= HALFWAY_OFF_CIRCLE,
+                "{method:?} step {k}: the tool is {at_step} mm off the circle, \
+                 {between} mm halfway from the step before"
+            );
             q = r.q;
         }
         // Back at the start on the same branch.

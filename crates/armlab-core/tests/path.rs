@@ -8,12 +8,16 @@ use armlab_text::Sentence;
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
+use crate::common;
+
+use armlab_text::Lang;
 use armlab_core::path::{
     CartesianSettings, PathIssue, PathKind, Waypoints, cartesian_path, interpolate_pose,
     joint_path, waypoint_path,
 };
-use armlab_core::{IkSolver, MotionError, Setting, preset, tool_pose};
-use armlab_text::Lang;
+use armlab_core::{
+    IkSolver, MotionError, SINGULARITY_THRESHOLD, Setting, preset, tool_pose,
+};
 use nalgebra::{IsometryMatrix3, Matrix3, Rotation3, Translation3, Vector3};
 
 fn pose_diff(a: &IsometryMatrix3<f64>, b: &IsometryMatrix3<f64>) -> (f64, f64) {
@@ -95,32 +99,73 @@ fn slerp_halfway_turns_half_the_angle() {
 
 #[test]
 fn a_line_out_of_the_workspace_is_reported_where_it_leaves() {
-    // From the UR10's home pose straight out to 2 m: beyond its reach of about 1.3 m.
+    // From the UR10's home pose straight out, hand orientation kept, along the arm's
+    // plane (horizontal, across the shoulder axis): the base joint and the wrist keep
+    // their angles along such a line, so the wrist moves with the tool, and the arm
+    // reaches exactly as long as the wrist-1 axis is within |a2| + |a3| of the shoulder
+    // axis (the elbow stretched). Both axes are parallel and the line crosses them at a
+    // right angle, so in the plane across them it is a line–circle crossing.
     let robot = preset("ur10").unwrap();
     let from = robot.home();
-    let start = tool_pose(&robot, &from);
-    let dir = start.translation.vector.xy().normalize();
-    let far = Vector3::new(dir.x, dir.y, 0.0) * 2000.0 + Vector3::z() * start.translation.z;
+    let own = common::own_fk(&robot, &from);
+    let start = own.tool;
+    let (shoulder, axis) = own.axes[1];
+    let elbow = own.axes[2].0;
+    let wrist = own.axes[3].0;
+    let across = |v: Vector3<f64>| v - axis * v.dot(&axis);
+    // |a2| + |a3| from the axes themselves: the distances between parallel axes.
+    let stretched = across(elbow - shoulder).norm() + across(wrist - elbow).norm();
+    let mut out = Vector3::z().cross(&axis).normalize();
+    if out.dot(&(wrist - shoulder)) < 0.0 {
+        out = -out;
+    }
+    let length = LINE_LENGTH;
+    let far = start.translation.vector + out * length;
     let target = IsometryMatrix3::from_parts(Translation3::from(far), start.rotation);
+    // |w + s·d| = stretched, w the wrist axis' offset from the shoulder axis at s = 0.
+    let (w, d) = (across(wrist - shoulder), out * length);
+    let (a, b, c) = (d.dot(&d), w.dot(&d), w.dot(&w) - stretched * stretched);
+    assert!(c < 0.0, "the home pose is inside the reach");
+    let exit = (-b + (b * b - a * c).sqrt()) / a;
+    assert!(exit > 0.2 && exit < 0.8, "the line leaves at s = {exit}");
+
     let mut settings = CartesianSettings::for_robot(&robot);
     settings.steps = 50;
+    let step = 1.0 / settings.steps as f64;
     let path = cartesian_path(&robot, &from, &target, &settings, &mut IkSolver::new()).unwrap();
     let leave = path
         .problems
         .iter()
         .find(|p| p.issue == PathIssue::OutOfReach)
         .expect("out of reach reported");
-    // Where the line crosses the reach sphere: compute it from the distances.
-    let r0 = start.translation.vector.norm();
-    assert!(leave.s > 0.0 && leave.s < 1.0, "{leave:?}");
     let at = path.points[leave.index].s;
     assert_eq!(at, leave.s);
+    // Reported at the first step past the crossing: every step before it is reachable,
+    // none after it is.
+    assert!(
+        leave.s >= exit && leave.s < exit + step,
+        "reported at s = {} ({leave:?}); the line leaves the reach at s = {exit}, \
+         so the first step out is at s = {}",
+        leave.s,
+        (exit / step).ceil() * step
+    );
     let p_leave = start.translation.vector + (far - start.translation.vector) * leave.s;
-    assert!(p_leave.norm() > r0, "it leaves further out than it starts");
-    // Before it, every step was on the line.
+    let p_exit = start.translation.vector + (far - start.translation.vector) * exit;
+    assert!(
+        (p_leave - p_exit).norm() < step * length,
+        "reported {p_leave:?}, the crossing is at {p_exit:?}"
+    );
+    // Before it, every step was on the line, by the tests' own FK.
     for p in &path.points[..leave.index] {
         let want = interpolate_pose(&start, &target, p.s);
-        assert!(pose_diff(&p.tool, &want).0 < 1e-3);
+        let (dp, dr) = common::pose_distance(&common::own_fk(&robot, &p.q).tool, &want);
+        assert!(dp < 1e-3 && dr < 1e-6, "s = {}: {dp} mm, {dr} rad", p.s);
+    }
+    // After it, none is: the arm stays short of the line.
+    for p in &path.points[leave.index..] {
+        let want = interpolate_pose(&start, &target, p.s);
+        let (dp, _) = common::pose_distance(&common::own_fk(&robot, &p.q).tool, &want);
+        assert!(dp > 1e-3, "s = {}: on the line beyond the reach", p.s);
     }
     let sentence = leave.sentence(Lang::En);
     assert!(sentence.contains("leaves the workspace"), "{sentence}");
@@ -133,27 +178,85 @@ fn a_line_out_of_the_workspace_is_reported_where_it_leaves() {
     );
 }
 
+/// How far the line of [`a_line_out_of_the_workspace_is_reported_where_it_leaves`] runs
+/// from the home pose (mm): it crosses the edge of the reach between two of its 50 steps,
+/// not on one, where the solver would need an exactly stretched arm.
+const LINE_LENGTH: f64 = 1000.0;
+
 #[test]
 fn a_line_through_the_wrist_singularity_is_reported() {
     // UR10: θ5 = 0 is the wrist singularity. Go from θ5 = 0.4 to θ5 = −0.4 with the
-    // other joints fixed, along the straight line between the two tool poses.
+    // other joints fixed, along the straight line between the two tool poses. The two
+    // ends differ by turns of ±0.4 about joint 5's axis, so halfway the slerp gives the
+    // hand the orientation of θ5 = 0: by this symmetry the arm comes nearest the
+    // singularity at s = 0.5. With 20 steps s = 0.5 is a step, and its neighbours
+    // (0.45, 0.55) are regular again (σ_min 0.013 and 0.023 against the threshold 0.01):
+    // the singularity must be reported exactly there.
     let robot = preset("ur10").unwrap();
     let from = vec![0.3, 1.2, -1.4, 0.9, 0.4, 0.2];
     let mut to = from.clone();
     to[4] = -0.4;
     let target = tool_pose(&robot, &to);
+    let mut straight = from.clone();
+    straight[4] = 0.0;
+    let start = tool_pose(&robot, &from);
+    let (_, turned) = common::pose_distance(
+        &common::own_fk(&robot, &straight).tool,
+        &interpolate_pose(&start, &target, 0.5),
+    );
+    assert!(
+        turned < 1e-12,
+        "halfway the hand is {turned} rad from θ5 = 0"
+    );
     let mut settings = CartesianSettings::for_robot(&robot);
-    settings.steps = 80;
+    settings.steps = 20;
     let path = cartesian_path(&robot, &from, &target, &settings, &mut IkSolver::new()).unwrap();
-    let singular = path
+    let singular: Vec<_> = path
         .problems
         .iter()
-        .find(|p| p.issue == PathIssue::Singular)
-        .expect("singularity reported");
-    assert!(
-        singular.s > 0.2 && singular.s < 0.8,
-        "near the middle: {singular:?}"
+        .filter(|p| p.issue == PathIssue::Singular)
+        .collect();
+    assert_eq!(
+        singular.len(),
+        1,
+        "one singular stretch: {:?}",
+        path.problems
     );
+    assert!(
+        (singular[0].s - 0.5).abs() < 1e-12 && singular[0].index == 10,
+        "the singularity is at s = 0.5 (step 10): {:?}",
+        singular[0]
+    );
+    // By the tests' own Jacobian (own FK, SVD) at the path's joint values, step 10 is
+    // the only one below the threshold.
+    let sigma: Vec<f64> = path
+        .points
+        .iter()
+        .map(|p| own_sigma_min(&robot, &p.q))
+        .collect();
+    let below: Vec<usize> = (0..sigma.len())
+        .filter(|k| sigma[*k] < SINGULARITY_THRESHOLD)
+        .collect();
+    assert_eq!(below, vec![10], "own σ_min along the path: {sigma:?}");
+}
+
+/// The smallest singular value of the 6×n geometric Jacobian at `q` (revolute joints), its
+/// linear rows divided by the arm's reach, from the tests' own FK and nalgebra's SVD.
+fn own_sigma_min(robot: &armlab_core::Robot, q: &[f64]) -> f64 {
+    let fk = common::own_fk(robot, q);
+    let p = fk.tool.translation.vector;
+    let columns: Vec<nalgebra::Vector6<f64>> = fk
+        .axes
+        .iter()
+        .map(|(o, z)| {
+            let v = z.cross(&(p - o)) / robot.reach();
+            nalgebra::Vector6::new(v.x, v.y, v.z, z.x, z.y, z.z)
+        })
+        .collect();
+    nalgebra::Matrix6xX::from_columns(&columns)
+        .svd(false, false)
+        .singular_values
+        .min()
 }
 
 #[test]

@@ -75,6 +75,7 @@ fn a_panda_self_motion_of_one_radian_each_way_keeps_the_hand_within_1e_6() {
 fn the_null_direction_is_orthogonal_to_every_task_row_and_has_a_fixed_sign() {
     let robot = preset("panda").unwrap();
     let mut rng = common::rng(11);
+    let (mut checked, mut singular) = (0, 0);
     for _ in 0..200 {
         let q = rng.joint_vector(&robot);
         let fk = ForwardKinematics::new(&robot, &q).unwrap();
@@ -84,14 +85,42 @@ fn the_null_direction_is_orthogonal_to_every_task_row_and_has_a_fixed_sign() {
             fk.tool_rotation(),
             1.0,
         );
-        let Ok(n) = null_direction(&robot, &q, Task::FullPose) else {
-            continue;
+        let n = match null_direction(&robot, &q, Task::FullPose) {
+            Ok(n) => n,
+            // Only a singular pose has none; the count below asserts there is none here.
+            Err(SelfMotionError::Singular) => {
+                singular += 1;
+                continue;
+            }
+            Err(e) => panic!("{q:?}: {e:?}"),
         };
         assert!((n.norm() - 1.0).abs() < 1e-12);
         assert!((rows * &n).norm() < 1e-9 * robot.length_scale());
         let again = null_direction(&robot, &q, Task::FullPose).unwrap();
         assert_eq!(n, again, "the same pose, the same direction");
+        // Independently of the core's Jacobian: moving along it leaves the hand still to
+        // first order, by central differences of the tests' own FK.
+        let h = 1e-5;
+        let moved = |t: f64| {
+            let qt: Vec<f64> = q.iter().zip(n.iter()).map(|(a, b)| a + t * b).collect();
+            common::own_fk(&robot, &qt).tool
+        };
+        let (dp, dr) = common::pose_distance(&moved(h), &moved(-h));
+        assert!(
+            dp / (2.0 * h) < 1e-6 && dr / (2.0 * h) < 1e-6,
+            "{q:?}: along the null direction the hand moves {} m and turns {} rad per rad",
+            dp / (2.0 * h),
+            dr / (2.0 * h)
+        );
+        checked += 1;
     }
+    // Random joint vectors are regular almost surely: every one of them has a direction,
+    // so a null_direction that failed everywhere (or often) cannot pass by being skipped.
+    assert_eq!(
+        (checked, singular),
+        (200, 0),
+        "poses checked and poses without a direction, of 200"
+    );
 }
 
 #[test]

@@ -194,3 +194,44 @@ fn link_transform_matrices_match_spec_formulas() {
         0.0, 0.0, 0.0, 1.0);
     assert!((modi - want_mod).abs().max() < 1e-12);
 }
+
+#[test]
+fn the_tests_own_forward_kinematics_agrees_with_the_core_on_every_preset() {
+    // Other test files check the core's answers with common::own_fk; it must be right.
+    let mut robots = common::all_presets();
+    let mut moved = armlab_core::preset("puma560").unwrap();
+    moved.world_from_base = nalgebra::IsometryMatrix3::from_parts(
+        nalgebra::Translation3::new(0.3, -0.2, 0.5),
+        nalgebra::Rotation3::from_euler_angles(0.4, -0.3, 1.2),
+    );
+    moved.flange_from_tool = nalgebra::IsometryMatrix3::from_parts(
+        nalgebra::Translation3::new(0.01, 0.02, 0.15),
+        nalgebra::Rotation3::from_euler_angles(-0.2, 0.5, 0.1),
+    );
+    robots.push(("moved puma560".into(), moved));
+    for (id, robot) in &robots {
+        let mut rng = rng(9);
+        for _ in 0..50 {
+            let q = rng.joint_vector(robot);
+            let own = common::own_fk(robot, &q);
+            let fk = ForwardKinematics::new(robot, &q).unwrap();
+            let (dp, dr) = common::pose_distance(&own.tool, &fk.base_from_tool);
+            assert!(
+                dp <= 1e-12 * robot.reach() && dr <= 1e-12,
+                "{id} {q:?}: {dp}, {dr} rad"
+            );
+        }
+    }
+    // The frames by hand for the planar 2R (l1 = 2, l2 = 1): joint 2's axis passes
+    // through the end of link 1.
+    let robot = armlab_core::preset("planar-2r").unwrap();
+    let own = common::own_fk(&robot, &[FRAC_PI_2, -FRAC_PI_2]);
+    assert_vec_near("2R joint 2 axis", &own.axes[1].0, [0.0, 2.0, 0.0], 1e-12);
+    assert_vec_near("2R axis", &own.axes[1].1, [0.0, 0.0, 1.0], 1e-12);
+    assert_vec_near(
+        "2R tool",
+        &own.tool.translation.vector,
+        [1.0, 2.0, 0.0],
+        1e-12,
+    );
+}

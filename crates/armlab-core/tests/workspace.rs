@@ -13,11 +13,12 @@ use crate::common;
 
 use armlab_core::workspace::smallest_symmetric_eigenvalue;
 use armlab_core::{
-    ForwardKinematics, IkSettings, Task, ToolAxis, WorkspaceCloud, WorkspaceMeasure,
-    direction_reachability, geometric_jacobian, jacobian_measures, joints_held_at_limits,
-    linear_manipulability, linear_sigma_min, preset, sphere_directions, tool_pose,
+    ForwardKinematics, IkSettings, JointKind, Robot, Task, ToolAxis, WorkspaceCloud,
+    WorkspaceMeasure, direction_reachability, geometric_jacobian, jacobian_measures,
+    joints_held_at_limits, linear_manipulability, linear_sigma_min, preset, sphere_directions,
+    tool_pose,
 };
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, Matrix3xX, Vector3};
 use std::f64::consts::FRAC_PI_4;
 
 #[test]
@@ -43,7 +44,7 @@ fn slices_fill_the_same_cloud_as_one_call() {
 }
 
 #[test]
-fn the_sampler_matches_forward_kinematics_and_todays_numbers() {
+fn the_sampler_matches_forward_kinematics_and_the_tests_own_numbers() {
     // The cloud's own forward kinematics (plain arrays) against ForwardKinematics and
     // tool_pose, on every preset (standard and modified DH, prismatic joints) and on one
     // moved off the origin with a tilted base.
@@ -82,21 +83,102 @@ fn the_sampler_matches_forward_kinematics_and_todays_numbers() {
             }
         }
     }
-    // The UR10's mean measures over 20 000 samples of the benchmark's seed, as the
-    // sampler gave them before it was rewritten over plain arrays (nalgebra types).
+    // The UR10's mean measures over 20 000 samples of the benchmark's seed, against the
+    // same joint vectors (the sampler draws each joint uniformly within its limits, in
+    // joint order, from SplitMix64) measured by the tests' own FK and the SVD of the
+    // linear Jacobian built from its axes.
     let ur10 = preset("ur10").unwrap();
-    for (measure, mean) in [
-        (WorkspaceMeasure::Manipulability, 0.02838400395003399),
-        (WorkspaceMeasure::SigmaMin, 0.1321770250921807),
-    ] {
-        let mut cloud = WorkspaceCloud::new(&ur10, measure, 20_000, 0x00C0_FFEE);
-        cloud.fill(20_000);
-        let got = cloud.values.iter().sum::<f64>() / 20_000.0;
+    let samples = 20_000;
+    for measure in [WorkspaceMeasure::Manipulability, WorkspaceMeasure::SigmaMin] {
+        let mut cloud = WorkspaceCloud::new(&ur10, measure, samples, 0x00C0_FFEE);
+        cloud.fill(samples);
+        let mut rng = common::rng(0x00C0_FFEE);
+        let mut worst: f64 = 0.0;
+        let mut sum = 0.0;
+        for value in &cloud.values {
+            let want = own_measure(&ur10, &rng.joint_vector(&ur10), measure);
+            worst = worst.max((value - want).abs());
+            sum += want;
+        }
+        let want = sum / samples as f64;
+        let got = cloud.values.iter().sum::<f64>() / samples as f64;
+        // Each sample within 1e-9 (σ_min near a singularity is the square root of an
+        // eigenvalue near 0 and keeps fewer digits: 1.3e-12 at worst here), the means
+        // within 1e-12.
         assert!(
-            (got - mean).abs() <= 1e-15,
-            "{measure:?}: mean {got} vs {mean}"
+            (got - want).abs() <= 1e-12 && worst <= 1e-9,
+            "{measure:?}: mean {got}, by the tests' own FK {want}; worst sample off by {worst}"
         );
     }
+}
+
+/// The linear Jacobian's measure at `q` by the tests' own means: the columns z × (p − o)
+/// (z for a prismatic joint) from [`common::own_fk`]'s axes, divided by the arm's length
+/// scale, and nalgebra's SVD: the product of the min(3, n) singular values, or the
+/// smallest of them.
+fn own_measure(robot: &Robot, q: &[f64], measure: WorkspaceMeasure) -> f64 {
+    let fk = common::own_fk(robot, q);
+    let p = fk.tool.translation.vector;
+    let columns: Vec<Vector3<f64>> = fk
+        .axes
+        .iter()
+        .zip(&robot.joints)
+        .map(|((o, z), joint)| match joint.kind {
+            JointKind::Revolute => z.cross(&(p - o)),
+            JointKind::Prismatic => *z,
+        } / robot.length_scale())
+        .collect();
+    let j = Matrix3xX::from_columns(&columns);
+    let mut sv: Vec<f64> = j
+        .svd(false, false)
+        .singular_values
+        .iter()
+        .copied()
+        .collect();
+    sv.sort_by(|a, b| b.total_cmp(a));
+    sv.truncate(3);
+    match measure {
+        WorkspaceMeasure::Manipulability => sv.iter().product(),
+        WorkspaceMeasure::SigmaMin => sv.last().copied().unwrap_or(0.0),
+    }
+}
+
+#[test]
+fn the_planar_2r_cloud_has_the_means_of_uniform_joint_angles() {
+    // Joint angles uniform in (−π, π] (the 2R has no limits written, so ±180°): by
+    // integration, E|p|² = l1² + l2² + 2·l1·l2·E[cos θ2] = 5, E[p] = 0, and the
+    // manipulability l1·l2·|sin θ2| / L² has mean l1·l2·(2/π) / L². The sample means of
+    // 20 000 points differ from these by about their standard error σ/√20 000; the bounds
+    // are five of those (σ(|p|²) = 4·√½, σ(x) = √((l1² + l2²)/2), σ(|sin|) = √(½ − 4/π²)).
+    let robot = preset("planar-2r").unwrap();
+    let (l1, l2) = (2.0, 1.0);
+    let n = 20_000;
+    let mut cloud = WorkspaceCloud::new(&robot, WorkspaceMeasure::Manipulability, n, 5);
+    cloud.fill(n);
+    let root_n = (n as f64).sqrt();
+    let mean = |f: &dyn Fn(usize) -> f64| (0..n).map(f).sum::<f64>() / n as f64;
+    let squared = mean(&|i| cloud.positions[i].norm_squared());
+    let x = mean(&|i| cloud.positions[i].x);
+    let y = mean(&|i| cloud.positions[i].y);
+    let z = mean(&|i| cloud.positions[i].z.abs());
+    let w = mean(&|i| cloud.values[i]);
+    let scale = robot.length_scale();
+    let want_w = l1 * l2 * (2.0 / std::f64::consts::PI) / (scale * scale);
+    let spread_xy = ((l1 * l1 + l2 * l2) / 2.0_f64).sqrt();
+    let spread_w = (0.5 - 4.0 / std::f64::consts::PI.powi(2)).sqrt() * l1 * l2 / (scale * scale);
+    assert!(
+        (squared - 5.0).abs() <= 5.0 * 4.0 * 0.5_f64.sqrt() / root_n,
+        "mean |p|² {squared}, want 5"
+    );
+    assert!(
+        x.abs() <= 5.0 * spread_xy / root_n && y.abs() <= 5.0 * spread_xy / root_n,
+        "mean p ({x}, {y}), want 0"
+    );
+    assert_eq!(z, 0.0, "the planar arm stays in its plane");
+    assert!(
+        (w - want_w).abs() <= 5.0 * spread_w / root_n,
+        "mean manipulability {w}, want {want_w}"
+    );
 }
 
 #[test]
