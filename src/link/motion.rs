@@ -1,4 +1,4 @@
-//! The motion lab's link fields (issue 14; the README's link format):
+//! The motion lab's link fields (docs/link-format.md):
 //!
 //! - `move=on|off`: the arm drives to each IK answer with the controller;
 //! - `ctrl=onoff|p|pd|pid|trapezoidal|cubic|quintic` and `gains=`: the dead band (on/off),
