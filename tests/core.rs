@@ -1,6 +1,6 @@
 //! The core's tests as one test binary (one link natively, one wasm-bindgen-test run in
-//! Node; each file used to be a binary of its own, and the wasm runner's start-up per
-//! binary took about a minute of the test command). Each file is a module named after
+//! Node: with a binary per file, the wasm runner's start-up per binary would take about a
+//! minute of the test command). Each file is a module named after
 //! itself, so a test is named `file::test`. Cargo.toml sets `autotests = false` and lists
 //! this binary, `ui`, `ui_finnish` and `urdf`; tools/test.sh fails when a file in tests/
 //! is in none of them, so a new test file cannot be left out silently.

@@ -82,8 +82,8 @@ fn the_sampler_matches_forward_kinematics_and_todays_numbers() {
             }
         }
     }
-    // The UR10's mean measures over 20 000 samples of the benchmark's seed, as the
-    // sampler gave them before it was rewritten over plain arrays (nalgebra types).
+    // The UR10's mean measures over 20 000 samples of the benchmark's seed, as a sampler
+    // over nalgebra's types computes them: the one over plain arrays must agree.
     let ur10 = preset("ur10").unwrap();
     for (measure, mean) in [
         (WorkspaceMeasure::Manipulability, 0.02838400395003399),

@@ -12,8 +12,9 @@
 //!   Euler angles in radians).
 //!
 //! Every field is optional; a link writes only what differs from the defaults, so a link
-//! without the motion lab reads as before. Values go through the core's own checks
-//! ([`MotionSettings::check`], [`KeepOut::new`]): a bad one is a typed [`MotionLinkError`].
+//! that leaves the motion lab alone carries none of these fields. Values go through the
+//! core's own checks ([`MotionSettings::check`], [`KeepOut::new`]): a bad one is a typed
+//! [`MotionLinkError`].
 //! A bad `path=` or waypoint is left out with its error in [`MotionPatch::dropped`] and
 //! the rest of the link applies.
 
