@@ -815,8 +815,8 @@ fn the_jacobian_columns_and_the_velocity_ellipsoid_are_drawn_at_the_tool() {
 
 #[test]
 fn ghosts_from_a_link_show_without_the_ik_panel() {
-    // A lecturer's link opened on a phone (no sheet open) or with the IK panel closed:
-    // the solutions were found only by the IK panel's list, so no ghost was drawn.
+    // A lecturer's link opened on a phone (no sheet open) or with the IK panel closed: the
+    // ghosts must not wait for the IK panel's list, which finds the solutions only when shown.
     for (hash, size) in [
         (
             "#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2&show=ghosts&panels=joints",
@@ -1204,7 +1204,7 @@ fn a_motion_into_the_base_stops_at_the_last_free_pose_and_names_the_parts() {
     h.snapshot("motion_collision_stop");
 }
 
-// --- Issue 13: the editor keeps q, the DH-table exercise, predict then reveal ------------
+// --- The editor keeps q, the DH-table exercise, predict then reveal ----------------------
 
 /// Types `text` over the `index`-th text input (the DH cells come first in table order).
 fn type_into_cell(h: &mut Harness<'_, ArmLabApp>, index: usize, text: &str) {
@@ -1655,8 +1655,8 @@ fn the_preset_menu_names_the_robot_whole_at_every_screen_size() {
                 (value, n.rect())
             })
             .collect();
-        // The menu's text was cut to "Franka Pa…" in a projector's side column: now the
-        // label goes above and the name wraps if it must, inside the screen.
+        // In a projector's side column the menu's label goes above and the name wraps if it
+        // must, inside the screen, rather than being cut ("Franka Pa…").
         let preset = menus
             .iter()
             .find(|(value, _)| value.starts_with("Franka"))
@@ -1793,8 +1793,8 @@ fn on_a_projector_nothing_in_the_left_column_runs_into_the_view() {
 }
 
 /// A projector's and a laptop's right column print the 6×6 Jacobian in blocks of columns,
-/// every block inside the column: it used to scroll sideways with half its columns out of
-/// sight.
+/// every block inside the column, rather than a table that scrolls sideways with half its
+/// columns out of sight.
 #[test]
 fn at_lecture_sizes_the_jacobian_shows_every_column_in_blocks() {
     for size in [[1024.0, 768.0], [1280.0, 720.0], [1366.0, 768.0]] {

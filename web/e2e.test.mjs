@@ -142,7 +142,7 @@ test('WebGL2 colours match the native (lavapipe) snapshot', async () => {
   // Navigation to the first drawn frame (performance.now() counts from navigation start).
   measurements.first_frame_ms = Math.round(await page.evaluate(() => window.armlab.firstFrameAt()));
   measurements.ready_wall_ms = Date.now() - started;
-  // index.html's shim gave egui's fragment shader the page's value of its snapshot-only
+  // index.html's shim gives egui's fragment shader the page's value of its snapshot-only
   // option (0) in place of the uniform it reads, so that SwiftShader does not run the
   // unused side for every pixel. If an egui or naga update renames what the GLSL reads,
   // the shim finds nothing: this fails, and the colours below check the folded shader.
@@ -245,7 +245,7 @@ function measureFrames(name, frameMs) {
   measurements[`${name}_frames`] = frameMs.length;
   if (process.env.ARMLAB_RAW) console.log('RAW', name, JSON.stringify(frameMs.map((f) => [f.app, f.render].map((v) => +v.toFixed(1)))));
   // app_render: the main thread's time per frame, the app and the render of one frame
-  // added frame by frame (issue 15's p95 target is on this sum). `hook`, publishing the
+  // added frame by frame (the frame-time target, a p95, is on this sum). `hook`, publishing the
   // state this test reads every frame, comes after the frame and is reported apart.
   const frames = frameMs.map((f) => ({ ...f, app_render: f.app + f.render }));
   for (const part of ['app', 'ik', 'scene', 'render', 'workspace', 'hook', 'app_render']) {
@@ -389,8 +389,8 @@ test('a bad DH cell typed with the keyboard shows a message and the robot stays'
 });
 
 // index.html's back-pressure: a frame starts only while fewer than two are unfinished on
-// the GPU. Without it, SwiftShader fell about 60 frames behind fast typing, each holding
-// its vertex upload in wasm memory: these six values grew the memory by 3.6 MB.
+// the GPU. Without it, SwiftShader falls about 60 frames behind fast typing, each holding
+// its vertex upload in wasm memory: these six values would grow the memory by 3.6 MB.
 test('DH values typed at full speed: the last one applies and the wasm memory does not grow', async () => {
   const { page, ctx, errors } = await open('#robot=ur10');
   await typeIntoDhCell(page, 'dh-1-2', '0.2');
@@ -541,8 +541,8 @@ test('presentation mode at 1024×768: the view keeps 60 % and the arm, the chose
   await ctx.close();
 });
 
-// At a phone's size, where DPR 3 is real (a 1280×720 page at DPR 3 made the software
-// renderer draw 8.3 million pixels a frame: this test took 29 s, now about 16 s).
+// At a phone's size, where DPR 3 is real (a 1280×720 page at DPR 3 would make the software
+// renderer draw 8.3 million pixels a frame, and this test take about twice as long).
 test('the UI has the same size in CSS pixels at device pixel ratios 1, 2 and 3', async () => {
   const seen = [];
   for (const dpr of [1, 2, 3]) {
@@ -582,9 +582,9 @@ test('typing 1e999 into a DH cell at 1024×768 leaves the 3D view its share', as
 });
 
 // A finger rests on the ball for longer than a click (egui's 0.8 s) before it moves, as
-// students do: before the viewport sensed drags only, egui took that for a long press and
-// dropped the drag (the cause of this test's earlier flakiness, which depended on how
-// slowly the software renderer drew the frames between the press and the first move).
+// students do. The viewport senses drags only: where a widget also senses clicks, egui
+// takes the rest for a long press and drops the drag (whether it does depends on how
+// slowly the software renderer draws the frames between the press and the first move).
 test('a touch drag of the target, after the finger rests on it, moves the arm, with no console errors', async () => {
   const screen = SCREENS[5];
   const { page, ctx, errors } = await openAt(screen, '#robot=ur10&task=position');

@@ -1,4 +1,4 @@
-// A long lecture in headless Chromium (issue 15): for ARMLAB_SOAK_MINUTES (10 by default)
+// A long lecture in headless Chromium: for ARMLAB_SOAK_MINUTES (10 by default)
 // the page is used as a class uses it — the target dragged, robots switched, a DH cell
 // edited, IK solved — and once a minute the JS heap and the wasm memory are sampled.
 // Not part of the test command: `node web/soak.mjs` after `bash tools/test.sh` (or any

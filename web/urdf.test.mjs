@@ -143,7 +143,7 @@ async function open(hash) {
 
 /** Opens a file through the robot panel's "Load robot file…" button and the browser's
  * file chooser (the page's `<input type="file">`). Clicks again when no chooser came within
- * 5 s: in a fresh browser the first one was missed now and then (3 of 4 tests once). */
+ * 5 s: in a fresh browser the first one is missed now and then. */
 async function chooseFile(page, name, text) {
   const load = await point(page, 'robot-load');
   let chooser;

@@ -15,8 +15,8 @@ pub fn now_ms() -> f64 {
     #[cfg(target_arch = "wasm32")]
     {
         // The clock object is looked up once. Looking up `window.performance` through
-        // wasm-bindgen in every call took about 2 % of a drag frame's main-thread time in
-        // a CPU profile of the page (a frame reads the clock about ten times).
+        // wasm-bindgen in every call would take about 2 % of a drag frame's main-thread
+        // time in a CPU profile of the page (a frame reads the clock about ten times).
         thread_local! {
             static PERFORMANCE: Option<web_sys::Performance> =
                 web_sys::window().and_then(|w| w.performance());

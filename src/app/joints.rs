@@ -135,8 +135,8 @@ fn speed_rail(ui: &mut egui::Ui, model: &Model) {
 
 /// The joint sliders' rail: what the visible room leaves beside the widest name (the
 /// grid's name column is at least egui's interact width) and the widest value at either
-/// limit. A fixed 110 points for both left a prismatic joint's "-0.300 m" past a phone's
-/// edge.
+/// limit. A fixed 110 points for both would leave a prismatic joint's "-0.300 m" past a
+/// phone's edge.
 fn joints_rail(ui: &mut egui::Ui, model: &Model) {
     let robot = model.robot();
     let degrees = model.settings().degrees;

@@ -320,7 +320,7 @@ fn column_blocks(widths: &[f32], gap: f32, room: f32) -> Option<Vec<std::ops::Ra
 /// The advances of a number's characters in a font (points), each rounded to whole
 /// pixels. egui puts each glyph of a laid-out text on a whole pixel; copies placed at the
 /// sum of the exact advances (7.44 points for a digit at the panel's monospace size, 5.95
-/// at 80 %) were each rounded on their own, and the digits came out unevenly spaced.
+/// at 80 %) would each be rounded on their own, and the digits would be unevenly spaced.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Advances {
     digit: f32,
@@ -369,8 +369,8 @@ const NUMBER_CHARS: &str = "0123456789-.";
 /// The matrix's numbers in right-aligned columns, in the monospace text style.
 ///
 /// While an arm moves every number of every visible matrix changes each frame, and egui
-/// shapes and lays out changed text from scratch: that was most of this panel's frame
-/// time. Numbers use a dozen characters, so those are laid out once as one text (egui
+/// shapes and lays out changed text from scratch: that would be most of this panel's
+/// frame time. Numbers use a dozen characters, so those are laid out once as one text (egui
 /// caches it) and each number is drawn by copying its characters' glyph quads into one
 /// mesh (egui builds each glyph as one quad: four vertices, two triangles). The mesh is
 /// put in place by [`finish_numbers`] at the end of the frame.

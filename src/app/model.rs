@@ -933,7 +933,7 @@ impl Model {
         }
     }
 
-    // --- Paths and waypoints (issue 14; docs/kinematics.md §19) ---------------------------
+    // --- Paths and waypoints (docs/kinematics.md §19) ------------------------------------
 
     /// The path kind, the waypoints, the planned paths and the visit.
     pub fn paths(&self) -> &PathLab {
@@ -1063,7 +1063,7 @@ impl Model {
         }
     }
 
-    // --- The motion lab (issue 14) -------------------------------------------------------
+    // --- The motion lab (docs/kinematics.md §17) -----------------------------------------
 
     /// The motion lab: "move", its controller, the simulation and the tool's trail.
     pub fn motion(&self) -> &MotionLab {
@@ -1071,7 +1071,7 @@ impl Model {
     }
 
     /// Turns "move" on (the arm drives to each IK answer with the controller) or off (it
-    /// jumps, as before).
+    /// jumps to each answer).
     pub fn set_motion_on(&mut self, on: bool) {
         self.motion.set_on(on);
         if on {

@@ -1,6 +1,6 @@
-//! The motion lab's state in the app (issue 14): whether "move" is on, the controller and
-//! plant settings, the time scale, the core's [`MotionSim`] that drives the arm, and the
-//! tool's trail for the 3D view. No egui and no clock here: the model owns one
+//! The motion lab's state in the app (docs/kinematics.md §20.2): whether "move" is on,
+//! the controller and plant settings, the time scale, the core's [`MotionSim`] that drives
+//! the arm, and the tool's trail for the 3D view. No egui and no clock here: the model owns one
 //! [`MotionLab`] and passes it the frame's time; the Motion panel
 //! ([`super::motion_view`]) draws it.
 

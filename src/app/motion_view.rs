@@ -1,4 +1,4 @@
-//! The Motion panel (issue 14; docs/kinematics.md §17): "move" (dragging the target or
+//! The Motion panel (docs/kinematics.md §17): "move" (dragging the target or
 //! Solve makes the arm drive to the IK answer with a controller instead of jumping), the
 //! controller and its gains, the motor model and load, the time scale, a typed goal, the
 //! measured response (overshoot, settling time, steady-state error) and the plots of

@@ -1,4 +1,4 @@
-//! The motion lab's paths and waypoints in the app (issue 14; docs/kinematics.md §19): the
+//! The motion lab's paths and waypoints in the app (docs/kinematics.md §19): the
 //! path kind the arm travels by (joint space or a straight Cartesian line), the waypoint
 //! list, the two planned paths drawn side by side, and a visit of the waypoints that the
 //! motion simulation drives in time. No egui here: the model owns one [`PathLab`] and the

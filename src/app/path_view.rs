@@ -1,4 +1,4 @@
-//! The Motion panel's "Paths and waypoints" part (issue 14; docs/kinematics.md §19): how
+//! The Motion panel's "Paths and waypoints" part (docs/kinematics.md §19): how
 //! the arm goes from A to B (joint space or a straight line), both planned paths drawn
 //! side by side in 3D with a legend, the straight line's problems as sentences (and
 //! marked in the view), and the waypoints: add the target, edit x, y, z, remove, visit.
@@ -292,8 +292,8 @@ pub fn draw_in_view(
     project: &dyn Fn(&Point3<f64>) -> Option<egui::Pos2>,
 ) {
     let font = egui::FontId::proportional(14.0);
-    // Labels of nearby places (a singularity and a jump a few steps apart) went on top of
-    // each other: each one moves up a line at a time past those already drawn.
+    // Labels of nearby places (a singularity and a jump a few steps apart) would overlap:
+    // each one moves up a line at a time past those already drawn.
     let mut taken: Vec<egui::Rect> = Vec::new();
     let mut label = |at: &Point3<f64>, text: String, color: Color32| {
         let Some(p) = project(at) else {

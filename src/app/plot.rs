@@ -118,7 +118,7 @@ pub fn range_of(values: impl Iterator<Item = f64>) -> (f64, f64) {
     if lo > hi { (0.0, 1.0) } else { (lo, hi) }
 }
 
-/// A range at least 1e−9 wide (a flat line sits at the bottom, as the IK plot had it).
+/// A range at least 1e−9 wide (a flat line sits at the bottom, as in the IK error plot).
 fn widen((lo, hi): (f64, f64)) -> (f64, f64) {
     (lo, lo + (hi - lo).max(1e-9))
 }

@@ -74,7 +74,7 @@ pub fn solutions_ui(model: &mut Model, ui: &mut egui::Ui) {
 
 /// The closed form's rows for the 3D view's ghosts when they are on and no rows are kept
 /// for this target and robot: whether or not the IK panel, where the list is, is shown
-/// (a phone's link with `show=ghosts` drew none until the IK sheet was opened).
+/// (a phone's link with `show=ghosts` draws them with no sheet open).
 pub fn ghost_rows(model: &mut Model) {
     if model.settings().overlays.contains(Overlay::Ghosts)
         && model.has_closed_form()

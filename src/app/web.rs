@@ -277,8 +277,8 @@ fn browser_preferences(window: &web_sys::Window) -> super::Preferences {
 /// every robot or DH-table change, and at most once a second during a drag.
 ///
 /// A drag changes the hash every frame, and `history.replaceState` and localStorage are
-/// synchronous calls that took 5–20 ms each in Chromium here; writing every frame of a
-/// drag was most of the frame time. The release writes the final state; a change made
+/// synchronous calls that take 5–20 ms each in Chromium; writing them in every frame of a
+/// drag would be most of the frame time. The release writes the final state; a change made
 /// within the quarter second waits for a frame requested for then, and leaving the page
 /// (`pagehide`) writes whatever is still waiting.
 pub fn store_hash(app: &ArmLabApp, ctx: &egui::Context) {
@@ -520,7 +520,7 @@ fn view_rect_fn() -> JsValue {
 }
 
 /// `window.armlab.workspaceBenchmark(samples)`: the workspace benchmark in the page
-/// (issue 12; printed by the browser test, not asserted): the UR10's cloud of `samples`
+/// (printed by the browser test, not asserted): the UR10's cloud of `samples`
 /// tool positions with manipulability (the determinant) and, separately, with σ_min;
 /// milliseconds each, one thread.
 fn install_workspace_benchmark(obj: &js_sys::Object) {

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The peer benchmark (README "Benchmarks"): RTB's C++ ik_LM beside ArmLab's ikbench on the
+# The peer benchmark (docs/benchmarks.md): RTB's C++ ik_LM beside ArmLab's ikbench on the
 # UR10, same protocol, same targets, same seed; prints one JSON. Not part of tools/test.sh.
 #
 #   bash tools/peers/run.sh [--samples N] [--rounds R]

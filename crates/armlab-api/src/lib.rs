@@ -1,5 +1,5 @@
 //! The JSON API over the core: JSON text in, JSON text out. The `js` feature exposes
-//! these functions to JavaScript through wasm-bindgen (see `js.rs` and the README); they
+//! these functions to JavaScript through wasm-bindgen (see `js.rs` and docs/js-api.md); they
 //! are plain Rust here so that native tests cover them too.
 //!
 //! Every request names a robot — a preset id (`"ur10"`) or a whole robot file object —

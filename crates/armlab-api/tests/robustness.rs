@@ -1,4 +1,4 @@
-//! Robustness (issue 15): every case a quick fuzz of the JSON API found gets a sentence or
+//! Robustness: every case a quick fuzz of the JSON API found gets a sentence or
 //! a bounded answer, and messages stay readable (at most 40 characters of the person's
 //! text, no control characters, numbers short).
 

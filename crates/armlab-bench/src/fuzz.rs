@@ -103,7 +103,7 @@ impl Case {
     }
 }
 
-/// What is wrong with a message by the rules of issue 15, item 7, if anything: more
+/// What is wrong with a message by the readability rules every message keeps, if anything: more
 /// than 60 characters of one repeated character (a person's long text repeated whole),
 /// a control character, a run of more than 40 digits (a number written out in full, or
 /// more of the person's text than the 40 characters a message may echo), or more than

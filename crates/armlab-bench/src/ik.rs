@@ -425,9 +425,9 @@ pub const WARM_UP_SAMPLES: usize = 1000;
 
 /// Runs every row and returns the report as JSON. An untimed pass of every row with at
 /// most [`WARM_UP_SAMPLES`] targets comes first: V8 compiles wasm with its baseline
-/// compiler and swaps in optimised code only once a function is hot, so in Node the first
-/// row was timed partly on baseline code (UR10 cold 5.2–5.6 µs beside 4.6–4.9 µs for the
-/// same arm in the next row); natively it changes nothing.
+/// compiler and swaps in optimised code only once a function is hot, so without it in Node
+/// the first row would be timed partly on baseline code (UR10 cold 5.2–5.6 µs beside
+/// 4.6–4.9 µs for the same arm in the next row); natively it changes nothing.
 pub fn run(config: &BenchConfig, now: &dyn Fn() -> f64) -> Value {
     let warm = BenchConfig {
         samples: config.samples.min(WARM_UP_SAMPLES),

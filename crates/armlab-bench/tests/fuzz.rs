@@ -1,4 +1,4 @@
-//! The fuzzing corpus and a few thousand seeded cases (issue 15, item 5): every saved
+//! The fuzzing corpus and a few thousand seeded cases: every saved
 //! input (`tests/fuzz_corpus.json`, written by the `fuzz` binary: the shortest input of
 //! each kind of outcome it met) goes to its parser again, natively and as wasm; none may
 //! panic, and every error sentence must stay readable. The seeded cases keep IK iteration

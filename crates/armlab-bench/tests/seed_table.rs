@@ -149,10 +149,10 @@ fn cold(robot_id: &str, count: usize, table: Option<&SeedTable>) -> Cold {
 
 #[test]
 fn panda_cold_solves_restart_less_with_joint_locking() {
-    // The first 1000 benchmark targets. Before the locking of §8.9 the same solves
-    // restarted 0.54 times per target on average over 10 000 (99.98 % success). With the
-    // locking they restarted 281 times here; the early end of stalled attempts (§8.5)
-    // restarts more often (365), each attempt shorter.
+    // The first 1000 benchmark targets. Without the locking of §8.9 the same solves
+    // restart 0.54 times per target on average over 10 000 (99.98 % success); with it,
+    // 281 times here, and with the early end of stalled attempts (§8.5) as well, 365, each
+    // attempt shorter.
     let c = cold("panda", 1000, None);
     let (ok, restarts, iterations) = (c.successes, c.restarts, c.total_iterations());
     eprintln!("panda cold: {ok}/1000, {restarts} restarts, {iterations} iterations");
@@ -164,8 +164,8 @@ fn panda_cold_solves_restart_less_with_joint_locking() {
 fn a_stalled_attempt_ends_at_once_and_the_slowest_solves_are_shorter() {
     // The first 1000 benchmark targets from the midpoint of the limits. Ending an attempt
     // whose cost fell by less than a tenth over two iterations (docs/kinematics.md §8.5)
-    // shortened the slowest solves here: the 99th percentile of iterations per solve went
-    // from 55 to 42 on the UR10 and from 80 to 52 on the Panda (medians 9 and 8 both ways).
+    // shortens the slowest solves here: the 99th percentile of iterations per solve is 42
+    // on the UR10 and 52 on the Panda with it, 55 and 80 without.
     for (robot, p99_at_most) in [("ur10", 48), ("panda", 64)] {
         let c = cold(robot, 1000, None);
         let (median, p99) = (c.quantile(0.5), c.quantile(0.99));

@@ -115,10 +115,10 @@ fn sin_cos_lane(x: f64) -> (f64, f64) {
 }
 
 /// atan2(y, x) for the closed forms' hot paths: [`atan2_poly`] in the core's wasm (the JS
-/// API), where the library's atan2 is software and the closed forms spent about a tenth
-/// of their time in it; natively the library's (glibc's, with FMA, is as fast there and
-/// correctly rounded), and in the page too, which is built for size (the page's budget,
-/// README "Page size"; the library's atan2 is in it anyway).
+/// API), where the library's atan2 is software and the closed forms would spend about a
+/// tenth of their time in it; natively the library's (glibc's, with FMA, is as fast there
+/// and correctly rounded), and in the page too, which is built for size (the page's
+/// budget, docs/benchmarks.md "Page size"; the library's atan2 is in it anyway).
 #[inline]
 pub fn atan2(y: f64, x: f64) -> f64 {
     if OWN_INVERSE_TRIG {
@@ -163,7 +163,7 @@ const OWN_INVERSE_TRIG: bool = cfg!(target_arch = "wasm32") && !SIZE_OVER_SPEED;
 /// the core's wasm. V8 (Node, Chrome) builds every f64 constant of wasm code in two
 /// instructions (the bits into a general register, then into a vector register) and every
 /// f64x2 constant of the paired sines in four, inside the loop that uses it; a load from
-/// memory is one (docs/kinematics.md §8.8). Not natively, where constants are memory
+/// memory is one (docs/benchmarks.md). Not natively, where constants are memory
 /// operands already, nor in the page (built for size).
 const CONSTANTS_IN_MEMORY: bool = cfg!(target_arch = "wasm32") && !SIZE_OVER_SPEED;
 

@@ -109,9 +109,10 @@ fn gantry() -> Robot {
 }
 
 /// docs/kinematics.md §8: a prismatic joint's value is measured in the linear rows' length
-/// L/4. Its column was the axis times 4/L (about 0.003 for the gantry), so the damping,
-/// sized for revolute columns near 1, shrank every step to a crawl: damped least squares
-/// reached about half of the gantry's targets, each attempt restarted after six iterations.
+/// L/4. In the robot's own unit its column would be the axis times 4/L (about 0.003 for the
+/// gantry), and the damping, sized for revolute columns near 1, would shrink every step to
+/// a crawl: damped least squares would reach about half of the gantry's targets, each
+/// attempt restarted after six iterations.
 #[test]
 fn a_prismatic_gantry_round_trips_with_every_numeric_method() {
     let robot = gantry();

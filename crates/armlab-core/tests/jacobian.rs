@@ -23,7 +23,8 @@ use armlab_core::{
 const LINEAR_LIMIT: f64 = 1e-8;
 /// Largest error of an angular entry (rad per rad or per length unit): the same sources,
 /// measured at most 1.1e−9 (margin 9); a degree (1.7e−2) off fails by six orders of
-/// magnitude, where the old shared bound 1e−5·‖J‖ let it pass for mm robots.
+/// magnitude, where a bound of 1e−5·‖J‖ shared with the linear entries lets it pass for
+/// mm robots.
 const ANGULAR_LIMIT: f64 = 1e-8;
 
 #[test]
@@ -81,8 +82,8 @@ fn standard_and_modified_ur10_have_the_same_jacobian() {
 
 #[test]
 fn equivalent_tables_give_the_same_unit_free_measures_and_the_displayed_det_is_det_j() {
-    // Issue 12: the UR10 and its standard-DH twin showed det −0.08615 and −0.06629 for the
-    // same arm, the length scale coming from how each table pairs a and d in its rows.
+    // The UR10 and its standard-DH twin are one arm: a length scale taken from how each
+    // table pairs a and d in its rows would give them det −0.08615 and −0.06629.
     let a = preset("ur10").unwrap();
     let b = preset("ur10-standard").unwrap();
     assert_eq!(a.length_scale(), b.length_scale());

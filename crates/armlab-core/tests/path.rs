@@ -10,14 +10,12 @@ use wasm_bindgen_test::wasm_bindgen_test as test;
 
 use crate::common;
 
-use armlab_text::Lang;
 use armlab_core::path::{
     CartesianSettings, PathIssue, PathKind, Waypoints, cartesian_path, interpolate_pose,
     joint_path, waypoint_path,
 };
-use armlab_core::{
-    IkSolver, MotionError, SINGULARITY_THRESHOLD, Setting, preset, tool_pose,
-};
+use armlab_core::{IkSolver, MotionError, SINGULARITY_THRESHOLD, Setting, preset, tool_pose};
+use armlab_text::Lang;
 use nalgebra::{IsometryMatrix3, Matrix3, Rotation3, Translation3, Vector3};
 
 fn pose_diff(a: &IsometryMatrix3<f64>, b: &IsometryMatrix3<f64>) -> (f64, f64) {

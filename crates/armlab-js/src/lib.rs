@@ -76,7 +76,7 @@ pub fn workspace_benchmark(samples: u32, repeats: u32) -> String {
 }
 
 /// A URDF text (one serial chain) as an ArmLab robot file (JSON): a standard DH table
-/// with base and tool transforms, in metres (docs/kinematics.md §14.2). Feature `urdf`.
+/// with base and tool transforms, in metres (docs/kinematics.md §16.2). Feature `urdf`.
 #[cfg(feature = "urdf")]
 #[wasm_bindgen]
 pub fn urdf_to_robot(urdf: &str) -> Result<String, JsError> {
@@ -85,7 +85,7 @@ pub fn urdf_to_robot(urdf: &str) -> Result<String, JsError> {
         .map_err(|e| JsError::new(&e.to_string()))
 }
 
-/// An ArmLab robot file (JSON) as URDF text, in metres (docs/kinematics.md §14.1).
+/// An ArmLab robot file (JSON) as URDF text, in metres (docs/kinematics.md §16.1).
 /// Feature `urdf`.
 #[cfg(feature = "urdf")]
 #[wasm_bindgen]

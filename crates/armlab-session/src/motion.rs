@@ -1,4 +1,4 @@
-//! The motion lab's link fields (issue 14; the README's link format):
+//! The motion lab's link fields (docs/link-format.md):
 //!
 //! - `move=on|off`: the arm drives to each IK answer with the controller;
 //! - `ctrl=onoff|p|pd|pid|trapezoidal|cubic|quintic` and `gains=`: the dead band (on/off),
@@ -12,8 +12,9 @@
 //!   Euler angles in radians).
 //!
 //! Every field is optional; a link writes only what differs from the defaults, so a link
-//! without the motion lab reads as before. Values go through the core's own checks
-//! ([`MotionSettings::check`], [`KeepOut::new`]): a bad one is a typed [`MotionLinkError`].
+//! that leaves the motion lab alone carries none of these fields. Values go through the
+//! core's own checks ([`MotionSettings::check`], [`KeepOut::new`]): a bad one is a typed
+//! [`MotionLinkError`].
 //! A bad `path=` or waypoint is left out with its error in [`MotionPatch::dropped`] and
 //! the rest of the link applies.
 

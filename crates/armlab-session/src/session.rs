@@ -1,7 +1,7 @@
 //! What a link carries: the robot (a preset id or a whole edited table), the joint vector,
 //! the target pose and the IK mode. Written as a URL hash and stored as the last session.
 //!
-//! Format (documented in the README): `#robot=ur10&q=0,-1.2,...&target=x,y,z,rx,ry,rz&task=full&method=dls`
+//! Format (documented in docs/link-format.md): `#robot=ur10&q=0,-1.2,...&target=x,y,z,rx,ry,rz&task=full&method=dls`
 //! - `robot`: a preset id, or `custom` with `dh=` the robot file's JSON, percent-encoded;
 //! - `q`: joint values in the core's units (radians, the robot's length unit);
 //! - `target`: position in the robot's length unit and Z-Y-X Euler angles α, β, γ in

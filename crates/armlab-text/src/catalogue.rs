@@ -463,7 +463,7 @@ catalogue! {
     SettingPathSteps: "the number of path steps" / "polun askelten määrä",
     SettingRecordLength: "the record's length" / "tallenteen pituus",
     IkTargetTooFar: "The target is {0} from the base, farther than {1}, the most ArmLab accepts (in the robot's length unit)." / "Kohde on {0} päässä kannasta, kauempana kuin {1}, suurin ArmLabin hyväksymä etäisyys (robotin pituusyksikössä).",
-    // --- The Motion panel (issue 14) ----------------------------------------------------
+    // --- The Motion panel -----------------------------------------------------------------
     PanelMotion: "Motion" / "Liike",
     MotionMove: "Move: drive to the IK answer" / "Liiku: aja IK-ratkaisuun",
     MotionMoveHint: "On: dragging the target or Solve makes the arm drive to the answer with the controller below, 1 ms simulation steps, instead of jumping there" / "Päällä: kohteen vetäminen tai Ratkaise saa käsivarren ajamaan ratkaisuun alla olevalla säätimellä 1 ms:n simulointiaskelin sen sijaan, että se hyppäisi sinne",
@@ -522,7 +522,7 @@ catalogue! {
     MotionPlotError: "error e against t ({0} to {1})" / "virhe e ajan funktiona ({0}…{1})",
     MotionPlotDeadBand: "{0}, dead band ±{1} shaded" / "{0}, kuollut alue ±{1} varjostettu",
     MotionPlotDistance: "tool to target against t (up to {0} {1})" / "työkalun etäisyys kohteesta ajan funktiona (enintään {0} {1})",
-    // --- The DH-table exercise and predict-then-reveal (issue 13, items 3, 5, 6) ----------
+    // --- The DH-table exercise and predict-then-reveal -------------------------------------
     LinkUnknownExercise: "the link's exercise \"{0}\" is neither a preset id nor mystery- and a whole number" / "linkin harjoitus \"{0}\" ei ole esiasetuksen tunnus eikä mystery- ja kokonaisluku",
     LinkExerciseWithRobot: "the link names an exercise and also a robot or a table; an exercise's link names only the exercise" / "linkissä on harjoitus ja lisäksi robotti tai taulukko; harjoituksen linkissä on vain harjoitus",
     LinkBadHidden: "the link's hide has \"{0}\", which is not a matrix (A2, T3, Tn), an entry (T3.14: row 1, column 4) or a Jacobian column (J4)" / "linkin kentässä hide on \"{0}\", joka ei ole matriisi (A2, T3, Tn), alkio (T3.14: rivi 1, sarake 4) eikä Jacobin sarake (J4)",

@@ -1,11 +1,11 @@
 //! The one catalogue of user-facing text, in English and Finnish.
 //!
-//! Every sentence the app shows, and the sentences of the core's typed errors
-//! ([`words`]), come from here: a [`Key`]
-//! names a text, and each language's module answers every key (the `match` in `en.rs` and
-//! `fi.rs` is exhaustive, so both catalogues have the same keys by construction). Texts with
-//! values carry numbered places, `{0}`, `{1}`, …, filled by [`fill`]. The JSON API keeps to
-//! English.
+//! Every sentence the app shows, and the sentences of the core's typed errors ([`words`]),
+//! come from here: a [`Key`]
+//! names a text, and `catalogue.rs` gives every key its English and Finnish text side by
+//! side (one macro writes both languages' exhaustive `match`, so both have the same keys by
+//! construction). Texts with values carry numbered places, `{0}`, `{1}`, …, filled by
+//! [`fill`]. The JSON API keeps to English.
 
 mod catalogue;
 pub mod echo;

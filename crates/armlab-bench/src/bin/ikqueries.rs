@@ -1,4 +1,4 @@
-//! A million IK queries (issue 15, item 6): random and degenerate queries over every
+//! A million IK queries: random and degenerate queries over every
 //! preset and a set of degenerate arms (zero-length links, coincident axes, one joint,
 //! 64 joints, prismatic joints only, huge lengths), every method and every task. Each
 //! call runs under `catch_unwind`; the report counts panics, NaN or infinity in any

@@ -158,7 +158,7 @@ impl Chain {
     #[cfg_attr(not(all(target_arch = "wasm32", feature = "small")), inline(always))]
     pub fn update(&mut self, q: &[f64]) {
         // Every joint's sine and cosine first, in a loop of independent work (the chain
-        // below is one long dependency; the sines no longer wait in it), two joints at a
+        // below is one long dependency, and the sines do not wait in it), two joints at a
         // time in one vector register.
         for ((link, &qi), sc) in self.links.iter().zip(q).zip(self.sc.iter_mut()) {
             *sc = if link.prismatic {

@@ -93,7 +93,7 @@ fn asin_over_sin(s2: f64) -> f64 {
 }
 
 /// `atan2(s, c) / s` for `s > 0`: below 0.05 rad a polynomial (the late iterations of a
-/// solve, where the library's atan2 was a tenth of the time), [`angles::atan2`] above
+/// solve, where the library's atan2 would take a tenth of the time), [`angles::atan2`] above
 /// (the library's natively; in the core's wasm the polynomial one, within 2 ulp, as the
 /// library's is software there).
 ///
@@ -182,8 +182,8 @@ struct Outcome {
 }
 
 // Damped least squares: λ² = μ·(‖e‖ + DLS_FLOOR), μ adapted in [DLS_MU_MIN, DLS_MU_MAX]
-// (docs/kinematics.md §8.3: the damping in proportion to ‖e‖, not to ½‖e‖², took the
-// UR10's median from 9 to 8 iterations).
+// (docs/kinematics.md §8.3: with the damping in proportion to ‖e‖, not to ½‖e‖², the
+// UR10's median is 8 iterations, not 9; docs/benchmarks.md).
 const DLS_FLOOR: f64 = 1e-6;
 const DLS_MU_START: f64 = 0.15;
 const DLS_MU_MIN: f64 = 1e-3;
@@ -194,18 +194,18 @@ const DLS_MU_UP: f64 = 10.0;
 const DLS_STATIONARY: f64 = 1e-9;
 /// The linear rows of the error and the Jacobian are divided by reach / LINEAR_WEIGHT:
 /// a position error of a quarter of the reach weighs as one radian. With the whole reach
-/// (weight 1) the orientation dominated the first steps and attempts stalled more often
-/// with the orientation met and the position not (docs/kinematics.md §8.3).
+/// (weight 1) the orientation dominates the first steps and attempts stall more often
+/// with the orientation met and the position not (docs/kinematics.md §8).
 const LINEAR_WEIGHT: f64 = 4.0;
-/// An attempt that does not halve its cost every this many iterations is restarted (8
-/// before the joint locking of §8.9; 6 cut the Panda's p99 by about a tenth and the
-/// UR10's too, success unchanged, in the benchmark of README "Benchmarks").
+/// An attempt that does not halve its cost every this many iterations is restarted. With
+/// the joint locking of §8.9, 6 gives the UR10 and the Panda a p99 about a tenth lower
+/// than 8, with the same success (docs/benchmarks.md).
 const SLOW_WINDOW: usize = 6;
 /// While restarts remain (the first half of them), an attempt whose cost fell by less
 /// than a tenth over its last two iterations (a stall: steps refused, or too small to
 /// matter) is ended at once rather than at the end of its window: a fresh start is the
-/// better bet (docs/kinematics.md §8.5; the UR10's p99 in iterations 61 → 46, the Panda's
-/// 76 → 62, medians unchanged, over 100 000 targets).
+/// better bet (docs/kinematics.md §8.5: over 100 000 targets the p99 of iterations per
+/// solve is 46 for the UR10 and 62 for the Panda with it, 61 and 76 without).
 const STALL_ITERATIONS: usize = 2;
 /// The fraction of its cost that an attempt must lose over [`STALL_ITERATIONS`].
 const STALL_FACTOR: f64 = 0.9;
@@ -476,7 +476,7 @@ impl Workspace {
     /// when the system is not positive definite. A joint that cannot move is locked
     /// (docs/kinematics.md §8.9): on a limit it cannot wrap past, with the gradient
     /// `J_iᵀ·e` pointing outward. Its column leaves `J·Jᵀ` (a rank-one downdate) and its
-    /// step is zero, so the other joints no longer count on a motion it never makes.
+    /// step is zero, so the other joints do not count on a motion it never makes.
     fn damped_step(&mut self, ctx: &Ctx, lambda2: f64, e: &Vector6<f64>) -> Option<f64> {
         let mut reduced: Option<Matrix6<f64>> = None;
         for (((lock, joint), &q), c) in self
