@@ -120,7 +120,7 @@ build_web() {
        trunk build --release --offline "$@")
 }
 
-# The URDF module: the JS API built with features js,urdf (no GUI) as a second wasm module
+# The URDF module: the JS package (armlab-js) built with its feature urdf (no GUI) as a second wasm module
 # in dist/urdf/, which the page imports only when a URDF file is opened or saved (the module
 # is ~225 kB gzip, urdf-rs and its XML crates included: more than the first load's budget
 # leaves). Trunk runs this as a build hook (Trunk.toml), so `trunk build` and `trunk serve`

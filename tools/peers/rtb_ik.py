@@ -1,7 +1,7 @@
 """The peer benchmark: the Robotics Toolbox for Python's C++ Levenberg-Marquardt IK
 (`ETS.ik_LM`) beside ArmLab's `ikbench`, on the same protocol and the same targets.
 
-Protocol (as src/bench/ik.rs): random joint vectors within the UR10's limits drawn with
+Protocol (as crates/armlab-bench/src/ik.rs): random joint vectors within the UR10's limits drawn with
 ikbench's SplitMix64 and seed (so both solve exactly the same targets), target = FK(q),
 a full-pose solve from the same seed point (the midpoint of the limits: q = 0), success =
 position error <= 1e-5 m and orientation error <= 1e-5 rad, checked by an FK written here
@@ -40,11 +40,11 @@ UR10_MDH = [
     (90.0, 0.0, 0.0922),
 ]
 SUCCESS_TOLERANCE = 1e-5  # m and rad, as ikbench
-IKBENCH_SEED = 20_240_601  # BenchConfig::default().seed in src/bench/ik.rs
+IKBENCH_SEED = 20_240_601  # BenchConfig::default().seed in crates/armlab-bench/src/ik.rs
 
 
 class SplitMix64:
-    """src/kinematics/rng.rs, bit for bit: the same joint vectors as ikbench."""
+    """crates/armlab-core/src/rng.rs, bit for bit: the same joint vectors as ikbench."""
 
     MASK = (1 << 64) - 1
 
@@ -139,7 +139,7 @@ def check_models(ets, limits):
 
 
 def percentile(sorted_values, f):
-    """The percentile as src/bench/stats.rs takes it: the sample at round((n − 1)·f)."""
+    """The percentile as crates/armlab-bench/src/stats.rs takes it: the sample at round((n − 1)·f)."""
     if not sorted_values:
         return 0.0
     last = len(sorted_values) - 1

@@ -4,8 +4,8 @@
 //! the caller's (`Instant` in the native binaries, `performance.now()` through the JS
 //! API), passed in as `now`.
 //!
-//! The module has no GUI or web dependency and builds with `--no-default-features`; the
-//! page (feature `app`) never calls it, so it is not in the page's wasm.
+//! The crate has no GUI or web dependency (but `framebench`, feature `frame`); the
+//! page never calls it, so it is not in the page's wasm.
 
 pub mod fuzz;
 pub mod ik;

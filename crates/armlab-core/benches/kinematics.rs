@@ -1,6 +1,6 @@
 //! Benchmarks of what the app calls every frame: forward kinematics (every A_i and T_0i,
 //! not a tool-only shortcut) and the geometric Jacobian, for the UR10 and the Panda.
-//! Run: `cargo bench --no-default-features --bench kinematics`.
+//! Run: `cargo bench -p armlab-core --bench kinematics`.
 
 use std::hint::black_box;
 

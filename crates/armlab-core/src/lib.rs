@@ -1,5 +1,6 @@
 //! The kinematics core: pure maths on nalgebra `f64`. No GUI, web or clock dependency:
-//! it builds with `--no-default-features`, natively and for `wasm32-unknown-unknown`.
+//! it builds natively and for `wasm32-unknown-unknown`. Its errors are data; the
+//! sentences people read are `armlab_text`'s.
 //!
 //! Data flow: [`Robot`] (a DH table) → [`ForwardKinematics`] (every A_i and T_0i) →
 //! [`geometric_jacobian`] → measures and IK.

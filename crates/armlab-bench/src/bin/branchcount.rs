@@ -1,7 +1,7 @@
 //! Closed-form branch counts per robot over random reachable targets, as JSON
 //! (docs/kinematics.md §12).
 //!
-//! `cargo run --release --no-default-features --bin branchcount [targets]`
+//! `cargo run --release -p armlab-bench --bin branchcount [targets]`
 
 use armlab_bench::workspace::branch_counts;
 

@@ -6,7 +6,7 @@
 //! time reported, since a loaded machine's wall time is mostly waiting). With a corpus path, writes the inputs that gave a new kind of outcome (the
 //! first words of an error sentence, or success) and every panicking input as JSON.
 //!
-//! `cargo run --release --no-default-features --bin fuzz [executions] [seed] [corpus.json]`
+//! `cargo run --release -p armlab-bench --bin fuzz [executions] [seed] [corpus.json]`
 
 use std::collections::BTreeMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};

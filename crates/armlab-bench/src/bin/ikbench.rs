@@ -1,6 +1,6 @@
 //! The IK benchmark (TRAC-IK protocol) natively: prints the report as JSON.
 //!
-//! `cargo run --release --no-default-features --bin ikbench [samples] [budget] [seed table entries]`
+//! `cargo run --release -p armlab-bench --bin ikbench [samples] [budget] [seed table entries]`
 
 use std::time::Instant;
 

@@ -6,7 +6,7 @@
 //! (target = FK(q), checked by a separate FK call) per robot, method and task, and the
 //! slowest query. Prints one JSON report.
 //!
-//! `cargo run --release --no-default-features --bin ikqueries [queries] [seed]`
+//! `cargo run --release -p armlab-bench --bin ikqueries [queries] [seed]`
 
 use std::collections::BTreeMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};

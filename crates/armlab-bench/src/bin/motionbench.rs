@@ -1,7 +1,7 @@
 //! The motion lab's costs natively, printed as JSON: one simulation step per controller
 //! and the collision check of one pose, for the UR10 and the Panda.
 //!
-//! `cargo run --release --no-default-features --bin motionbench [steps] [poses]`
+//! `cargo run --release -p armlab-bench --bin motionbench [steps] [poses]`
 
 use std::hint::black_box;
 use std::time::Instant;

@@ -1,7 +1,7 @@
 //! The workspace benchmark natively: prints JSON (docs/kinematics.md §12). UR10,
 //! forward kinematics + manipulability by the determinant, one thread; σ_min apart.
 //!
-//! `cargo run --release --no-default-features --bin workspacebench [samples] [repeats]`
+//! `cargo run --release -p armlab-bench --bin workspacebench [samples] [repeats]`
 
 use std::time::Instant;
 
