@@ -277,7 +277,7 @@ fn malformed_files_each_give_their_own_typed_error() {
     for (what, text, is_expected) in &cases {
         let err = robot_from_json(text).expect_err(what);
         assert!(is_expected(&err), "{what}: unexpected error {err:?}");
-        let sentence = err.to_string();
+        let sentence = err.sentence(armlab_text::Lang::En);
         assert!(
             sentence.ends_with('.'),
             "{what}: '{sentence}' is a sentence"
@@ -289,7 +289,10 @@ fn malformed_files_each_give_their_own_typed_error() {
     }
     // The messages name the joint and the field, in words.
     let err = robot_from_json(&cases[7].1).unwrap_err();
-    assert_eq!(err.to_string(), "In joint 2, the field \"d\" is missing.");
+    assert_eq!(
+        err.sentence(armlab_text::Lang::En),
+        "In joint 2, the field \"d\" is missing."
+    );
 }
 
 #[test]
@@ -457,7 +460,7 @@ fn keep_out_boxes_load_round_trip_and_bad_ones_get_typed_errors() {
     ];
     for (what, text, sentence) in &cases {
         let err = robot_from_json(text).expect_err(what);
-        assert_eq!(&err.to_string(), sentence, "{what}");
+        assert_eq!(&err.sentence(armlab_text::Lang::En), sentence, "{what}");
     }
     let err = robot_from_json(&cases[0].1).unwrap_err();
     assert!(matches!(

@@ -179,7 +179,7 @@ fn a_pose_that_overflows_is_a_typed_error_never_an_svd_input() {
         Some(RobotError::PoseNotFinite)
     );
     assert_eq!(
-        RobotError::PoseNotFinite.to_string(),
+        RobotError::PoseNotFinite.sentence(armlab_text::Lang::En),
         "At these joint values the tool pose is not a finite number (a value overflows): nothing can be computed from it."
     );
     // IK on it ends with the same error, after a bounded number of iterations.
