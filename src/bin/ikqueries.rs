@@ -182,25 +182,7 @@ fn main() {
         let robot = &robots[query.robot].1;
         let t0 = Instant::now();
         let outcome = catch_unwind(AssertUnwindSafe(|| {
-            if query.drag {
-                solver.drag_step(
-                    robot,
-                    &query.seed,
-                    &query.target,
-                    query.task,
-                    query.method,
-                    &IkSettings::drag(),
-                )
-            } else {
-                solver.solve(
-                    robot,
-                    &query.target,
-                    query.task,
-                    &query.seed,
-                    query.method,
-                    &settings,
-                )
-            }
+            query.solve(&mut solver, robot, &settings)
         }));
         tally.add(&query, &robots, t0.elapsed().as_secs_f64(), outcome);
     }
@@ -281,6 +263,34 @@ impl Query {
             target,
             seed,
             drag,
+        }
+    }
+
+    /// Solves the query: a drag step with the drag settings, or a solve with `settings`.
+    fn solve(
+        &self,
+        solver: &mut IkSolver,
+        robot: &Robot,
+        settings: &IkSettings,
+    ) -> Result<IkResult, IkError> {
+        if self.drag {
+            solver.drag_step(
+                robot,
+                &self.seed,
+                &self.target,
+                self.task,
+                self.method,
+                &IkSettings::drag(),
+            )
+        } else {
+            solver.solve(
+                robot,
+                &self.target,
+                self.task,
+                &self.seed,
+                self.method,
+                settings,
+            )
         }
     }
 
