@@ -105,8 +105,34 @@ fn base_and_tool_transforms_apply() {
 
 #[test]
 fn malformed_files_each_give_their_own_typed_error() {
-    let many_joints = vec![GOOD_JOINT; 65].join(",");
-    let cases: Vec<Case> = vec![
+    let mut cases = malformed_robot_entries();
+    cases.extend(malformed_joint_fields());
+    cases.extend(bad_values_and_sizes());
+    let mut seen = std::collections::HashSet::new();
+    for (what, text, is_expected) in &cases {
+        let err = robot_from_json(text).expect_err(what);
+        assert!(is_expected(&err), "{what}: unexpected error {err:?}");
+        let sentence = err.sentence(armlab_text::Lang::En);
+        assert!(
+            sentence.ends_with('.'),
+            "{what}: '{sentence}' is a sentence"
+        );
+        assert!(
+            seen.insert(sentence.clone()),
+            "{what}: message repeats another case: {sentence}"
+        );
+    }
+    // The messages name the joint and the field, in words.
+    let err = robot_from_json(&cases[7].1).unwrap_err();
+    assert_eq!(
+        err.sentence(armlab_text::Lang::En),
+        "In joint 2, the field \"d\" is missing."
+    );
+}
+
+/// Malformed files: not JSON, not a robot, its own fields wrong or missing, no joints.
+fn malformed_robot_entries() -> Vec<Case> {
+    vec![
         ("not JSON", "{ name: ".to_string(), |e| {
             matches!(e, RobotError::Syntax { line: 1, .. })
         }),
@@ -149,6 +175,12 @@ fn malformed_files_each_give_their_own_typed_error() {
             robot_text("", "").replace("[  ]", "[]"),
             |e| matches!(e, RobotError::EmptyChain),
         ),
+    ]
+}
+
+/// Malformed joints: an unknown type, a field missing, misspelt, text or infinite.
+fn malformed_joint_fields() -> Vec<Case> {
+    vec![
         (
             "unknown joint type",
             robot_text(
@@ -208,6 +240,14 @@ fn malformed_files_each_give_their_own_typed_error() {
             ),
             |e| matches!(e, RobotError::Syntax { .. } | RobotError::NotFinite { .. }),
         ),
+    ]
+}
+
+/// Well-formed files with bad values: reversed limits, no stroke, an absurd length, too
+/// many joints, a negative part size, a tool that is not three numbers.
+fn bad_values_and_sizes() -> Vec<Case> {
+    let many_joints = vec![GOOD_JOINT; 65].join(",");
+    vec![
         (
             "reversed limits",
             robot_text(
@@ -272,27 +312,7 @@ fn malformed_files_each_give_their_own_typed_error() {
                 )
             },
         ),
-    ];
-    let mut seen = std::collections::HashSet::new();
-    for (what, text, is_expected) in &cases {
-        let err = robot_from_json(text).expect_err(what);
-        assert!(is_expected(&err), "{what}: unexpected error {err:?}");
-        let sentence = err.sentence(armlab_text::Lang::En);
-        assert!(
-            sentence.ends_with('.'),
-            "{what}: '{sentence}' is a sentence"
-        );
-        assert!(
-            seen.insert(sentence.clone()),
-            "{what}: message repeats another case: {sentence}"
-        );
-    }
-    // The messages name the joint and the field, in words.
-    let err = robot_from_json(&cases[7].1).unwrap_err();
-    assert_eq!(
-        err.sentence(armlab_text::Lang::En),
-        "In joint 2, the field \"d\" is missing."
-    );
+    ]
 }
 
 #[test]
@@ -370,8 +390,46 @@ fn json_api_answers_fk_and_jacobian_and_names_errors() {
 /// the box and the field, in English and Finnish.
 #[test]
 fn keep_out_boxes_load_round_trip_and_bad_ones_get_typed_errors() {
+    keep_out_boxes_load_and_round_trip();
+    let cases = bad_keep_out_files();
+    for (what, text, sentence) in &cases {
+        let err = robot_from_json(text).expect_err(what);
+        assert_eq!(&err.sentence(armlab_text::Lang::En), sentence, "{what}");
+    }
+    let err = robot_from_json(&cases[0].1).unwrap_err();
+    assert!(matches!(
+        err,
+        RobotError::NegativeSize {
+            place: Place::KeepOut(2),
+            field: Field::Size,
+            ..
+        }
+    ));
+    assert_eq!(
+        err.sentence(armlab_text::Lang::Fi),
+        "Kieltoalueessa 2 kentässä \"size\" on -5: koko ei voi olla negatiivinen."
+    );
+    let err = robot_from_json(&with_second_box(
+        r#"{ "centre": [0, 0, 0], "size": [1, 1, 1], "colour": "red" }"#,
+    ))
+    .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            RobotError::UnknownField {
+                place: Place::KeepOut(2),
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+}
+
+/// Two keep-out boxes load as written and round-trip; a file without them has none and
+/// writes none.
+fn keep_out_boxes_load_and_round_trip() {
     let boxes = r#", "keep_out": [ { "centre": [900, 0, 400], "size": [200, 400, 800] }, { "centre": [-1, 2.5, 3], "size": [1, 1, 1] } ]"#;
-    let robot = robot_from_json(&robot_text(boxes, GOOD_JOINT)).unwrap();
+    let robot = robot_from_json(&robot_text(boxes, GOOD_JOINT)).expect("a valid robot file");
     assert_eq!(robot.keep_outs.len(), 2);
     assert_eq!(
         robot.keep_outs[0].centre,
@@ -385,28 +443,38 @@ fn keep_out_boxes_load_round_trip_and_bad_ones_get_typed_errors() {
         robot.keep_outs[1].centre,
         nalgebra::Point3::new(-1.0, 2.5, 3.0)
     );
-    assert_eq!(robot_from_json(&robot_to_json(&robot)).unwrap(), robot);
+    assert_eq!(
+        robot_from_json(&robot_to_json(&robot)).expect("a valid robot file"),
+        robot
+    );
     assert!(
         robot_from_json(&robot_text("", GOOD_JOINT))
-            .unwrap()
+            .expect("a valid robot file")
             .keep_outs
             .is_empty()
     );
     assert!(
-        !robot_to_json(&robot_from_json(&robot_text("", GOOD_JOINT)).unwrap()).contains("keep_out")
+        !robot_to_json(&robot_from_json(&robot_text("", GOOD_JOINT)).expect("a valid robot file"))
+            .contains("keep_out")
     );
+}
 
-    let one = |b: &str| {
-        robot_text(
-            &format!(r#", "keep_out": [ {{ "centre": [0, 0, 500], "size": [1, 1, 1] }}, {b} ]"#),
-            GOOD_JOINT,
-        )
-    };
+/// A robot file with a good keep-out box and `b` as the second.
+fn with_second_box(b: &str) -> String {
+    robot_text(
+        &format!(r#", "keep_out": [ {{ "centre": [0, 0, 500], "size": [1, 1, 1] }}, {b} ]"#),
+        GOOD_JOINT,
+    )
+}
+
+/// Files with a bad keep-out list: what is wrong, the file, and its English sentence.
+fn bad_keep_out_files() -> Vec<(&'static str, String, &'static str)> {
+    let one = with_second_box;
     let many = format!(
         r#", "keep_out": [{}]"#,
         vec![r#"{"centre": [0, 0, 0], "size": [1, 1, 1]}"#; 65].join(",")
     );
-    let cases: Vec<(&str, String, &str)> = vec![
+    let cases: Vec<(&'static str, String, &'static str)> = vec![
         (
             "negative size",
             one(r#"{ "centre": [0, 0, 0], "size": [200, -5, 800] }"#),
@@ -458,35 +526,5 @@ fn keep_out_boxes_load_round_trip_and_bad_ones_get_typed_errors() {
             "In the robot, the field \"keep_out\" is 65, larger in size than the limit 64.",
         ),
     ];
-    for (what, text, sentence) in &cases {
-        let err = robot_from_json(text).expect_err(what);
-        assert_eq!(&err.sentence(armlab_text::Lang::En), sentence, "{what}");
-    }
-    let err = robot_from_json(&cases[0].1).unwrap_err();
-    assert!(matches!(
-        err,
-        RobotError::NegativeSize {
-            place: Place::KeepOut(2),
-            field: Field::Size,
-            ..
-        }
-    ));
-    assert_eq!(
-        err.sentence(armlab_text::Lang::Fi),
-        "Kieltoalueessa 2 kentässä \"size\" on -5: koko ei voi olla negatiivinen."
-    );
-    let err = robot_from_json(&one(
-        r#"{ "centre": [0, 0, 0], "size": [1, 1, 1], "colour": "red" }"#,
-    ))
-    .unwrap_err();
-    assert!(
-        matches!(
-            err,
-            RobotError::UnknownField {
-                place: Place::KeepOut(2),
-                ..
-            }
-        ),
-        "{err:?}"
-    );
+    cases
 }

@@ -9,7 +9,7 @@ use super::robot::JointLimits;
 /// `x` wrapped to the half-open interval (−π, π].
 ///
 /// ```
-/// use armlab::kinematics::angles::wrap_to_pi;
+/// use armlab_core::angles::wrap_to_pi;
 /// use std::f64::consts::PI;
 /// assert_eq!(wrap_to_pi(-PI), PI);
 /// assert!((wrap_to_pi(3.0 * PI / 2.0) + PI / 2.0).abs() < 1e-12);
@@ -217,7 +217,7 @@ pub(crate) use constant_table;
 /// series to u¹⁵ (evaluated in Estrin's order) is exact to 10⁻¹⁸; then the octant (π/2 − ·, π − ·) and y's sign.
 ///
 /// ```
-/// use armlab::kinematics::angles::atan2_poly;
+/// use armlab_core::angles::atan2_poly;
 /// assert!((atan2_poly(1.0, -2.0) - 1f64.atan2(-2.0)).abs() < 1e-15);
 /// ```
 pub fn atan2_poly(y: f64, x: f64) -> f64 {
@@ -327,7 +327,7 @@ fn kernels(r: f64) -> (f64, f64) {
 /// on [−π/4, π/4] (the coefficients of Sun's fdlibm kernels) and the quadrant's signs.
 ///
 /// ```
-/// use armlab::kinematics::angles::sin_cos;
+/// use armlab_core::angles::sin_cos;
 /// let (s, c) = sin_cos(1.0);
 /// assert!((s - 1f64.sin()).abs() < 1e-15 && (c - 1f64.cos()).abs() < 1e-15);
 /// ```

@@ -239,79 +239,108 @@ fn first_axis_disagreement(
 /// One single edit of a table, and the diagnosis it stands for.
 fn single_edits(student: &Robot, joint: usize) -> Vec<(Robot, Diagnosis)> {
     let n = student.dof();
-    let mut out = Vec::new();
+    let mut edits = Edits {
+        student,
+        at: if joint < n {
+            Where::Joint(joint + 1)
+        } else {
+            Where::Tool
+        },
+        out: Vec::new(),
+    };
     // Rows nearest the disagreeing joint first.
     let mut rows: Vec<usize> = (0..n).collect();
     rows.sort_by_key(|&k| (k as i64 - joint as i64).abs());
     for k in rows {
-        let row = student.joints[k].dh;
-        let mut edit = |f: &dyn Fn(&mut [Joint]), d: Diagnosis| {
-            let mut r = student.clone();
-            f(&mut r.joints);
-            out.push((r, d));
-        };
-        let j = if joint < n {
-            Where::Joint(joint + 1)
-        } else {
-            Where::Tool
-        };
+        edits.angles(k);
+        edits.lengths_moved(k);
+        edits.length_signs(k);
+    }
+    edits.out
+}
+
+/// The single edits of [`single_edits`] as they are made: each a copy of the student's
+/// table with one change, and its diagnosis at `at`.
+struct Edits<'a> {
+    student: &'a Robot,
+    at: Where,
+    out: Vec<(Robot, Diagnosis)>,
+}
+
+impl Edits<'_> {
+    /// Adds the student's table changed by `f`, diagnosed as `d`.
+    fn edit(&mut self, f: &dyn Fn(&mut [Joint]), d: Diagnosis) {
+        let mut r = self.student.clone();
+        f(&mut r.joints);
+        self.out.push((r, d));
+    }
+
+    /// Row `k`'s twist with the other sign (unless 0 or π), and its θ with a missing
+    /// offset of ±90° or 180°.
+    fn angles(&mut self, k: usize) {
+        let row = self.student.joints[k].dh;
+        let at = self.at;
         if row.alpha.abs() > 1e-12 && (row.alpha.abs() - PI).abs() > 1e-12 {
-            edit(
+            self.edit(
                 &|js| js[k].dh.alpha = -js[k].dh.alpha,
-                Diagnosis::TwistSign { at: j, row: k + 1 },
+                Diagnosis::TwistSign { at, row: k + 1 },
             );
         }
         for offset in [FRAC_PI_2, -FRAC_PI_2, PI] {
-            edit(
+            self.edit(
                 &|js| js[k].dh.theta += offset,
                 Diagnosis::MissingOffset {
-                    at: j,
+                    at,
                     row: k + 1,
                     offset,
                 },
             );
         }
-        let field_pairs = [
-            (LengthField::A, LengthField::A),
-            (LengthField::D, LengthField::D),
-        ];
-        if k + 1 < n {
-            for (from, to) in field_pairs {
+    }
+
+    /// A length of row `k` moved where it is zero: to the same field of the next row (or
+    /// from it), then to the other field of row `k`.
+    fn lengths_moved(&mut self, k: usize) {
+        let student = self.student;
+        let at = self.at;
+        if k + 1 < student.dof() {
+            for field in [LengthField::A, LengthField::D] {
                 for (src, dst) in [(k, k + 1), (k + 1, k)] {
-                    if get(&student.joints[src].dh, from) != 0.0
-                        && get(&student.joints[dst].dh, to) == 0.0
+                    if get(&student.joints[src].dh, field) != 0.0
+                        && get(&student.joints[dst].dh, field) == 0.0
                     {
-                        edit(
+                        self.edit(
                             &|js| {
-                                let v = get(&js[src].dh, from);
-                                set(&mut js[src].dh, from, 0.0);
-                                set(&mut js[dst].dh, to, v);
+                                let v = get(&js[src].dh, field);
+                                set(&mut js[src].dh, field, 0.0);
+                                set(&mut js[dst].dh, field, v);
                             },
                             Diagnosis::LengthInWrongRow {
-                                at: j,
+                                at,
                                 row: src + 1,
-                                field: from,
+                                field,
                                 to_row: dst + 1,
-                                to_field: to,
+                                to_field: field,
                             },
                         );
                     }
                 }
             }
         }
+        let row = student.joints[k].dh;
         for (from, to) in [
             (LengthField::A, LengthField::D),
             (LengthField::D, LengthField::A),
         ] {
             if get(&row, from) != 0.0 && get(&row, to) == 0.0 {
-                edit(
+                self.edit(
                     &|js| {
                         let v = get(&js[k].dh, from);
                         set(&mut js[k].dh, from, 0.0);
                         set(&mut js[k].dh, to, v);
                     },
                     Diagnosis::LengthInWrongRow {
-                        at: j,
+                        at,
                         row: k + 1,
                         field: from,
                         to_row: k + 1,
@@ -320,15 +349,21 @@ fn single_edits(student: &Robot, joint: usize) -> Vec<(Robot, Diagnosis)> {
                 );
             }
         }
+    }
+
+    /// Each non-zero length of row `k` with the other sign.
+    fn length_signs(&mut self, k: usize) {
+        let row = self.student.joints[k].dh;
+        let at = self.at;
         for field in [LengthField::A, LengthField::D] {
             if get(&row, field) != 0.0 {
-                edit(
+                self.edit(
                     &|js| {
                         let v = get(&js[k].dh, field);
                         set(&mut js[k].dh, field, -v);
                     },
                     Diagnosis::LengthSign {
-                        at: j,
+                        at,
                         row: k + 1,
                         field,
                     },
@@ -336,7 +371,6 @@ fn single_edits(student: &Robot, joint: usize) -> Vec<(Robot, Diagnosis)> {
             }
         }
     }
-    out
 }
 
 fn get(row: &DhRow, field: LengthField) -> f64 {

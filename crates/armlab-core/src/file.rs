@@ -146,51 +146,14 @@ fn joint_from_value(n: usize, value: &Value) -> Result<Joint, RobotError> {
         a: required(Field::A)?,
         alpha: required(Field::AlphaDeg)?.to_radians(),
     };
-    let (limits, home, max_speed, max_acceleration) = match kind {
-        JointKind::Revolute => {
-            for field in ["min", "max"] {
-                if obj.contains_key(field) {
-                    return Err(RobotError::UnknownField {
-                        place: place.clone(),
-                        field: field.to_string(),
-                        known: "a revolute joint's limits are \"min_deg\" and \"max_deg\"".into(),
-                    });
-                }
-            }
-            let min = number(obj, &place, Field::MinDeg)?.map(f64::to_radians);
-            let max = number(obj, &place, Field::MaxDeg)?.map(f64::to_radians);
-            let limits = JointLimits {
-                min: min.unwrap_or(JointLimits::FULL_TURN.min),
-                max: max.unwrap_or(JointLimits::FULL_TURN.max),
-            };
-            let home = number(obj, &place, Field::Home)?.map_or(0.0, f64::to_radians);
-            let speed = number(obj, &place, Field::MaxSpeed)?.map(f64::to_radians);
-            let acc = number(obj, &place, Field::MaxAcceleration)?.map(f64::to_radians);
-            (limits, home, speed, acc)
-        }
-        JointKind::Prismatic => {
-            for field in ["min_deg", "max_deg"] {
-                if obj.contains_key(field) {
-                    return Err(RobotError::UnknownField {
-                        place: place.clone(),
-                        field: field.to_string(),
-                        known:
-                            "a prismatic joint's limits are \"min\" and \"max\", in length units"
-                                .into(),
-                    });
-                }
-            }
-            let (Some(min), Some(max)) = (
-                number(obj, &place, Field::Min)?,
-                number(obj, &place, Field::Max)?,
-            ) else {
-                return Err(RobotError::PrismaticWithoutLimits { joint: n });
-            };
-            let home = number(obj, &place, Field::Home)?.unwrap_or(min);
-            let speed = number(obj, &place, Field::MaxSpeed)?;
-            let acc = number(obj, &place, Field::MaxAcceleration)?;
-            (JointLimits { min, max }, home, speed, acc)
-        }
+    let Motion {
+        limits,
+        home,
+        max_speed,
+        max_acceleration,
+    } = match kind {
+        JointKind::Revolute => revolute_motion(obj, &place)?,
+        JointKind::Prismatic => prismatic_motion(obj, &place, n)?,
     };
     let name = string(obj, &place, Field::Name)?.unwrap_or_else(|| format!("joint {n}"));
     let parts = PartSizes {
@@ -206,6 +169,76 @@ fn joint_from_value(n: usize, value: &Value) -> Result<Joint, RobotError> {
         max_acceleration,
         home,
         parts,
+    })
+}
+
+/// A joint's range of motion as read from its file entry.
+struct Motion {
+    limits: JointLimits,
+    home: f64,
+    max_speed: Option<f64>,
+    max_acceleration: Option<f64>,
+}
+
+/// A revolute joint's limits, home and speeds, in degrees in the file (a full turn
+/// without limits, home 0); "min" and "max" are refused, as they would be lengths.
+fn revolute_motion(obj: &Map<String, Value>, place: &Place) -> Result<Motion, RobotError> {
+    for field in ["min", "max"] {
+        if obj.contains_key(field) {
+            return Err(RobotError::UnknownField {
+                place: place.clone(),
+                field: field.to_string(),
+                known: "a revolute joint's limits are \"min_deg\" and \"max_deg\"".into(),
+            });
+        }
+    }
+    let min = number(obj, place, Field::MinDeg)?.map(f64::to_radians);
+    let max = number(obj, place, Field::MaxDeg)?.map(f64::to_radians);
+    let limits = JointLimits {
+        min: min.unwrap_or(JointLimits::FULL_TURN.min),
+        max: max.unwrap_or(JointLimits::FULL_TURN.max),
+    };
+    let home = number(obj, place, Field::Home)?.map_or(0.0, f64::to_radians);
+    let speed = number(obj, place, Field::MaxSpeed)?.map(f64::to_radians);
+    let acc = number(obj, place, Field::MaxAcceleration)?.map(f64::to_radians);
+    Ok(Motion {
+        limits,
+        home,
+        max_speed: speed,
+        max_acceleration: acc,
+    })
+}
+
+/// A prismatic joint `n`'s limits (required), home (the minimum when absent) and speeds,
+/// in length units; "min_deg" and "max_deg" are refused.
+fn prismatic_motion(
+    obj: &Map<String, Value>,
+    place: &Place,
+    n: usize,
+) -> Result<Motion, RobotError> {
+    for field in ["min_deg", "max_deg"] {
+        if obj.contains_key(field) {
+            return Err(RobotError::UnknownField {
+                place: place.clone(),
+                field: field.to_string(),
+                known: "a prismatic joint's limits are \"min\" and \"max\", in length units".into(),
+            });
+        }
+    }
+    let (Some(min), Some(max)) = (
+        number(obj, place, Field::Min)?,
+        number(obj, place, Field::Max)?,
+    ) else {
+        return Err(RobotError::PrismaticWithoutLimits { joint: n });
+    };
+    let home = number(obj, place, Field::Home)?.unwrap_or(min);
+    let speed = number(obj, place, Field::MaxSpeed)?;
+    let acc = number(obj, place, Field::MaxAcceleration)?;
+    Ok(Motion {
+        limits: JointLimits { min, max },
+        home,
+        max_speed: speed,
+        max_acceleration: acc,
     })
 }
 
@@ -260,52 +293,7 @@ fn transform_from_value(
 /// Writes a robot as the JSON text of a robot file (pretty-printed). Reading it back with
 /// [`robot_from_json`] gives the same robot up to rounding of degree conversions.
 pub fn robot_to_json(robot: &Robot) -> String {
-    let joints: Vec<Value> = robot
-        .joints
-        .iter()
-        .map(|j| {
-            let mut obj = Map::new();
-            obj.insert("name".into(), json!(j.name));
-            obj.insert("type".into(), json!(j.kind.as_str()));
-            obj.insert("theta_deg".into(), json!(tidy(j.dh.theta.to_degrees())));
-            obj.insert("d".into(), json!(j.dh.d));
-            obj.insert("a".into(), json!(j.dh.a));
-            obj.insert("alpha_deg".into(), json!(tidy(j.dh.alpha.to_degrees())));
-            match j.kind {
-                JointKind::Revolute => {
-                    obj.insert("min_deg".into(), json!(tidy(j.limits.min.to_degrees())));
-                    obj.insert("max_deg".into(), json!(tidy(j.limits.max.to_degrees())));
-                    obj.insert("home".into(), json!(tidy(j.home.to_degrees())));
-                    if let Some(s) = j.max_speed {
-                        obj.insert("max_speed".into(), json!(tidy(s.to_degrees())));
-                    }
-                    if let Some(a) = j.max_acceleration {
-                        obj.insert("max_acceleration".into(), json!(tidy(a.to_degrees())));
-                    }
-                }
-                JointKind::Prismatic => {
-                    obj.insert("min".into(), json!(j.limits.min));
-                    obj.insert("max".into(), json!(j.limits.max));
-                    obj.insert("home".into(), json!(j.home));
-                    if let Some(s) = j.max_speed {
-                        obj.insert("max_speed".into(), json!(s));
-                    }
-                    if let Some(a) = j.max_acceleration {
-                        obj.insert("max_acceleration".into(), json!(a));
-                    }
-                }
-            }
-            for (key, size) in [
-                ("housing_size", j.parts.housing),
-                ("link_size", j.parts.link),
-            ] {
-                if let Some(v) = size {
-                    obj.insert(key.into(), json!(v));
-                }
-            }
-            Value::Object(obj)
-        })
-        .collect();
+    let joints: Vec<Value> = robot.joints.iter().map(joint_to_value).collect();
     let mut root = Map::new();
     root.insert("format".into(), json!("armlab-robot/1"));
     root.insert("name".into(), json!(robot.name));
@@ -348,6 +336,50 @@ pub fn robot_to_json(robot: &Robot) -> String {
         }
     }
     serde_json::to_string_pretty(&Value::Object(root)).unwrap_or_default()
+}
+
+/// One joint's entry of a robot file: angles in degrees, lengths in the robot's unit.
+fn joint_to_value(j: &Joint) -> Value {
+    let mut obj = Map::new();
+    obj.insert("name".into(), json!(j.name));
+    obj.insert("type".into(), json!(j.kind.as_str()));
+    obj.insert("theta_deg".into(), json!(tidy(j.dh.theta.to_degrees())));
+    obj.insert("d".into(), json!(j.dh.d));
+    obj.insert("a".into(), json!(j.dh.a));
+    obj.insert("alpha_deg".into(), json!(tidy(j.dh.alpha.to_degrees())));
+    match j.kind {
+        JointKind::Revolute => {
+            obj.insert("min_deg".into(), json!(tidy(j.limits.min.to_degrees())));
+            obj.insert("max_deg".into(), json!(tidy(j.limits.max.to_degrees())));
+            obj.insert("home".into(), json!(tidy(j.home.to_degrees())));
+            if let Some(s) = j.max_speed {
+                obj.insert("max_speed".into(), json!(tidy(s.to_degrees())));
+            }
+            if let Some(a) = j.max_acceleration {
+                obj.insert("max_acceleration".into(), json!(tidy(a.to_degrees())));
+            }
+        }
+        JointKind::Prismatic => {
+            obj.insert("min".into(), json!(j.limits.min));
+            obj.insert("max".into(), json!(j.limits.max));
+            obj.insert("home".into(), json!(j.home));
+            if let Some(s) = j.max_speed {
+                obj.insert("max_speed".into(), json!(s));
+            }
+            if let Some(a) = j.max_acceleration {
+                obj.insert("max_acceleration".into(), json!(a));
+            }
+        }
+    }
+    for (key, size) in [
+        ("housing_size", j.parts.housing),
+        ("link_size", j.parts.link),
+    ] {
+        if let Some(v) = size {
+            obj.insert(key.into(), json!(v));
+        }
+    }
+    Value::Object(obj)
 }
 
 /// Rounds values within 1e−9 of a whole number of degrees, so files stay readable.

@@ -300,68 +300,15 @@ impl Robot {
             });
         }
         for (i, joint) in self.joints.iter().enumerate() {
-            let place = Place::Joint(i + 1);
-            let (lim_scale, lim_max) = match joint.kind {
-                JointKind::Revolute => (1.0_f64.to_degrees(), MAX_ANGLE_DEG),
-                JointKind::Prismatic => (1.0, MAX_LENGTH),
-            };
-            check_value(
-                &place,
-                Field::Theta,
-                joint.dh.theta.to_degrees(),
-                MAX_ANGLE_DEG,
-            )?;
-            check_value(&place, Field::D, joint.dh.d, MAX_LENGTH)?;
-            check_value(&place, Field::A, joint.dh.a, MAX_LENGTH)?;
-            check_value(
-                &place,
-                Field::Alpha,
-                joint.dh.alpha.to_degrees(),
-                MAX_ANGLE_DEG,
-            )?;
-            check_value(&place, Field::Min, joint.limits.min * lim_scale, lim_max)?;
-            check_value(&place, Field::Max, joint.limits.max * lim_scale, lim_max)?;
-            check_value(&place, Field::Home, joint.home * lim_scale, lim_max)?;
-            for (field, size) in [
-                (Field::Housing, joint.parts.housing),
-                (Field::Link, joint.parts.link),
-            ] {
-                for v in size.iter().flatten() {
-                    check_size(&place, field, *v)?;
-                }
-            }
-            if let Some(speed) = joint.max_speed {
-                check_value(&place, Field::MaxSpeed, speed * lim_scale, MAX_LENGTH)?;
-            }
-            if let Some(acc) = joint.max_acceleration {
-                check_value(&place, Field::MaxAcceleration, acc * lim_scale, 1e9)?;
-                if acc <= 0.0 {
-                    return Err(RobotError::NotPositive {
-                        place,
-                        field: Field::MaxAcceleration,
-                        value: acc * lim_scale,
-                    });
-                }
-            }
-            if joint.kind == JointKind::Prismatic
-                && joint.limits.min <= joint.limits.max
-                && !joint.limits.contains(joint.home, STROKE_SLACK)
-            {
-                return Err(RobotError::JointOutsideStroke {
-                    joint: i + 1,
-                    value: joint.home,
-                    min: joint.limits.min,
-                    max: joint.limits.max,
-                });
-            }
-            if joint.limits.min > joint.limits.max {
-                return Err(RobotError::LimitsReversed {
-                    joint: i + 1,
-                    min: joint.limits.min * lim_scale,
-                    max: joint.limits.max * lim_scale,
-                });
-            }
+            check_joint(i, joint)?;
         }
+        self.check_parts_and_frames()?;
+        check_keep_outs(&self.keep_outs)?;
+        Ok(self)
+    }
+
+    /// Checks the base's and the hand's part sizes, and the base and tool transforms.
+    fn check_parts_and_frames(&self) -> Result<(), RobotError> {
         for (field, size) in [
             (Field::BaseSize, self.parts.base),
             (Field::HandSize, self.parts.hand),
@@ -381,8 +328,7 @@ impl Robot {
                 check_value(&place, Field::Rotation, *v, 1.0 + 1e-6)?;
             }
         }
-        check_keep_outs(&self.keep_outs)?;
-        Ok(self)
+        Ok(())
     }
 
     /// Checks a joint vector against this robot: right length, all finite, and every
@@ -444,6 +390,73 @@ pub(crate) fn check_value(
             field,
             value,
             limit,
+        });
+    }
+    Ok(())
+}
+
+/// Checks joint `i` (from 0): its DH numbers, limits, home, part sizes and speeds within
+/// range, a prismatic joint's home inside its stroke, and its limits in order.
+fn check_joint(i: usize, joint: &Joint) -> Result<(), RobotError> {
+    let place = Place::Joint(i + 1);
+    let (lim_scale, lim_max) = match joint.kind {
+        JointKind::Revolute => (1.0_f64.to_degrees(), MAX_ANGLE_DEG),
+        JointKind::Prismatic => (1.0, MAX_LENGTH),
+    };
+    check_value(
+        &place,
+        Field::Theta,
+        joint.dh.theta.to_degrees(),
+        MAX_ANGLE_DEG,
+    )?;
+    check_value(&place, Field::D, joint.dh.d, MAX_LENGTH)?;
+    check_value(&place, Field::A, joint.dh.a, MAX_LENGTH)?;
+    check_value(
+        &place,
+        Field::Alpha,
+        joint.dh.alpha.to_degrees(),
+        MAX_ANGLE_DEG,
+    )?;
+    check_value(&place, Field::Min, joint.limits.min * lim_scale, lim_max)?;
+    check_value(&place, Field::Max, joint.limits.max * lim_scale, lim_max)?;
+    check_value(&place, Field::Home, joint.home * lim_scale, lim_max)?;
+    for (field, size) in [
+        (Field::Housing, joint.parts.housing),
+        (Field::Link, joint.parts.link),
+    ] {
+        for v in size.iter().flatten() {
+            check_size(&place, field, *v)?;
+        }
+    }
+    if let Some(speed) = joint.max_speed {
+        check_value(&place, Field::MaxSpeed, speed * lim_scale, MAX_LENGTH)?;
+    }
+    if let Some(acc) = joint.max_acceleration {
+        check_value(&place, Field::MaxAcceleration, acc * lim_scale, 1e9)?;
+        if acc <= 0.0 {
+            return Err(RobotError::NotPositive {
+                place,
+                field: Field::MaxAcceleration,
+                value: acc * lim_scale,
+            });
+        }
+    }
+    if joint.kind == JointKind::Prismatic
+        && joint.limits.min <= joint.limits.max
+        && !joint.limits.contains(joint.home, STROKE_SLACK)
+    {
+        return Err(RobotError::JointOutsideStroke {
+            joint: i + 1,
+            value: joint.home,
+            min: joint.limits.min,
+            max: joint.limits.max,
+        });
+    }
+    if joint.limits.min > joint.limits.max {
+        return Err(RobotError::LimitsReversed {
+            joint: i + 1,
+            min: joint.limits.min * lim_scale,
+            max: joint.limits.max * lim_scale,
         });
     }
     Ok(())

@@ -218,10 +218,6 @@ fn parts_follow_the_robot_file_and_the_frames() {
 /// random poses with the floor and two boxes; bad lists get an error, not a panic.
 #[test]
 fn the_collision_module_encoding_answers_as_the_direct_check() {
-    use armlab_core::collision_wire::{
-        WireError, check_request, decode_report, decode_request, encode_report, encode_request,
-    };
-    use armlab_core::rng::SplitMix64;
     let mut tilted = KeepOut::new(
         1,
         Point3::new(400.0, 300.0, 500.0),
@@ -235,20 +231,8 @@ fn the_collision_module_encoding_answers_as_the_direct_check() {
         Vector3::new(300.0, 300.0, 200.0),
     )
     .unwrap();
-    let mut cases: Vec<(Robot, Vec<f64>)> = Vec::new();
-    let ur10 = preset("ur10").unwrap();
-    let mut folded = ur10.home();
-    folded[1] = 0.0;
-    folded[2] = (-150f64).to_radians();
-    cases.push((ur10.clone(), folded));
-    cases.push((ur10.clone(), vec![0.0, 0.6, 1.4, 0.0, 0.0, 0.0]));
-    let panda = preset("panda").unwrap();
-    let mut rng = SplitMix64::new(14);
-    for _ in 0..200 {
-        cases.push((panda.clone(), rng.joint_vector(&panda)));
-    }
     let (mut contacts, mut kinds) = (0, std::collections::HashSet::new());
-    for (robot, q) in &cases {
+    for (robot, q) in &wire_cases() {
         // The Panda is in metres: its boxes scaled down.
         let scale = if robot.length_unit.symbol() == "m" {
             1e-3
@@ -263,19 +247,7 @@ fn the_collision_module_encoding_answers_as_the_direct_check() {
                 rotation: k.rotation,
             })
             .collect();
-        let parts = parts_at(robot, q);
-        let tolerance = TOUCH_TOLERANCE * robot.reach();
-        let direct = CollisionChecker::new(true, boxes.clone())
-            .unwrap()
-            .check_parts(&parts, tolerance);
-        let request = encode_request(&parts, tolerance, true, &boxes);
-        let (back, tol_back, checker) = decode_request(&request).unwrap();
-        assert_eq!(back, parts, "the parts come back bit for bit");
-        assert_eq!(tol_back, tolerance);
-        assert_eq!(checker.keep_outs(), &boxes[..]);
-        let answer = check_request(&request).unwrap();
-        assert_eq!(answer, encode_report(&direct));
-        assert_eq!(decode_report(&answer, parts.len()).unwrap(), direct);
+        let direct = assert_wire_gives_the_direct_report(robot, q, &boxes);
         contacts += direct.contacts.len();
         kinds.extend(
             direct
@@ -290,7 +262,62 @@ fn the_collision_module_encoding_answers_as_the_direct_check() {
         3,
         "parts, the floor and a box are among the contacts"
     );
+    assert_bad_wire_lists_get_errors(low);
+}
 
+/// The cases of the wire test: the UR10 folded onto its base and reaching through the
+/// floor, and the Panda at 200 random poses.
+fn wire_cases() -> Vec<(Robot, Vec<f64>)> {
+    use armlab_core::rng::SplitMix64;
+    let mut cases: Vec<(Robot, Vec<f64>)> = Vec::new();
+    let ur10 = preset("ur10").expect("a preset");
+    let mut folded = ur10.home();
+    folded[1] = 0.0;
+    folded[2] = (-150f64).to_radians();
+    cases.push((ur10.clone(), folded));
+    cases.push((ur10.clone(), vec![0.0, 0.6, 1.4, 0.0, 0.0, 0.0]));
+    let panda = preset("panda").expect("a preset");
+    let mut rng = SplitMix64::new(14);
+    for _ in 0..200 {
+        cases.push((panda.clone(), rng.joint_vector(&panda)));
+    }
+    cases
+}
+
+/// Checks that `robot` at `q` with `boxes` goes through the wire and back unchanged and
+/// that the module's answer is the direct check's report; returns that report.
+fn assert_wire_gives_the_direct_report(
+    robot: &Robot,
+    q: &[f64],
+    boxes: &[KeepOut],
+) -> armlab_core::collision::CollisionReport {
+    use armlab_core::collision_wire::{
+        check_request, decode_report, decode_request, encode_report, encode_request,
+    };
+    let parts = parts_at(robot, q);
+    let tolerance = TOUCH_TOLERANCE * robot.reach();
+    let direct = CollisionChecker::new(true, boxes.to_vec())
+        .expect("a valid checker")
+        .check_parts(&parts, tolerance);
+    let request = encode_request(&parts, tolerance, true, boxes);
+    let (back, tol_back, checker) = decode_request(&request).expect("a valid request");
+    assert_eq!(back, parts, "the parts come back bit for bit");
+    assert_eq!(tol_back, tolerance);
+    assert_eq!(checker.keep_outs(), boxes);
+    let answer = check_request(&request).expect("a valid request");
+    assert_eq!(answer, encode_report(&direct));
+    assert_eq!(
+        decode_report(&answer, parts.len()).expect("a valid report"),
+        direct
+    );
+    direct
+}
+
+/// Cut, non-finite and badly coded wire lists get their errors (the UR10 at home with
+/// the box `low`).
+fn assert_bad_wire_lists_get_errors(low: KeepOut) {
+    use armlab_core::collision_wire::{WireError, decode_report, decode_request, encode_request};
+    let ur10 = preset("ur10").expect("a preset");
     let parts = parts_at(&ur10, &ur10.home());
     let good = encode_request(&parts, 1.0, false, &[low]);
     assert!(matches!(

@@ -681,12 +681,20 @@ fn solutions_outside_the_limits_are_marked_not_dropped() {
 
 #[test]
 fn singular_configurations_give_flagged_finite_solutions() {
-    // UR10 wrist at θ5 = 0 (q = 0 is also stretched).
+    ur10_wrist_singular_solutions_are_flagged();
+    rrr_tool_on_the_base_axis_is_flagged();
+    planar_2r_stretched_and_folded_is_flagged();
+    numeric_methods_leave_singular_seeds();
+}
+
+/// The UR10 with its wrist at θ5 = 0 (q = 0 is also stretched): every closed-form
+/// solution finite and on the target, the set and the solve flagged singular.
+fn ur10_wrist_singular_solutions_are_flagged() {
     for id in ["ur10", "ur10-standard"] {
-        let robot = preset(id).unwrap();
+        let robot = preset(id).expect("a preset");
         for q in [[0.0; 6], [0.3, -1.0, 1.2, 0.4, 0.0, -0.7]] {
             let target = tool_pose(&robot, &q);
-            let set = closed_form_solutions(&robot, &target, &q).unwrap();
+            let set = closed_form_solutions(&robot, &target, &q).expect("closed-form solutions");
             assert!(!set.solutions.is_empty());
             assert!(set.singular, "{id} {q:?}");
             for s in &set.solutions {
@@ -702,18 +710,21 @@ fn singular_configurations_give_flagged_finite_solutions() {
                 IkMethod::ClosedForm,
                 &IkSettings::default(),
             )
-            .unwrap();
+            .expect("a solution");
             assert!(r.success && r.singular);
         }
     }
-    // RRR tool on the base axis: L2 c2 + L3 c23 = 0.
-    let robot = preset("rrr").unwrap();
+}
+
+/// The RRR's tool on the base axis (L2 c2 + L3 c23 = 0): flagged, every solution on it.
+fn rrr_tool_on_the_base_axis_is_flagged() {
+    let robot = preset("rrr").expect("a preset");
     let t2: f64 = 1.2;
     let t3 = (-222.1 * t2.cos() / 136.2).acos() - t2;
     let q = [0.7, t2, t3];
     let target = tool_pose(&robot, &q);
     assert!(target.translation.vector.xy().norm() < 1e-9);
-    let set = closed_form_solutions(&robot, &target, &q).unwrap();
+    let set = closed_form_solutions(&robot, &target, &q).expect("closed-form solutions");
     assert!(set.singular && !set.solutions.is_empty());
     for s in &set.solutions {
         assert!(all_finite(&s.q));
@@ -721,11 +732,14 @@ fn singular_configurations_give_flagged_finite_solutions() {
             (tool_pose(&robot, &s.q).translation.vector - target.translation.vector).norm() <= 1e-9
         );
     }
-    // 2R stretched and folded: one solution each, flagged.
-    let robot = preset("planar-2r").unwrap();
+}
+
+/// The 2R stretched and folded: one solution each, flagged.
+fn planar_2r_stretched_and_folded_is_flagged() {
+    let robot = preset("planar-2r").expect("a preset");
     for q in [[0.4, 0.0], [0.4, PI]] {
         let target = tool_pose(&robot, &q);
-        let set = closed_form_solutions(&robot, &target, &q).unwrap();
+        let set = closed_form_solutions(&robot, &target, &q).expect("closed-form solutions");
         assert_eq!(set.solutions.len(), 1, "{q:?}");
         assert!(set.singular && set.solutions[0].exact);
         assert!(
@@ -734,7 +748,12 @@ fn singular_configurations_give_flagged_finite_solutions() {
                 <= 1e-9
         );
     }
-    // Numeric methods seeded exactly at a singularity.
+}
+
+/// Numeric methods seeded exactly at a singularity: the 2R stretched, and the UR10's
+/// stretched, wrist-singular q = 0 with damped least squares to a full pose.
+fn numeric_methods_leave_singular_seeds() {
+    let robot = preset("planar-2r").expect("a preset");
     let target = target_pose(Vector3::new(1.0, 1.5, 0.0), Matrix3::identity());
     for method in [
         IkMethod::DampedLeastSquares,
@@ -749,7 +768,7 @@ fn singular_configurations_give_flagged_finite_solutions() {
             method,
             &IkSettings::default(),
         )
-        .unwrap();
+        .expect("a solution");
         assert!(all_finite(&r.q), "{method:?}");
         // Not only finite: each method leaves the stretched seed and reaches the target
         // (restarts included), checked by the test's own FK difference.
@@ -764,7 +783,7 @@ fn singular_configurations_give_flagged_finite_solutions() {
         );
     }
     // Damped least squares from the UR10's stretched, wrist-singular q = 0 to a full pose.
-    let ur10 = preset("ur10").unwrap();
+    let ur10 = preset("ur10").expect("a preset");
     let goal = tool_pose(&ur10, &[0.5, -1.1, 1.3, -1.6, -1.4, 0.2]);
     let r = solve(
         &ur10,
@@ -774,7 +793,7 @@ fn singular_configurations_give_flagged_finite_solutions() {
         IkMethod::DampedLeastSquares,
         &IkSettings::default(),
     )
-    .unwrap();
+    .expect("a solution");
     common::assert_reaches(
         "UR10 from q = 0",
         &ur10,
@@ -823,7 +842,25 @@ fn unreachable_targets_give_the_closest_pose_flagged_without_nan() {
             );
         }
     }
-    // Every preset, a target far outside its reach, every task.
+    every_preset_flags_a_target_far_outside_its_reach();
+    // UR10 closed form out of reach falls back to the closest pose.
+    let robot = preset("ur10").unwrap();
+    let far = target_pose(Vector3::new(3000.0, 0.0, 500.0), Matrix3::identity());
+    let r = solve(
+        &robot,
+        &far,
+        Task::FullPose,
+        &[0.0; 6],
+        IkMethod::ClosedForm,
+        &IkSettings::default(),
+    )
+    .unwrap();
+    assert!(r.unreachable && !r.success && all_finite(&r.q));
+}
+
+/// Every preset, a target far outside its reach, every task: damped least squares
+/// flags it unreachable within the limits, and a drag step stays finite.
+fn every_preset_flags_a_target_far_outside_its_reach() {
     for (id, robot) in common::all_presets() {
         let far = target_pose(
             Vector3::new(3.0, -2.0, 2.5) * robot.reach(),
@@ -843,7 +880,7 @@ fn unreachable_targets_give_the_closest_pose_flagged_without_nan() {
                 IkMethod::DampedLeastSquares,
                 &light,
             )
-            .unwrap();
+            .expect("a solution");
             assert!(
                 all_finite(&r.q) && !r.success && r.unreachable,
                 "{id} {task:?}: {r:?}"
@@ -857,23 +894,10 @@ fn unreachable_targets_give_the_closest_pose_flagged_without_nan() {
                 IkMethod::DampedLeastSquares,
                 &IkSettings::drag(),
             )
-            .unwrap();
+            .expect("a drag step");
             assert!(all_finite(&d.q));
         }
     }
-    // UR10 closed form out of reach falls back to the closest pose.
-    let robot = preset("ur10").unwrap();
-    let far = target_pose(Vector3::new(3000.0, 0.0, 500.0), Matrix3::identity());
-    let r = solve(
-        &robot,
-        &far,
-        Task::FullPose,
-        &[0.0; 6],
-        IkMethod::ClosedForm,
-        &IkSettings::default(),
-    )
-    .unwrap();
-    assert!(r.unreachable && !r.success && all_finite(&r.q));
 }
 
 /// How far (mm) the tool may be from the circle halfway (in joint space) between two

@@ -33,7 +33,7 @@ fn is_hidden(c: char) -> bool {
 /// longer.
 ///
 /// ```
-/// use armlab::i18n::echo;
+/// use armlab_text::echo;
 /// assert_eq!(echo::text("ur10"), "ur10");
 /// assert_eq!(echo::text("a\nb"), "a□b");
 /// assert_eq!(echo::text(&"x".repeat(1000)).chars().count(), 40);
@@ -60,7 +60,7 @@ pub fn text_within(s: &str, max_chars: usize) -> String {
 /// magnitudes from 10⁻⁴ to below 10¹⁵, scientific (`1e300`) beyond; `-0` as `0`.
 ///
 /// ```
-/// use armlab::i18n::echo;
+/// use armlab_text::echo;
 /// assert_eq!(echo::number(1e300), "1e300");
 /// assert_eq!(echo::number(-1.5), "-1.5");
 /// assert_eq!(echo::number(2.5e9), "2500000000");

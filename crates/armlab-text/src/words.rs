@@ -70,119 +70,135 @@ impl Name for Expected {
 }
 
 impl Sentence for RobotError {
-    /// The error as a sentence in `lang`.
     fn sentence(&self, lang: Lang) -> String {
-        let at = |place: &Place| place.name(lang);
-        match self {
-            RobotError::Syntax {
-                line,
-                column,
-                reason,
-            } => fill(
-                lang,
-                Key::ErrSyntax,
-                &[line, column, &crate::echo::text_within(reason, 80)],
-            ),
-            RobotError::MissingField { place, field } => {
-                fill(lang, Key::ErrMissingField, &[&at(place), field])
-            }
-            RobotError::UnknownField {
-                place,
-                field,
-                known,
-            } => fill(
-                lang,
-                Key::ErrUnknownField,
-                &[&at(place), &Text(field), known],
-            ),
-            RobotError::WrongType {
-                place,
-                field,
-                expected,
-            } => fill(
-                lang,
-                Key::ErrWrongType,
-                &[&at(place), field, &expected.name(lang)],
-            ),
-            RobotError::UnknownConvention(found) => {
-                fill(lang, Key::ErrUnknownConvention, &[&Text(found)])
-            }
-            RobotError::UnknownJointType { joint, found } => {
-                fill(lang, Key::ErrUnknownJointType, &[joint, &Text(found)])
-            }
-            RobotError::UnknownLengthUnit(found) => {
-                fill(lang, Key::ErrUnknownLengthUnit, &[&Text(found)])
-            }
-            RobotError::NotFinite {
-                place,
-                field,
-                value,
-            } => fill(
-                lang,
-                Key::ErrNotFinite,
-                &[&at(place), field, &Number(*value)],
-            ),
-            RobotError::EmptyChain => text(lang, Key::ErrEmptyChain).to_string(),
-            RobotError::TooManyJoints { count, max } => {
-                fill(lang, Key::ErrTooManyJoints, &[count, max])
-            }
-            RobotError::TooLarge {
-                place,
-                field,
-                value,
-                limit,
-            } => fill(
-                lang,
-                Key::ErrTooLarge,
-                &[&at(place), field, &Number(*value), &Number(*limit)],
-            ),
-            RobotError::NegativeSize {
-                place,
-                field,
-                value,
-            } => fill(
-                lang,
-                Key::ErrNegativeSize,
-                &[&at(place), field, &Number(*value)],
-            ),
-            RobotError::NotPositive {
-                place,
-                field,
-                value,
-            } => fill(
-                lang,
-                Key::ErrNotPositive,
-                &[&at(place), field, &Number(*value)],
-            ),
-            RobotError::LimitsReversed { joint, min, max } => fill(
-                lang,
-                Key::ErrLimitsReversed,
-                &[joint, &Number(*min), &Number(*max)],
-            ),
-            RobotError::PrismaticWithoutLimits { joint } => {
-                fill(lang, Key::ErrPrismaticWithoutLimits, &[joint])
-            }
-            RobotError::UnknownPreset(name, presets) => {
-                fill(lang, Key::ErrUnknownPreset, &[&Text(name), presets])
-            }
-            RobotError::WrongJointCount { expected, found } => {
-                fill(lang, Key::ErrWrongJointCount, &[expected, found])
-            }
-            RobotError::JointValueNotFinite { joint, value } => {
-                fill(lang, Key::ErrJointValueNotFinite, &[joint, &Number(*value)])
-            }
-            RobotError::JointOutsideStroke {
-                joint,
-                value,
-                min,
-                max,
-            } => fill(
-                lang,
-                Key::ErrJointOutsideStroke,
-                &[joint, &Number(*value), &Number(*min), &Number(*max)],
-            ),
-            RobotError::PoseNotFinite => text(lang, Key::ErrPoseNotFinite).to_string(),
+        file_sentence(self, lang).unwrap_or_else(|| value_sentence(self, lang))
+    }
+}
+
+/// The sentence of an error in a robot file's form (its syntax, a field missing, unknown
+/// or of the wrong type, an unknown name); `None` for an error in a value.
+fn file_sentence(error: &RobotError, lang: Lang) -> Option<String> {
+    let at = |place: &Place| place.name(lang);
+    Some(match error {
+        RobotError::Syntax {
+            line,
+            column,
+            reason,
+        } => fill(
+            lang,
+            Key::ErrSyntax,
+            &[line, column, &crate::echo::text_within(reason, 80)],
+        ),
+        RobotError::MissingField { place, field } => {
+            fill(lang, Key::ErrMissingField, &[&at(place), field])
         }
+        RobotError::UnknownField {
+            place,
+            field,
+            known,
+        } => fill(
+            lang,
+            Key::ErrUnknownField,
+            &[&at(place), &Text(field), known],
+        ),
+        RobotError::WrongType {
+            place,
+            field,
+            expected,
+        } => fill(
+            lang,
+            Key::ErrWrongType,
+            &[&at(place), field, &expected.name(lang)],
+        ),
+        RobotError::UnknownConvention(found) => {
+            fill(lang, Key::ErrUnknownConvention, &[&Text(found)])
+        }
+        RobotError::UnknownJointType { joint, found } => {
+            fill(lang, Key::ErrUnknownJointType, &[joint, &Text(found)])
+        }
+        RobotError::UnknownLengthUnit(found) => {
+            fill(lang, Key::ErrUnknownLengthUnit, &[&Text(found)])
+        }
+        _ => return None,
+    })
+}
+
+/// The sentence of an error in a robot's values (a number out of range, limits, the joint
+/// vector, the pose). The form's errors are [`file_sentence`]'s; shown here, one would read
+/// as its variant.
+fn value_sentence(error: &RobotError, lang: Lang) -> String {
+    let at = |place: &Place| place.name(lang);
+    match error {
+        RobotError::NotFinite {
+            place,
+            field,
+            value,
+        } => fill(
+            lang,
+            Key::ErrNotFinite,
+            &[&at(place), field, &Number(*value)],
+        ),
+        RobotError::EmptyChain => text(lang, Key::ErrEmptyChain).to_string(),
+        RobotError::TooManyJoints { count, max } => {
+            fill(lang, Key::ErrTooManyJoints, &[count, max])
+        }
+        RobotError::TooLarge {
+            place,
+            field,
+            value,
+            limit,
+        } => fill(
+            lang,
+            Key::ErrTooLarge,
+            &[&at(place), field, &Number(*value), &Number(*limit)],
+        ),
+        RobotError::NegativeSize {
+            place,
+            field,
+            value,
+        } => fill(
+            lang,
+            Key::ErrNegativeSize,
+            &[&at(place), field, &Number(*value)],
+        ),
+        RobotError::NotPositive {
+            place,
+            field,
+            value,
+        } => fill(
+            lang,
+            Key::ErrNotPositive,
+            &[&at(place), field, &Number(*value)],
+        ),
+        RobotError::LimitsReversed { joint, min, max } => fill(
+            lang,
+            Key::ErrLimitsReversed,
+            &[joint, &Number(*min), &Number(*max)],
+        ),
+        RobotError::PrismaticWithoutLimits { joint } => {
+            fill(lang, Key::ErrPrismaticWithoutLimits, &[joint])
+        }
+        RobotError::UnknownPreset(name, presets) => {
+            fill(lang, Key::ErrUnknownPreset, &[&Text(name), presets])
+        }
+        RobotError::WrongJointCount { expected, found } => {
+            fill(lang, Key::ErrWrongJointCount, &[expected, found])
+        }
+        RobotError::JointValueNotFinite { joint, value } => {
+            fill(lang, Key::ErrJointValueNotFinite, &[joint, &Number(*value)])
+        }
+        RobotError::JointOutsideStroke {
+            joint,
+            value,
+            min,
+            max,
+        } => fill(
+            lang,
+            Key::ErrJointOutsideStroke,
+            &[joint, &Number(*value), &Number(*min), &Number(*max)],
+        ),
+        RobotError::PoseNotFinite => text(lang, Key::ErrPoseNotFinite).to_string(),
+        other => format!("{other:?}"),
     }
 }
 

@@ -292,46 +292,12 @@ pub fn robot_from_urdf(text: &str) -> Result<Robot, UrdfError> {
 
 /// The robot of an already parsed chain; see [`robot_from_urdf`].
 pub fn robot_from_chain(chain: &UrdfChain) -> Result<Robot, UrdfError> {
-    // Every moving joint's axis line at q = 0 in the root frame.
-    struct Axis {
-        name: String,
-        kind: JointKind,
-        p: Vector3<f64>,
-        u: Vector3<f64>,
-        limits: JointLimits,
-        speed: Option<f64>,
-    }
-    let mut pose = IsometryMatrix3::identity();
-    let mut axes = Vec::new();
-    for s in &chain.steps {
-        pose *= s.origin;
-        if let Some((kind, axis, limits, speed)) = &s.motion {
-            axes.push(Axis {
-                name: s.name.clone(),
-                kind: *kind,
-                p: pose.translation.vector,
-                u: pose.rotation * axis,
-                limits: *limits,
-                speed: *speed,
-            });
-        }
-    }
-    let leaf = pose;
+    let (axes, leaf) = axis_lines(chain);
     let Some(first) = axes.first() else {
         return Err(UrdfError::NoMovingJoints);
     };
-    // Frame 0: z on joint 1's axis, the origin the foot of the root's origin on it, x the
-    // root's x (or y) made perpendicular.
     let z0 = first.u;
-    let mut o = first.p - z0 * first.p.dot(&z0);
-    let mut x = {
-        let ex = Vector3::x() - z0 * z0.x;
-        if ex.norm() > 1e-6 {
-            ex.normalize()
-        } else {
-            (Vector3::y() - z0 * z0.y).normalize()
-        }
-    };
+    let (mut o, mut x) = frame_zero(first);
     let base = frame(o, x, z0);
     let scale = axes
         .iter()
@@ -340,67 +306,12 @@ pub fn robot_from_chain(chain: &UrdfChain) -> Result<Robot, UrdfError> {
         .max(1.0);
     let mut joints = Vec::with_capacity(axes.len());
     for (i, axis) in axes.iter().enumerate() {
-        let z = axis.u;
-        let (theta, d, a, alpha, next_x, next_o) = match axes.get(i + 1) {
-            Some(next) => {
-                let n = z.cross(&next.u);
-                let (f1, f2, xi) = if n.norm() > 1e-9 {
-                    // The common normal's feet on both lines.
-                    let w = o - next.p;
-                    let b = z.dot(&next.u);
-                    let (dd, e) = (z.dot(&w), next.u.dot(&w));
-                    let den = 1.0 - b * b;
-                    let f1 = o + z * ((b * e - dd) / den);
-                    let f2 = next.p + next.u * ((e - b * dd) / den);
-                    let gap = f2 - f1;
-                    let xi = if gap.norm() > 1e-9 * scale {
-                        gap.normalize()
-                    } else {
-                        n.normalize()
-                    };
-                    (f1, f2, xi)
-                } else {
-                    // Parallel: the normal through the current origin (d = 0).
-                    let v = next.p - o;
-                    let perp = v - z * v.dot(&z);
-                    if perp.norm() > 1e-9 * scale {
-                        (o, o + perp, perp.normalize())
-                    } else {
-                        (o, o, x)
-                    }
-                };
-                (
-                    x.cross(&xi).dot(&z).atan2(x.dot(&xi)),
-                    (f1 - o).dot(&z),
-                    (f2 - f1).dot(&xi),
-                    z.cross(&next.u).dot(&xi).atan2(z.dot(&next.u)),
-                    xi,
-                    f2,
-                )
-            }
+        let (dh, next_x, next_o) = match axes.get(i + 1) {
+            Some(next) => dh_row_to(o, x, axis.u, next, scale),
             // The last frame: frame n−1 turned (or slid) by the joint, nothing more.
-            None => (0.0, 0.0, 0.0, 0.0, x, o),
+            None => (dh_row(0.0, 0.0, 0.0, 0.0), x, o),
         };
-        let home = if axis.limits.contains(0.0, 0.0) {
-            0.0
-        } else {
-            axis.limits.mid()
-        };
-        joints.push(Joint {
-            name: axis.name.clone(),
-            kind: axis.kind,
-            dh: DhRow {
-                theta: clean(theta),
-                d: clean(d),
-                a: clean(a),
-                alpha: clean(alpha),
-            },
-            limits: axis.limits,
-            max_speed: axis.speed,
-            max_acceleration: None,
-            home,
-            parts: PartSizes::default(),
-        });
+        joints.push(joint_on(axis, dh));
         x = next_x;
         o = next_o;
     }
@@ -422,6 +333,139 @@ pub fn robot_from_chain(chain: &UrdfChain) -> Result<Robot, UrdfError> {
         keep_outs: Vec::new(),
     };
     robot.validated().map_err(UrdfError::Robot)
+}
+
+/// A moving joint's axis line at q = 0 in the root frame.
+struct Axis {
+    name: String,
+    kind: JointKind,
+    /// A point on the line.
+    p: Vector3<f64>,
+    /// Its unit direction.
+    u: Vector3<f64>,
+    limits: JointLimits,
+    speed: Option<f64>,
+}
+
+/// The chain's moving joints' axis lines, and the leaf link's pose, at q = 0.
+fn axis_lines(chain: &UrdfChain) -> (Vec<Axis>, IsometryMatrix3<f64>) {
+    let mut pose = IsometryMatrix3::identity();
+    let mut axes = Vec::new();
+    for s in &chain.steps {
+        pose *= s.origin;
+        if let Some((kind, axis, limits, speed)) = &s.motion {
+            axes.push(Axis {
+                name: s.name.clone(),
+                kind: *kind,
+                p: pose.translation.vector,
+                u: pose.rotation * axis,
+                limits: *limits,
+                speed: *speed,
+            });
+        }
+    }
+    (axes, pose)
+}
+
+/// Frame 0's origin and x: z on joint 1's axis, the origin the foot of the root's origin
+/// on it, x the root's x (or y) made perpendicular.
+fn frame_zero(first: &Axis) -> (Vector3<f64>, Vector3<f64>) {
+    let z0 = first.u;
+    let o = first.p - z0 * first.p.dot(&z0);
+    let ex = Vector3::x() - z0 * z0.x;
+    let x = if ex.norm() > 1e-6 {
+        ex.normalize()
+    } else {
+        (Vector3::y() - z0 * z0.y).normalize()
+    };
+    (o, x)
+}
+
+/// The DH row from the frame at `o` (x axis `x`, z axis `z`) to the next joint's axis
+/// line, and the next frame's x and origin.
+fn dh_row_to(
+    o: Vector3<f64>,
+    x: Vector3<f64>,
+    z: Vector3<f64>,
+    next: &Axis,
+    scale: f64,
+) -> (DhRow, Vector3<f64>, Vector3<f64>) {
+    let (f1, f2, xi) = common_normal(o, x, z, next, scale);
+    let dh = dh_row(
+        x.cross(&xi).dot(&z).atan2(x.dot(&xi)),
+        (f1 - o).dot(&z),
+        (f2 - f1).dot(&xi),
+        z.cross(&next.u).dot(&xi).atan2(z.dot(&next.u)),
+    );
+    (dh, xi, f2)
+}
+
+/// The common normal of the line through `o` along `z` and the next axis line: its feet
+/// on both and its direction (the next frame's x). Parallel lines take the normal
+/// through `o` (d = 0); lines that meet take x along z × z_next.
+fn common_normal(
+    o: Vector3<f64>,
+    x: Vector3<f64>,
+    z: Vector3<f64>,
+    next: &Axis,
+    scale: f64,
+) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+    let n = z.cross(&next.u);
+    if n.norm() > 1e-9 {
+        // The common normal's feet on both lines.
+        let w = o - next.p;
+        let b = z.dot(&next.u);
+        let (dd, e) = (z.dot(&w), next.u.dot(&w));
+        let den = 1.0 - b * b;
+        let f1 = o + z * ((b * e - dd) / den);
+        let f2 = next.p + next.u * ((e - b * dd) / den);
+        let gap = f2 - f1;
+        let xi = if gap.norm() > 1e-9 * scale {
+            gap.normalize()
+        } else {
+            n.normalize()
+        };
+        (f1, f2, xi)
+    } else {
+        // Parallel: the normal through the current origin (d = 0).
+        let v = next.p - o;
+        let perp = v - z * v.dot(&z);
+        if perp.norm() > 1e-9 * scale {
+            (o, o + perp, perp.normalize())
+        } else {
+            (o, o, x)
+        }
+    }
+}
+
+/// A DH row with values within 10⁻¹² of zero made zero.
+fn dh_row(theta: f64, d: f64, a: f64, alpha: f64) -> DhRow {
+    DhRow {
+        theta: clean(theta),
+        d: clean(d),
+        a: clean(a),
+        alpha: clean(alpha),
+    }
+}
+
+/// The joint on `axis` with row `dh`, at home at 0 (or mid-range when 0 is outside its
+/// limits).
+fn joint_on(axis: &Axis, dh: DhRow) -> Joint {
+    let home = if axis.limits.contains(0.0, 0.0) {
+        0.0
+    } else {
+        axis.limits.mid()
+    };
+    Joint {
+        name: axis.name.clone(),
+        kind: axis.kind,
+        dh,
+        limits: axis.limits,
+        max_speed: axis.speed,
+        max_acceleration: None,
+        home,
+        parts: PartSizes::default(),
+    }
 }
 
 /// The fixed parts around joint i's motion: `A_i = before · motion(q) · after`.

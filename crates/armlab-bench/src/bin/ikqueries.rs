@@ -14,8 +14,8 @@ use std::time::Instant;
 
 use armlab_core::ik::{pose_error, target_pose};
 use armlab_core::{
-    IkMethod, IkSettings, IkSolver, Robot, SplitMix64, Task, closed_form_family, preset,
-    preset_ids, robot_from_value, tool_pose,
+    IkError, IkMethod, IkResult, IkSettings, IkSolver, Robot, SplitMix64, Task, closed_form_family,
+    preset, preset_ids, robot_from_value, tool_pose,
 };
 use nalgebra::{IsometryMatrix3, Matrix3, Vector3};
 use serde_json::{Value, json};
@@ -165,23 +165,70 @@ fn main() {
         ..IkSettings::default()
     };
     let mut solver = IkSolver::new();
-    let mut cells: BTreeMap<(String, &'static str, &'static str), Cell> = BTreeMap::new();
-    let mut per_kind: BTreeMap<&'static str, u64> = BTreeMap::new();
-    let mut errors: BTreeMap<String, u64> = BTreeMap::new();
-    let (mut panics, mut non_finite) = (0u64, 0u64);
-    let mut examples: Vec<Value> = Vec::new();
-    let mut slowest = (0.0f64, Value::Null);
+    let mut tally = Tally::default();
     let start = Instant::now();
     for done in 0..queries {
         if done > 0 && done % 50_000 == 0 {
             // Progress on stderr, so a long run can be read before it ends.
             eprintln!(
-                "{{\"queries\": {done}, \"panics\": {panics}, \"non_finite\": {non_finite}, \"seconds\": {:.1}, \"slowest_ms\": {:.3}}}",
+                "{{\"queries\": {done}, \"panics\": {}, \"non_finite\": {}, \"seconds\": {:.1}, \"slowest_ms\": {:.3}}}",
+                tally.panics,
+                tally.non_finite,
                 start.elapsed().as_secs_f64(),
-                slowest.0 * 1e3
+                tally.slowest.0 * 1e3
             );
         }
-        let (id, robot) = &robots[(rng.next_u64() % robots.len() as u64) as usize];
+        let query = Query::draw(&mut rng, &robots);
+        let robot = &robots[query.robot].1;
+        let t0 = Instant::now();
+        let outcome = catch_unwind(AssertUnwindSafe(|| {
+            query.solve(&mut solver, robot, &settings)
+        }));
+        tally.add(&query, &robots, t0.elapsed().as_secs_f64(), outcome);
+    }
+    let elapsed = start.elapsed().as_secs_f64();
+    let (by_robot_method, by_task) = success_tables(&tally.cells);
+    let report = json!({
+        "queries": queries,
+        "seed": seed,
+        "robots": robots.len(),
+        "panics": tally.panics,
+        "non_finite_results": tally.non_finite,
+        "examples": tally.examples,
+        "per_kind": tally.per_kind,
+        "errors": tally.errors,
+        "success_reachable_by_robot_and_method": by_robot_method,
+        "success_reachable_by_robot_method_task": by_task,
+        "slowest": {"milliseconds": tally.slowest.0 * 1e3, "query": tally.slowest.1},
+        "seconds": elapsed,
+        "queries_per_second": queries as f64 / elapsed.max(1e-9),
+        "settings": {"budget": settings.budget, "max_iterations": settings.max_iterations, "restarts": settings.restarts, "drag_share": 0.1},
+        "success_threshold": "1e-5 m and 1e-5 rad on the task's rows, by a separate FK of the returned q",
+        "runtime": format!("native {} ({}), release, one thread", std::env::consts::ARCH, std::env::consts::OS),
+    });
+    match serde_json::to_string_pretty(&report) {
+        Ok(text) => println!("{text}"),
+        Err(e) => eprintln!("cannot print the report: {e}"),
+    }
+}
+
+/// One query: a robot (its index), method, task and kind, the target and the seed, and
+/// whether it is a drag step.
+struct Query {
+    robot: usize,
+    method: IkMethod,
+    task: Task,
+    kind: Kind,
+    target: IsometryMatrix3<f64>,
+    seed: Vec<f64>,
+    drag: bool,
+}
+
+impl Query {
+    /// The next query from `rng` (its draws in a fixed order, so a seed gives one run).
+    fn draw(rng: &mut SplitMix64, robots: &[(String, Robot)]) -> Query {
+        let index = (rng.next_u64() % robots.len() as u64) as usize;
+        let robot = &robots[index].1;
         let method = IkMethod::ALL[(rng.next_u64() % 4) as usize];
         let task = Task::ALL[(rng.next_u64() % 5) as usize];
         let kind = Kind::ALL[(rng.next_u64() % 5) as usize];
@@ -206,71 +253,120 @@ fn main() {
             }
             Kind::Huge => target_pose(Vector3::new(1e8, -1e8, 1e8), Matrix3::identity()),
         };
-        let seed_q = rng.joint_vector(robot);
+        let seed = rng.joint_vector(robot);
         let drag = rng.next_f64() < 0.1;
-        let t0 = Instant::now();
-        let outcome = catch_unwind(AssertUnwindSafe(|| {
-            if drag {
-                solver.drag_step(robot, &seed_q, &target, task, method, &IkSettings::drag())
-            } else {
-                solver.solve(robot, &target, task, &seed_q, method, &settings)
-            }
-        }));
-        let seconds = t0.elapsed().as_secs_f64();
-        *per_kind.entry(kind.name()).or_default() += 1;
-        let describe = || {
-            json!({"robot": id, "method": method.id(), "task": task.id(), "kind": kind.name(), "drag": drag,
-                   "seed": seed_q, "target": tool_pose_rows(&target)})
-        };
-        if seconds > slowest.0 {
-            slowest = (seconds, describe());
+        Query {
+            robot: index,
+            method,
+            task,
+            kind,
+            target,
+            seed,
+            drag,
+        }
+    }
+
+    /// Solves the query: a drag step with the drag settings, or a solve with `settings`.
+    fn solve(
+        &self,
+        solver: &mut IkSolver,
+        robot: &Robot,
+        settings: &IkSettings,
+    ) -> Result<IkResult, IkError> {
+        if self.drag {
+            solver.drag_step(
+                robot,
+                &self.seed,
+                &self.target,
+                self.task,
+                self.method,
+                &IkSettings::drag(),
+            )
+        } else {
+            solver.solve(
+                robot,
+                &self.target,
+                self.task,
+                &self.seed,
+                self.method,
+                settings,
+            )
+        }
+    }
+
+    /// The query as JSON, for the report's examples and its slowest query.
+    fn describe(&self, robots: &[(String, Robot)]) -> Value {
+        json!({"robot": robots[self.robot].0, "method": self.method.id(), "task": self.task.id(), "kind": self.kind.name(), "drag": self.drag,
+               "seed": self.seed, "target": tool_pose_rows(&self.target)})
+    }
+}
+
+/// What the run has counted so far.
+#[derive(Default)]
+struct Tally {
+    /// Success on reachable queries by robot, method and task.
+    cells: BTreeMap<(String, &'static str, &'static str), Cell>,
+    per_kind: BTreeMap<&'static str, u64>,
+    /// Errors by their sentence without numbers and quoted names.
+    errors: BTreeMap<String, u64>,
+    panics: u64,
+    non_finite: u64,
+    /// The first ten panics or non-finite results.
+    examples: Vec<Value>,
+    /// The slowest query's seconds and description.
+    slowest: (f64, Value),
+}
+
+impl Tally {
+    /// Counts one query's outcome, which took `seconds`.
+    fn add(
+        &mut self,
+        query: &Query,
+        robots: &[(String, Robot)],
+        seconds: f64,
+        outcome: std::thread::Result<Result<IkResult, IkError>>,
+    ) {
+        *self.per_kind.entry(query.kind.name()).or_default() += 1;
+        if seconds > self.slowest.0 {
+            self.slowest = (seconds, query.describe(robots));
         }
         let result = match outcome {
             Err(_) => {
-                panics += 1;
-                if examples.len() < 10 {
-                    examples.push(json!({"panic": describe()}));
+                self.panics += 1;
+                if self.examples.len() < 10 {
+                    self.examples.push(json!({"panic": query.describe(robots)}));
                 }
-                continue;
+                return;
             }
             Ok(Err(e)) => {
-                // The sentence without its numbers and quoted names: one key per kind.
-                let mut quoted = false;
-                let head: String = e
-                    .to_string()
-                    .chars()
-                    .filter(|c| {
-                        if *c == '"' {
-                            quoted = !quoted;
-                            return false;
-                        }
-                        !quoted && !c.is_ascii_digit()
-                    })
-                    .take(70)
-                    .collect();
-                *errors.entry(head).or_default() += 1;
-                continue;
+                *self.errors.entry(error_key(&e)).or_default() += 1;
+                return;
             }
             Ok(Ok(r)) => r,
         };
+        let (id, robot) = &robots[query.robot];
         let finite = result.q.iter().all(|v| v.is_finite())
             && finite_pose(&tool_pose(robot, &result.q))
             && result.position_error.is_finite()
             && result.orientation_error.is_finite();
         if !finite {
-            non_finite += 1;
-            if examples.len() < 10 {
-                examples.push(json!({"non_finite": describe(), "q": format!("{:?}", result.q)}));
+            self.non_finite += 1;
+            if self.examples.len() < 10 {
+                self.examples.push(
+                    json!({"non_finite": query.describe(robots), "q": format!("{:?}", result.q)}),
+                );
             }
-            continue;
+            return;
         }
-        if kind.reachable() && !drag {
+        if query.kind.reachable() && !query.drag {
+            let method = query.method;
             let applicable = method != IkMethod::ClosedForm || closed_form_family(robot).is_some();
             if applicable {
-                let (p, o) = pose_error(robot, &result.q, &target, task);
+                let (p, o) = pose_error(robot, &result.q, &query.target, query.task);
                 let tol = SUCCESS_M / robot.length_unit.in_metres();
-                let cell = cells
-                    .entry((id.clone(), method.id(), task.id()))
+                let cell = self
+                    .cells
+                    .entry((id.clone(), method.id(), query.task.id()))
                     .or_default();
                 cell.reachable += 1;
                 if p <= tol && o <= SUCCESS_RAD {
@@ -279,12 +375,35 @@ fn main() {
             }
         }
     }
-    let elapsed = start.elapsed().as_secs_f64();
-    // Success per robot and method (all tasks), and per robot, method and task.
+}
+
+/// The error's sentence without its numbers and quoted names: one key per kind.
+fn error_key(e: &IkError) -> String {
+    let mut quoted = false;
+    e.to_string()
+        .chars()
+        .filter(|c| {
+            if *c == '"' {
+                quoted = !quoted;
+                return false;
+            }
+            !quoted && !c.is_ascii_digit()
+        })
+        .take(70)
+        .collect()
+}
+
+/// Success per robot and method (all tasks), and per robot, method and task.
+fn success_tables(
+    cells: &BTreeMap<(String, &'static str, &'static str), Cell>,
+) -> (
+    BTreeMap<String, BTreeMap<String, Value>>,
+    BTreeMap<String, Value>,
+) {
     let mut by_robot_method: BTreeMap<String, BTreeMap<String, Value>> = BTreeMap::new();
     let mut by_task: BTreeMap<String, Value> = BTreeMap::new();
     let mut totals: BTreeMap<(String, &'static str), (u64, u64)> = BTreeMap::new();
-    for ((robot, method, task), cell) in &cells {
+    for ((robot, method, task), cell) in cells {
         let t = totals.entry((robot.clone(), method)).or_default();
         t.0 += cell.reachable;
         t.1 += cell.success;
@@ -307,28 +426,7 @@ fn main() {
             )),
         );
     }
-    let report = json!({
-        "queries": queries,
-        "seed": seed,
-        "robots": robots.len(),
-        "panics": panics,
-        "non_finite_results": non_finite,
-        "examples": examples,
-        "per_kind": per_kind,
-        "errors": errors,
-        "success_reachable_by_robot_and_method": by_robot_method,
-        "success_reachable_by_robot_method_task": by_task,
-        "slowest": {"milliseconds": slowest.0 * 1e3, "query": slowest.1},
-        "seconds": elapsed,
-        "queries_per_second": queries as f64 / elapsed.max(1e-9),
-        "settings": {"budget": settings.budget, "max_iterations": settings.max_iterations, "restarts": settings.restarts, "drag_share": 0.1},
-        "success_threshold": "1e-5 m and 1e-5 rad on the task's rows, by a separate FK of the returned q",
-        "runtime": format!("native {} ({}), release, one thread", std::env::consts::ARCH, std::env::consts::OS),
-    });
-    match serde_json::to_string_pretty(&report) {
-        Ok(text) => println!("{text}"),
-        Err(e) => eprintln!("cannot print the report: {e}"),
-    }
+    (by_robot_method, by_task)
 }
 
 fn tool_pose_rows(pose: &IsometryMatrix3<f64>) -> Value {

@@ -611,69 +611,15 @@ pub(crate) fn closed_form_solutions_for_task(
     let (family, c, scale) =
         detect(robot).ok_or_else(|| IkError::NoClosedForm(robot.name.clone()))?;
     let target = &target_for_task(robot, family, target, task, seed);
-    // DH variables of the seed (offsets included), for free joints.
-    let mut seed_theta = [0.0; 6];
-    for (i, j) in robot.joints.iter().enumerate() {
-        seed_theta[i] = seed[i]
-            + match j.kind {
-                JointKind::Revolute => j.dh.theta,
-                JointKind::Prismatic => j.dh.d,
-            };
-    }
+    let seed_theta = dh_variables(robot, seed);
     let mut raws: Vec<Raw> = Vec::with_capacity(8);
     let mut planar: Vec<Planar> = Vec::with_capacity(2);
-    let r = &c.rows;
     match family {
         ClosedFormFamily::Planar2R => {
-            let p = c
-                .pre
-                .inverse_transform_point(&target.translation.vector.into());
-            planar_2r(p.x, p.y, r[0].a, r[1].a, seed_theta[0], &mut planar);
-            let in_plane = (p.z - r[0].d - r[1].d).abs() <= 1e-9 * scale;
-            for pl in &planar {
-                let branch = Branch {
-                    elbow: Some(elbow_of(1.0, r[0].a, r[1].a, pl.sign)),
-                    ..Branch::default()
-                };
-                let mut raw = Raw::new([pl.ta, pl.tb, 0.0, 0.0, 0.0, 0.0], branch);
-                raw.exact = pl.exact && in_plane;
-                raw.singular = pl.singular;
-                raw.merged.elbow = pl.singular && !pl.free_a;
-                raw.free[0] = pl.free_a;
-                raws.push(raw);
-            }
+            planar_2r_family(&c, target, &seed_theta, scale, &mut raws, &mut planar);
         }
         ClosedFormFamily::Rrr => {
-            let p = c
-                .pre
-                .inverse_transform_point(&target.translation.vector.into());
-            let sigma1 = r[0].sigma();
-            let w = Vector3::new(p.x, p.y, p.z - r[0].d);
-            let d_sum = r[1].d + r[2].d;
-            let (t1s, ok1, sing1, free1) = shoulder(w.x, w.y, sigma1, d_sum, seed_theta[0], scale);
-            for (s, &t1) in t1s.iter().enumerate() {
-                let (s1, c1) = sin_cos(t1);
-                let x = w.x * c1 + w.y * s1;
-                let y = sigma1 * w.z;
-                planar.clear();
-                planar_2r(x, y, r[1].a, r[2].a, seed_theta[1], &mut planar);
-                for pl in &planar {
-                    let side = sigma1 * front_sign(s);
-                    let branch = Branch {
-                        shoulder: Some(shoulder_of(s)),
-                        elbow: Some(elbow_of(side, r[1].a, r[2].a, pl.sign)),
-                        wrist: None,
-                    };
-                    let mut raw = Raw::new([t1, pl.ta, pl.tb, 0.0, 0.0, 0.0], branch);
-                    raw.exact = pl.exact && ok1;
-                    raw.singular = pl.singular || sing1;
-                    raw.merged.elbow = pl.singular && !pl.free_a;
-                    raw.merged.shoulder = sing1 && !free1;
-                    raw.free[0] = free1;
-                    raw.free[1] = pl.free_a;
-                    raws.push(raw);
-                }
-            }
+            rrr_family(&c, target, &seed_theta, scale, &mut raws, &mut planar);
         }
         ClosedFormFamily::UrFamily => {
             ur_family(&c, target, &seed_theta, scale, &mut raws, &mut planar);
@@ -696,45 +642,7 @@ pub(crate) fn closed_form_solutions_for_task(
     let any_exact = raws.iter().any(|s| s.exact);
     let mut solutions: Vec<ClosedFormSolution> = Vec::with_capacity(raws.len());
     for raw in raws.iter().filter(|s| s.exact == any_exact) {
-        let mut q = Vec::with_capacity(c.n);
-        let mut inside = true;
-        for (i, joint) in robot.joints.iter().enumerate() {
-            let (v, ok) = represent(joint, raw.theta[i], seed[i]);
-            inside &= ok;
-            q.push(v);
-        }
-        // Branches coincide only at singularities.
-        let duplicate = if raw.singular {
-            solutions.iter().position(|s| {
-                s.q.iter()
-                    .zip(&q)
-                    .zip(&robot.joints)
-                    .all(|((a, b), j)| j.change(*a, *b).abs() < 1e-9)
-            })
-        } else {
-            None
-        };
-        let mut coincident = raw.coincident();
-        if let Some(k) = duplicate {
-            let kept = &mut solutions[k];
-            coincident.push(raw.branch);
-            for b in coincident {
-                if b != kept.branch && !kept.coincident.contains(&b) {
-                    kept.coincident.push(b);
-                }
-            }
-            kept.singular = true;
-            continue;
-        }
-        solutions.push(ClosedFormSolution {
-            q,
-            branch: raw.branch,
-            coincident,
-            free_joints: (0..c.n).filter(|&i| raw.free[i]).collect(),
-            within_limits: inside,
-            singular: raw.singular,
-            exact: raw.exact,
-        });
+        add_solution(robot, c.n, raw, seed, &mut solutions);
     }
     let singular = solutions.iter().any(|s| s.singular);
     Ok(ClosedFormSet {
@@ -743,6 +651,140 @@ pub(crate) fn closed_form_solutions_for_task(
         unreachable: !any_exact,
         singular,
     })
+}
+
+/// The DH variables of `seed` (offsets included), for free joints.
+fn dh_variables(robot: &Robot, seed: &[f64]) -> [f64; 6] {
+    let mut seed_theta = [0.0; 6];
+    for (i, j) in robot.joints.iter().enumerate() {
+        seed_theta[i] = seed[i]
+            + match j.kind {
+                JointKind::Revolute => j.dh.theta,
+                JointKind::Prismatic => j.dh.d,
+            };
+    }
+    seed_theta
+}
+
+/// The planar 2R's solutions into `raws`.
+fn planar_2r_family(
+    c: &Canonical,
+    target: &IsometryMatrix3<f64>,
+    seed_theta: &[f64; 6],
+    scale: f64,
+    raws: &mut Vec<Raw>,
+    planar: &mut Vec<Planar>,
+) {
+    let r = &c.rows;
+    let p = c
+        .pre
+        .inverse_transform_point(&target.translation.vector.into());
+    planar_2r(p.x, p.y, r[0].a, r[1].a, seed_theta[0], planar);
+    let in_plane = (p.z - r[0].d - r[1].d).abs() <= 1e-9 * scale;
+    for pl in planar.iter() {
+        let branch = Branch {
+            elbow: Some(elbow_of(1.0, r[0].a, r[1].a, pl.sign)),
+            ..Branch::default()
+        };
+        let mut raw = Raw::new([pl.ta, pl.tb, 0.0, 0.0, 0.0, 0.0], branch);
+        raw.exact = pl.exact && in_plane;
+        raw.singular = pl.singular;
+        raw.merged.elbow = pl.singular && !pl.free_a;
+        raw.free[0] = pl.free_a;
+        raws.push(raw);
+    }
+}
+
+/// The RRR arm's solutions (base yaw, then a planar 2R) into `raws`.
+fn rrr_family(
+    c: &Canonical,
+    target: &IsometryMatrix3<f64>,
+    seed_theta: &[f64; 6],
+    scale: f64,
+    raws: &mut Vec<Raw>,
+    planar: &mut Vec<Planar>,
+) {
+    let r = &c.rows;
+    let p = c
+        .pre
+        .inverse_transform_point(&target.translation.vector.into());
+    let sigma1 = r[0].sigma();
+    let w = Vector3::new(p.x, p.y, p.z - r[0].d);
+    let d_sum = r[1].d + r[2].d;
+    let (t1s, ok1, sing1, free1) = shoulder(w.x, w.y, sigma1, d_sum, seed_theta[0], scale);
+    for (s, &t1) in t1s.iter().enumerate() {
+        let (s1, c1) = sin_cos(t1);
+        let x = w.x * c1 + w.y * s1;
+        let y = sigma1 * w.z;
+        planar.clear();
+        planar_2r(x, y, r[1].a, r[2].a, seed_theta[1], planar);
+        for pl in planar.iter() {
+            let side = sigma1 * front_sign(s);
+            let branch = Branch {
+                shoulder: Some(shoulder_of(s)),
+                elbow: Some(elbow_of(side, r[1].a, r[2].a, pl.sign)),
+                wrist: None,
+            };
+            let mut raw = Raw::new([t1, pl.ta, pl.tb, 0.0, 0.0, 0.0], branch);
+            raw.exact = pl.exact && ok1;
+            raw.singular = pl.singular || sing1;
+            raw.merged.elbow = pl.singular && !pl.free_a;
+            raw.merged.shoulder = sing1 && !free1;
+            raw.free[0] = free1;
+            raw.free[1] = pl.free_a;
+            raws.push(raw);
+        }
+    }
+}
+
+/// Adds `raw` (in joint values near `seed`) to `solutions`, or, when it is a singular
+/// one that an earlier solution already is (branches coincide only at singularities),
+/// adds its branches to that one's coincident branches instead.
+fn add_solution(
+    robot: &Robot,
+    n: usize,
+    raw: &Raw,
+    seed: &[f64],
+    solutions: &mut Vec<ClosedFormSolution>,
+) {
+    let mut q = Vec::with_capacity(n);
+    let mut inside = true;
+    for (i, joint) in robot.joints.iter().enumerate() {
+        let (v, ok) = represent(joint, raw.theta[i], seed[i]);
+        inside &= ok;
+        q.push(v);
+    }
+    let duplicate = if raw.singular {
+        solutions.iter().position(|s| {
+            s.q.iter()
+                .zip(&q)
+                .zip(&robot.joints)
+                .all(|((a, b), j)| j.change(*a, *b).abs() < 1e-9)
+        })
+    } else {
+        None
+    };
+    let mut coincident = raw.coincident();
+    if let Some(k) = duplicate {
+        let kept = &mut solutions[k];
+        coincident.push(raw.branch);
+        for b in coincident {
+            if b != kept.branch && !kept.coincident.contains(&b) {
+                kept.coincident.push(b);
+            }
+        }
+        kept.singular = true;
+        return;
+    }
+    solutions.push(ClosedFormSolution {
+        q,
+        branch: raw.branch,
+        coincident,
+        free_joints: (0..n).filter(|&i| raw.free[i]).collect(),
+        within_limits: inside,
+        singular: raw.singular,
+        exact: raw.exact,
+    });
 }
 
 /// The smallest `sin θ5` (UR family) below which the wrist counts as singular: θ6 and
@@ -789,15 +831,6 @@ fn ur_family(
             if wi == 1 && wrist_singular {
                 break;
             }
-            let branch_sw = |elbow: Elbow| Branch {
-                shoulder: Some(shoulder_of(s)),
-                elbow: Some(elbow),
-                wrist: Some(if wi == 0 {
-                    Wrist::NotFlipped
-                } else {
-                    Wrist::Flipped
-                }),
-            };
             let a5 = r[4].transform_with(t5, sc5);
             // θ6 and, from it, the frame-4 pose in frame 1: the rotation gives
             // θ2 + θ3 + θ4, the translation the planar 2R's point.
@@ -819,15 +852,7 @@ fn ur_family(
                 let k = sigma4 * t5.signum();
                 atan2(-k * sy, k * sx)
             } else {
-                // θ6 is free: the seed's value when the planar 2R then reaches its point,
-                // else the nearest value for which it does (docs/kinematics.md §9.3).
-                let (x, y, _) = frame4(seed_theta[5]);
-                if reachable(x, y) {
-                    seed_theta[5]
-                } else {
-                    ur_wrist_free_t6(c, &t1_target, t5, seed_theta[5], &frame4, &reachable)
-                        .unwrap_or(seed_theta[5])
-                }
+                ur_singular_t6(c, &t1_target, t5, seed_theta[5], &frame4, &reachable)
             };
             let (x, y, t234) = frame4(t6);
             planar.clear();
@@ -836,7 +861,7 @@ fn ur_family(
                 let side = sigma1 * front_sign(s);
                 let mut raw = Raw::new(
                     [t1, pl.ta, pl.tb, t234 - pl.ta - pl.tb, t5, t6],
-                    branch_sw(elbow_of(side, r[1].a, r[2].a, pl.sign)),
+                    ur_branch(s, wi, elbow_of(side, r[1].a, r[2].a, pl.sign)),
                 );
                 raw.exact = pl.exact && ok1;
                 raw.singular = pl.singular || sing1 || wrist_singular;
@@ -851,6 +876,38 @@ fn ur_family(
                 raws.push(raw);
             }
         }
+    }
+}
+
+/// A UR-family branch: shoulder `s` and wrist `wi` (0 not flipped, 1 flipped) by index.
+fn ur_branch(s: usize, wi: usize, elbow: Elbow) -> Branch {
+    Branch {
+        shoulder: Some(shoulder_of(s)),
+        elbow: Some(elbow),
+        wrist: Some(if wi == 0 {
+            Wrist::NotFlipped
+        } else {
+            Wrist::Flipped
+        }),
+    }
+}
+
+/// θ6 at the singular UR wrist, where it is free: the seed's value when the planar 2R
+/// then reaches its point, else the nearest value for which it does (docs/kinematics.md
+/// §9.3; [`ur_wrist_free_t6`]), else the seed's.
+fn ur_singular_t6(
+    c: &Canonical,
+    t1_target: &IsometryMatrix3<f64>,
+    t5: f64,
+    seed6: f64,
+    frame4: &dyn Fn(f64) -> (f64, f64, f64),
+    reachable: &dyn Fn(f64, f64) -> bool,
+) -> f64 {
+    let (x, y, _) = frame4(seed6);
+    if reachable(x, y) {
+        seed6
+    } else {
+        ur_wrist_free_t6(c, t1_target, t5, seed6, frame4, reachable).unwrap_or(seed6)
     }
 }
 

@@ -181,6 +181,104 @@ struct Outcome {
     stationary: bool,
 }
 
+impl Outcome {
+    /// Marks how the attempt ended.
+    #[inline]
+    fn end(&mut self, end: End) {
+        match end {
+            End::Converged => self.converged = true,
+            End::Stationary => self.stationary = true,
+        }
+    }
+}
+
+/// Why an attempt ended before its cap, when a step ends it.
+#[derive(Debug, Clone, Copy)]
+enum End {
+    Converged,
+    /// At a minimum of the error ([`Outcome::stationary`]).
+    Stationary,
+}
+
+/// The step of one iteration ([`Workspace::step`]).
+#[derive(Debug, Clone, Copy)]
+enum Step {
+    /// The step is in `dq`: its norm and the damping λ (0 for the undamped methods).
+    Taken { norm: f64, damping: f64 },
+    /// The damped system was not positive definite: more damping, at the next iteration.
+    Refused,
+    /// No finite step, or the damping ran out: a minimum of the error.
+    Stuck,
+}
+
+/// An attempt's damping and the costs it compares with to tell slow progress or a stall.
+#[derive(Debug, Clone, Copy)]
+struct Progress {
+    /// μ in λ² = μ·(‖e‖ + [`DLS_FLOOR`]).
+    mu: f64,
+    /// The cost at the start of the current [`SLOW_WINDOW`].
+    checkpoint: f64,
+    /// The cost after each of the last STALL_ITERATIONS iterations, by iteration mod 2.
+    recent: [f64; STALL_ITERATIONS],
+}
+
+impl Progress {
+    fn new(cost: f64) -> Self {
+        Progress {
+            mu: DLS_MU_START,
+            checkpoint: cost,
+            recent: [cost; STALL_ITERATIONS],
+        }
+    }
+
+    /// More damping after a refused step; `true` when it passes [`DLS_MU_MAX`] (a minimum).
+    #[inline]
+    fn damp_more(&mut self) -> bool {
+        self.mu *= DLS_MU_UP;
+        self.mu > DLS_MU_MAX
+    }
+
+    /// Less damping after an accepted step.
+    #[inline]
+    fn damp_less(&mut self) {
+        self.mu = (self.mu * DLS_MU_DOWN).max(DLS_MU_MIN);
+    }
+
+    /// Whether a damped attempt ends after `iterations` at `cost`: `Some(stationary)` when
+    /// it stalled ([`STALL_ITERATIONS`], only if `may_restart`) or did not halve its cost
+    /// over the [`SLOW_WINDOW`].
+    // Inlined into the solver's loop except in the page (`angles::SIZE_OVER_SPEED`).
+    #[cfg_attr(not(all(target_arch = "wasm32", feature = "small")), inline(always))]
+    fn stalled(&mut self, iterations: usize, cost: f64, may_restart: bool) -> Option<bool> {
+        if may_restart {
+            let slot = iterations % STALL_ITERATIONS;
+            let before = self.recent[slot];
+            if iterations >= STALL_ITERATIONS && cost > STALL_FACTOR * before {
+                return Some(cost > AT_A_MINIMUM * before);
+            }
+            self.recent[slot] = cost;
+        }
+        if iterations.is_multiple_of(SLOW_WINDOW) {
+            if cost > 0.5 * self.checkpoint {
+                return Some(cost > AT_A_MINIMUM * self.checkpoint);
+            }
+            self.checkpoint = cost;
+        }
+        None
+    }
+}
+
+/// What the solve reports of its best attempt (the attempt's joint values are in
+/// `Workspace::best`).
+#[derive(Debug, Clone, Copy)]
+struct Best {
+    converged: bool,
+    cost: f64,
+    stationary: bool,
+    position_error: f64,
+    orientation_error: f64,
+}
+
 // Damped least squares: λ² = μ·(‖e‖ + DLS_FLOOR), μ adapted in [DLS_MU_MIN, DLS_MU_MAX]
 // (docs/kinematics.md §8.3: with the damping in proportion to ‖e‖, not to ½‖e‖², the
 // UR10's median is 8 iterations, not 9; docs/benchmarks.md).
@@ -262,6 +360,9 @@ struct Ctx<'a> {
     robot: &'a Robot,
     tt: TaskTarget,
     method: IkMethod,
+    /// Damped least squares (also the numeric part of the closed form): a step must lower
+    /// the cost to be taken, and slow or stalled attempts end early.
+    damped: bool,
     jacobian: JacobianSource,
     inv_len: f64,
     tol_p: f64,
@@ -272,7 +373,30 @@ struct Ctx<'a> {
     gradient_factor: f64,
 }
 
-impl Ctx<'_> {
+impl<'a> Ctx<'a> {
+    // Inlined into the solve except in the page (`angles::SIZE_OVER_SPEED`).
+    #[cfg_attr(not(all(target_arch = "wasm32", feature = "small")), inline(always))]
+    fn new(
+        robot: &'a Robot,
+        tt: TaskTarget,
+        method: IkMethod,
+        settings: &IkSettings,
+        inv_len: f64,
+    ) -> Self {
+        Ctx {
+            robot,
+            tt,
+            method,
+            damped: matches!(method, IkMethod::DampedLeastSquares | IkMethod::ClosedForm),
+            jacobian: settings.jacobian,
+            inv_len,
+            tol_p: settings.position_tolerance / robot.length_unit.in_metres(),
+            tol_o: settings.orientation_tolerance,
+            wrap: settings.wrap,
+            gradient_factor: settings.objective.gradient_factor(),
+        }
+    }
+
     fn converged(&self, ev: &Eval) -> bool {
         ev.position_error <= self.tol_p && ev.orientation_error <= self.tol_o
     }
@@ -307,8 +431,51 @@ impl Workspace {
         method: IkMethod,
         settings: &IkSettings,
     ) -> IkResult {
-        let n = robot.dof();
-        self.resize(n);
+        let inv_len = self.prepare(robot, method);
+        let ctx = Ctx::new(
+            robot,
+            TaskTarget::new(target, task),
+            method,
+            settings,
+            inv_len,
+        );
+        let mut trace = Vec::new();
+        let mut rng = SplitMix64::new(settings.seed);
+        self.start_at_seed(&ctx, seed, settings.record_trace.then_some(&mut trace));
+        let mut record = settings.record_trace.then_some(&mut trace);
+        let mut total = 0usize;
+        let mut restarts = 0usize;
+        let mut best = None;
+        loop {
+            let cap = settings
+                .max_iterations
+                .min(settings.budget.saturating_sub(total));
+            // Stalled attempts end early while half the restarts remain: the rest run
+            // their whole window, so that the cap on restarts does not run out on short
+            // attempts with iterations left in the budget.
+            let may_restart = restarts < settings.restarts / 2;
+            let (out, ev) = self.attempt(&ctx, cap, may_restart, record.as_deref_mut());
+            total += out.iterations;
+            self.keep_if_better(&mut best, &out, &ev);
+            if out.converged
+                || total >= settings.budget
+                || restarts >= settings.restarts
+                || cap == 0
+            {
+                break;
+            }
+            restarts += 1;
+            self.restart_at_random(&ctx, &mut rng, record.as_deref_mut());
+        }
+        self.result(robot, best, total, restarts, trace)
+    }
+
+    /// Sizes the workspace and the chain to `robot`, and sets each joint's step unit;
+    /// returns the factor of the linear rows (1 / length).
+    // Inlined into the solve except in the page (`angles::SIZE_OVER_SPEED`).
+    #[cfg_attr(not(all(target_arch = "wasm32", feature = "small")), inline(always))]
+    fn prepare(&mut self, robot: &Robot, method: IkMethod) -> f64 {
+        self.resize(robot.dof());
         self.chain.set(robot);
         let inv_len = match method {
             IkMethod::JacobianTranspose { alpha: Some(_) } => 1.0,
@@ -321,89 +488,95 @@ impl Workspace {
                 1.0
             };
         }
-        let ctx = Ctx {
-            robot,
-            tt: TaskTarget::new(target, task),
-            method,
-            jacobian: settings.jacobian,
-            inv_len,
-            tol_p: settings.position_tolerance / robot.length_unit.in_metres(),
-            tol_o: settings.orientation_tolerance,
-            wrap: settings.wrap,
-            gradient_factor: settings.objective.gradient_factor(),
-        };
-        let mut trace = Vec::new();
-        let mut rng = SplitMix64::new(settings.seed);
-        for ((v, s), joint) in self.q.iter_mut().zip(seed).zip(&robot.joints) {
+        inv_len
+    }
+
+    /// The first attempt's start: `q` = the seed, kept (and its step in `trace`).
+    // Inlined into the solve except in the page (`angles::SIZE_OVER_SPEED`).
+    #[cfg_attr(not(all(target_arch = "wasm32", feature = "small")), inline(always))]
+    fn start_at_seed(&mut self, ctx: &Ctx, seed: &[f64], trace: Option<&mut Vec<IkStep>>) {
+        for ((v, s), joint) in self.q.iter_mut().zip(seed).zip(&ctx.robot.joints) {
             *v = keep_or_raw(ctx.wrap, joint, *s, *s);
         }
-        if settings.record_trace {
+        if let Some(t) = trace {
             self.chain.update(&self.q);
-            let ev = evaluate(&ctx.tt, &self.chain.pose, inv_len);
-            trace.push(start_step(&self.q, seed, &ev, false));
+            let ev = evaluate(&ctx.tt, &self.chain.pose, ctx.inv_len);
+            t.push(start_step(&self.q, seed, &ev, false));
         }
-        let record = settings.record_trace.then_some(&mut trace);
-        let mut record = record;
-        let mut total = 0usize;
-        let mut restarts = 0usize;
-        // (converged, cost, stationary, position error, orientation error)
-        let mut best: Option<(bool, f64, bool, f64, f64)> = None;
-        loop {
-            let cap = settings
-                .max_iterations
-                .min(settings.budget.saturating_sub(total));
-            // Stalled attempts end early while half the restarts remain: the rest run
-            // their whole window, so that the cap on restarts does not run out on short
-            // attempts with iterations left in the budget.
-            let may_restart = restarts < settings.restarts / 2;
-            let (out, ev) = self.attempt(&ctx, cap, may_restart, record.as_deref_mut());
-            total += out.iterations;
-            let better = match best {
-                None => true,
-                Some((conv, cost, ..)) => {
-                    (out.converged && !conv) || (out.converged == conv && ev.cost < cost)
-                }
-            };
-            if better {
-                self.best.copy_from_slice(&self.q);
-                best = Some((
-                    out.converged,
-                    ev.cost,
-                    out.stationary,
-                    ev.position_error,
-                    ev.orientation_error,
-                ));
-            }
-            if out.converged
-                || total >= settings.budget
-                || restarts >= settings.restarts
-                || cap == 0
-            {
-                break;
-            }
-            restarts += 1;
-            for (v, joint) in self.q.iter_mut().zip(&robot.joints) {
-                *v = rng.uniform(joint.limits.min, joint.limits.max);
-            }
-            if let Some(t) = record.as_deref_mut() {
-                self.chain.update(&self.q);
-                let ev = evaluate(&ctx.tt, &self.chain.pose, inv_len);
-                t.push(start_step(&self.q, &self.q, &ev, true));
-            }
+    }
+
+    /// A restart's start: `q` drawn uniformly within the limits (and its step in `trace`).
+    // Inlined into the solve except in the page (`angles::SIZE_OVER_SPEED`).
+    #[cfg_attr(not(all(target_arch = "wasm32", feature = "small")), inline(always))]
+    fn restart_at_random(
+        &mut self,
+        ctx: &Ctx,
+        rng: &mut SplitMix64,
+        trace: Option<&mut Vec<IkStep>>,
+    ) {
+        for (v, joint) in self.q.iter_mut().zip(&ctx.robot.joints) {
+            *v = rng.uniform(joint.limits.min, joint.limits.max);
         }
-        let (converged, _, stationary, position_error, orientation_error) =
-            best.unwrap_or((false, f64::INFINITY, false, f64::INFINITY, f64::INFINITY));
+        if let Some(t) = trace {
+            self.chain.update(&self.q);
+            let ev = evaluate(&ctx.tt, &self.chain.pose, ctx.inv_len);
+            t.push(start_step(&self.q, &self.q, &ev, true));
+        }
+    }
+
+    /// Keeps the attempt just ended (its answer in `q`) as the best when it is the first,
+    /// or converged where the best did not, or as converged with a lower cost.
+    // Inlined into the solve except in the page (`angles::SIZE_OVER_SPEED`).
+    #[cfg_attr(not(all(target_arch = "wasm32", feature = "small")), inline(always))]
+    fn keep_if_better(&mut self, best: &mut Option<Best>, out: &Outcome, ev: &Eval) {
+        let better = match best {
+            None => true,
+            Some(b) => {
+                (out.converged && !b.converged)
+                    || (out.converged == b.converged && ev.cost < b.cost)
+            }
+        };
+        if better {
+            self.best.copy_from_slice(&self.q);
+            *best = Some(Best {
+                converged: out.converged,
+                cost: ev.cost,
+                stationary: out.stationary,
+                position_error: ev.position_error,
+                orientation_error: ev.orientation_error,
+            });
+        }
+    }
+
+    /// The solve's answer: the best attempt, and the iterations and restarts it took.
+    // Inlined into the solve except in the page (`angles::SIZE_OVER_SPEED`).
+    #[cfg_attr(not(all(target_arch = "wasm32", feature = "small")), inline(always))]
+    fn result(
+        &self,
+        robot: &Robot,
+        best: Option<Best>,
+        iterations: usize,
+        restarts: usize,
+        trace: Vec<IkStep>,
+    ) -> IkResult {
+        let best = best.unwrap_or(Best {
+            converged: false,
+            cost: f64::INFINITY,
+            stationary: false,
+            position_error: f64::INFINITY,
+            orientation_error: f64::INFINITY,
+        });
         IkResult {
             q: self.best.clone(),
-            success: converged,
+            success: best.converged,
             // Every attempt failed: at a minimum of the error, or restarts used up.
-            unreachable: !converged && (stationary || restarts > 0),
+            unreachable: !best.converged && (best.stationary || restarts > 0),
             singular: false,
             clipped: false,
             within_limits: within_limits(robot, &self.best),
-            position_error,
-            orientation_error,
-            iterations: total,
+            position_error: best.position_error,
+            orientation_error: best.orientation_error,
+            iterations,
             restarts,
             trace,
         }
@@ -542,7 +715,6 @@ impl Workspace {
         may_restart: bool,
         mut trace: Option<&mut Vec<IkStep>>,
     ) -> (Outcome, Eval) {
-        let robot = ctx.robot;
         self.chain.update(&self.q);
         let mut ev = evaluate(&ctx.tt, &self.chain.pose, ctx.inv_len);
         let mut out = Outcome::default();
@@ -555,102 +727,107 @@ impl Workspace {
             return (out, ev);
         }
         self.task_jacobian(ctx);
-        let mut mu = DLS_MU_START;
-        let mut checkpoint = ev.cost;
-        // The cost after each of the last STALL_ITERATIONS iterations, by iteration mod 2.
-        let mut recent = [ev.cost; STALL_ITERATIONS];
+        let mut progress = Progress::new(ev.cost);
         while out.iterations < cap {
             out.iterations += 1;
-            let mut damping = 0.0;
-            let step = match ctx.method {
-                IkMethod::PseudoInverse => {
-                    let y = pinv_times(&self.m, &ev.e);
-                    self.back_substitute(&y)
-                }
-                IkMethod::JacobianTranspose { alpha } => {
-                    let alpha = match alpha {
-                        Some(a) => a * ctx.gradient_factor,
-                        None => {
-                            let me = self.m * ev.e;
-                            let den = me.norm_squared();
-                            if den > 0.0 { ev.e.dot(&me) / den } else { 0.0 }
-                        }
-                    };
-                    self.back_substitute(&(ev.e * alpha))
-                }
-                _ => {
-                    let lambda2 = mu * ((2.0 * ev.cost).sqrt() + DLS_FLOOR);
-                    damping = lambda2.sqrt();
-                    match self.damped_step(ctx, lambda2, &ev.e) {
-                        Some(step) => step,
-                        None => {
-                            mu *= DLS_MU_UP;
-                            if mu > DLS_MU_MAX {
-                                out.stationary = true;
-                                break;
-                            }
-                            continue;
-                        }
-                    }
+            let (step, damping) = match self.step(ctx, &ev, &mut progress) {
+                Step::Taken { norm, damping } => (norm, damping),
+                Step::Refused => continue,
+                Step::Stuck => {
+                    out.stationary = true;
+                    break;
                 }
             };
-            if !step.is_finite() {
-                out.stationary = true;
+            if let Some(end) = self.try_step(ctx, &mut ev, &mut progress, &mut trace, step, damping)
+            {
+                out.end(end);
                 break;
             }
-            self.take_step(robot, ctx.wrap);
-            self.chain.update(&self.q_try);
-            let ev_try = evaluate(&ctx.tt, &self.chain.pose, ctx.inv_len);
-            let damped = matches!(
-                ctx.method,
-                IkMethod::DampedLeastSquares | IkMethod::ClosedForm
-            );
-            let accepted = !damped || ev_try.cost < ev.cost;
-            if accepted {
-                if !ev_try.cost.is_finite() {
-                    out.stationary = true;
-                    break;
-                }
-                let gain = (ev.cost - ev_try.cost) / ev.cost;
-                std::mem::swap(&mut self.q, &mut self.q_try);
-                ev = ev_try;
-                mu = (mu * DLS_MU_DOWN).max(DLS_MU_MIN);
-                self.record(&mut trace, &ev, step, damping, true);
-                if ctx.converged(&ev) {
-                    out.converged = true;
-                    break;
-                }
-                if damped && gain < DLS_STATIONARY {
-                    out.stationary = true;
-                    break;
-                }
-                self.task_jacobian(ctx);
-            } else {
-                self.record(&mut trace, &ev, step, damping, false);
-                mu *= DLS_MU_UP;
-                if mu > DLS_MU_MAX {
-                    out.stationary = true;
-                    break;
-                }
-            }
-            if damped && may_restart {
-                let slot = out.iterations % STALL_ITERATIONS;
-                let before = recent[slot];
-                if out.iterations >= STALL_ITERATIONS && ev.cost > STALL_FACTOR * before {
-                    out.stationary = ev.cost > AT_A_MINIMUM * before;
-                    break;
-                }
-                recent[slot] = ev.cost;
-            }
-            if damped && out.iterations.is_multiple_of(SLOW_WINDOW) {
-                if ev.cost > 0.5 * checkpoint {
-                    out.stationary = ev.cost > AT_A_MINIMUM * checkpoint;
-                    break;
-                }
-                checkpoint = ev.cost;
+            if ctx.damped
+                && let Some(stationary) = progress.stalled(out.iterations, ev.cost, may_restart)
+            {
+                out.stationary = stationary;
+                break;
             }
         }
         (out, ev)
+    }
+
+    /// This iteration's step into `dq`, by the method of `ctx`, from the error `ev`.
+    // Inlined into the solver's loop except in the page (`angles::SIZE_OVER_SPEED`).
+    #[cfg_attr(not(all(target_arch = "wasm32", feature = "small")), inline(always))]
+    fn step(&mut self, ctx: &Ctx, ev: &Eval, progress: &mut Progress) -> Step {
+        let (norm, damping) = match ctx.method {
+            IkMethod::PseudoInverse => {
+                let y = pinv_times(&self.m, &ev.e);
+                (self.back_substitute(&y), 0.0)
+            }
+            IkMethod::JacobianTranspose { alpha } => {
+                let alpha = match alpha {
+                    Some(a) => a * ctx.gradient_factor,
+                    None => {
+                        let me = self.m * ev.e;
+                        let den = me.norm_squared();
+                        if den > 0.0 { ev.e.dot(&me) / den } else { 0.0 }
+                    }
+                };
+                (self.back_substitute(&(ev.e * alpha)), 0.0)
+            }
+            _ => {
+                let lambda2 = progress.mu * ((2.0 * ev.cost).sqrt() + DLS_FLOOR);
+                match self.damped_step(ctx, lambda2, &ev.e) {
+                    Some(norm) => (norm, lambda2.sqrt()),
+                    None if progress.damp_more() => return Step::Stuck,
+                    None => return Step::Refused,
+                }
+            }
+        };
+        if norm.is_finite() {
+            Step::Taken { norm, damping }
+        } else {
+            Step::Stuck
+        }
+    }
+
+    /// Moves to `q + dq` (kept) unless a `damped` method finds its cost no lower, then
+    /// adapts the damping, records the step and updates `ev` and the Jacobian; returns
+    /// how the attempt ends, if this step ends it.
+    // Inlined into the solver's loop except in the page (`angles::SIZE_OVER_SPEED`).
+    #[cfg_attr(not(all(target_arch = "wasm32", feature = "small")), inline(always))]
+    fn try_step(
+        &mut self,
+        ctx: &Ctx,
+        ev: &mut Eval,
+        progress: &mut Progress,
+        trace: &mut Option<&mut Vec<IkStep>>,
+        step: f64,
+        damping: f64,
+    ) -> Option<End> {
+        self.take_step(ctx.robot, ctx.wrap);
+        self.chain.update(&self.q_try);
+        let ev_try = evaluate(&ctx.tt, &self.chain.pose, ctx.inv_len);
+        let damped = ctx.damped;
+        let accepted = !damped || ev_try.cost < ev.cost;
+        if !accepted {
+            self.record(trace, ev, step, damping, false);
+            return progress.damp_more().then_some(End::Stationary);
+        }
+        if !ev_try.cost.is_finite() {
+            return Some(End::Stationary);
+        }
+        let gain = (ev.cost - ev_try.cost) / ev.cost;
+        std::mem::swap(&mut self.q, &mut self.q_try);
+        *ev = ev_try;
+        progress.damp_less();
+        self.record(trace, ev, step, damping, true);
+        if ctx.converged(ev) {
+            return Some(End::Converged);
+        }
+        if damped && gain < DLS_STATIONARY {
+            return Some(End::Stationary);
+        }
+        self.task_jacobian(ctx);
+        None
     }
 
     fn record(

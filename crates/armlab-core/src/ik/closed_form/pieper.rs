@@ -13,13 +13,13 @@
 //!   `(d3 + d4)² = ρ1² − k²` and θ2 follows; the offset is `D = d2 + σ2·a3·sin θ3⁰`.
 
 use crate::angles::{atan2, sin_cos};
-use nalgebra::{IsometryMatrix3, Vector3};
+use nalgebra::{IsometryMatrix3, Matrix3, Vector3};
 
 use super::{
     Branch, Canonical, Merged, Planar, Raw, Row, Wrist, elbow_of, front_sign, parallel, planar_2r,
     quarter_turn, shoulder, shoulder_of,
 };
-use crate::robot::Robot;
+use crate::robot::{Joint, Robot};
 
 /// The first three joints' structure.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -109,101 +109,150 @@ pub(super) fn solve(
         let mut arms: Vec<Arm> = Vec::with_capacity(2);
         match kind {
             PositionKind::Elbow => {
-                let ux = r[2].a;
-                let uy = -sa2 * r[3].d;
-                let len = ux.hypot(uy);
-                let beta = atan2(uy, ux);
-                planar.clear();
-                planar_2r(x1, y1, r[1].a, len, seed_theta[1], planar);
                 let side = sigma1 * front_sign(s);
-                for pl in planar.iter() {
-                    arms.push(Arm {
-                        t2: pl.ta,
-                        v3: pl.tb - beta,
-                        elbow: Some(elbow_of(side, r[1].a, len, pl.sign)),
-                        exact: pl.exact,
-                        singular: pl.singular,
-                        merged_elbow: pl.singular && !pl.free_a,
-                        free_t2: pl.free_a,
-                    });
-                }
+                elbow_arms(r, sa2, (x1, y1), side, seed_theta[1], planar, &mut arms);
             }
             PositionKind::Boom => {
-                let k = r[1].a + r[2].a * sin_cos(r[2].theta0).1;
-                let rho2 = x1 * x1 + y1 * y1;
-                let e2 = rho2 - k * k;
-                let exact = e2 >= -1e-10 * scale * scale;
-                let e = e2.max(0.0).sqrt();
-                let singular = e <= 1e-9 * scale;
-                let sigma2 = r[1].sigma();
-                let joint = &robot.joints[2];
-                // The stroke d3 = ±e − d4: the roots inside the limits, else the longer.
-                let mut roots: Vec<f64> = [e, -e]
-                    .iter()
-                    .map(|ev| ev - r[3].d)
-                    .filter(|d3| joint.limits.contains(d3 - joint.dh.d, 1e-9))
-                    .collect();
-                if roots.is_empty() {
-                    roots.push(e - r[3].d);
-                }
-                if singular {
-                    roots.truncate(1);
-                }
-                for d3 in roots {
-                    // θ2 turns v = (k, −σ2·(d3 + d4)) onto the point (x1, y1).
-                    let vy = -sigma2 * (d3 + r[3].d);
-                    let t2 = atan2(y1, x1) - atan2(vy, k);
-                    arms.push(Arm {
-                        t2,
-                        v3: d3,
-                        elbow: None,
-                        exact,
-                        singular,
-                        merged_elbow: false,
-                        free_t2: false,
-                    });
-                }
+                boom_arms(r, &robot.joints[2], (x1, y1), scale, &mut arms);
             }
         }
+        let base = Base {
+            index: s,
+            t1,
+            exact: ok1,
+            singular: sing1,
+            free: free1,
+        };
         for arm in arms {
-            let Arm {
-                t2,
-                v3,
-                elbow,
-                exact: ok2,
-                singular: sing2,
-                merged_elbow,
-                free_t2: free2,
-            } = arm;
-            let r03 = r[0].transform(t1) * r[1].transform(t2) * r[2].transform(v3);
-            let m = r03.rotation.matrix().transpose() * rot;
-            wrist(
-                c,
-                [t1, t2, v3],
-                &m,
-                seed_theta[3],
-                |wrist_branch, theta, wrist_singular, free4| {
-                    let branch = Branch {
-                        shoulder: Some(shoulder_of(s)),
-                        elbow,
-                        wrist: Some(wrist_branch),
-                    };
-                    let mut raw = Raw::new(theta, branch);
-                    raw.exact = ok1 && ok2;
-                    raw.singular = sing1 || sing2 || wrist_singular;
-                    raw.merged = Merged {
-                        shoulder: sing1 && !free1,
-                        elbow: merged_elbow,
-                        wrist: wrist_singular,
-                    };
-                    raw.free[0] = free1;
-                    raw.free[1] = free2;
-                    raw.free[3] = free4;
-                    raws.push(raw);
-                },
-            );
+            wrist_solutions(c, &rot, seed_theta[3], &base, arm, raws);
         }
     }
+}
+
+/// The elbow's arms (joints 2–3 a planar 2R) reaching `(x1, y1)` in frame 1, on `side`.
+fn elbow_arms(
+    r: &[Row; 6],
+    sa2: f64,
+    (x1, y1): (f64, f64),
+    side: f64,
+    seed2: f64,
+    planar: &mut Vec<Planar>,
+    arms: &mut Vec<Arm>,
+) {
+    let ux = r[2].a;
+    let uy = -sa2 * r[3].d;
+    let len = ux.hypot(uy);
+    let beta = atan2(uy, ux);
+    planar.clear();
+    planar_2r(x1, y1, r[1].a, len, seed2, planar);
+    for pl in planar.iter() {
+        arms.push(Arm {
+            t2: pl.ta,
+            v3: pl.tb - beta,
+            elbow: Some(elbow_of(side, r[1].a, len, pl.sign)),
+            exact: pl.exact,
+            singular: pl.singular,
+            merged_elbow: pl.singular && !pl.free_a,
+            free_t2: pl.free_a,
+        });
+    }
+}
+
+/// The boom's arms (θ2 and the stroke d3 of `joint`) reaching `(x1, y1)` in frame 1.
+fn boom_arms(r: &[Row; 6], joint: &Joint, (x1, y1): (f64, f64), scale: f64, arms: &mut Vec<Arm>) {
+    let k = r[1].a + r[2].a * sin_cos(r[2].theta0).1;
+    let rho2 = x1 * x1 + y1 * y1;
+    let e2 = rho2 - k * k;
+    let exact = e2 >= -1e-10 * scale * scale;
+    let e = e2.max(0.0).sqrt();
+    let singular = e <= 1e-9 * scale;
+    let sigma2 = r[1].sigma();
+    // The stroke d3 = ±e − d4: the roots inside the limits, else the longer.
+    let mut roots: Vec<f64> = [e, -e]
+        .iter()
+        .map(|ev| ev - r[3].d)
+        .filter(|d3| joint.limits.contains(d3 - joint.dh.d, 1e-9))
+        .collect();
+    if roots.is_empty() {
+        roots.push(e - r[3].d);
+    }
+    if singular {
+        roots.truncate(1);
+    }
+    for d3 in roots {
+        // θ2 turns v = (k, −σ2·(d3 + d4)) onto the point (x1, y1).
+        let vy = -sigma2 * (d3 + r[3].d);
+        let t2 = atan2(y1, x1) - atan2(vy, k);
+        arms.push(Arm {
+            t2,
+            v3: d3,
+            elbow: None,
+            exact,
+            singular,
+            merged_elbow: false,
+            free_t2: false,
+        });
+    }
+}
+
+/// One base angle θ1 of [`shoulder`]: which of its two, and what `shoulder` said of it.
+struct Base {
+    /// 0 or 1 (the shoulder branch).
+    index: usize,
+    t1: f64,
+    exact: bool,
+    singular: bool,
+    /// θ1 is free (took the seed's value).
+    free: bool,
+}
+
+/// The wrist's solutions for the target rotation `rot` on `base` and `arm`, into `raws`.
+fn wrist_solutions(
+    c: &Canonical,
+    rot: &Matrix3<f64>,
+    seed4: f64,
+    base: &Base,
+    arm: Arm,
+    raws: &mut Vec<Raw>,
+) {
+    let r = &c.rows;
+    let Arm {
+        t2,
+        v3,
+        elbow,
+        exact: ok2,
+        singular: sing2,
+        merged_elbow,
+        free_t2: free2,
+    } = arm;
+    let t1 = base.t1;
+    let r03 = r[0].transform(t1) * r[1].transform(t2) * r[2].transform(v3);
+    let m = r03.rotation.matrix().transpose() * rot;
+    wrist(
+        c,
+        [t1, t2, v3],
+        &m,
+        seed4,
+        |wrist_branch, theta, wrist_singular, free4| {
+            let branch = Branch {
+                shoulder: Some(shoulder_of(base.index)),
+                elbow,
+                wrist: Some(wrist_branch),
+            };
+            let mut raw = Raw::new(theta, branch);
+            raw.exact = base.exact && ok2;
+            raw.singular = base.singular || sing2 || wrist_singular;
+            raw.merged = Merged {
+                shoulder: base.singular && !base.free,
+                elbow: merged_elbow,
+                wrist: wrist_singular,
+            };
+            raw.free[0] = base.free;
+            raw.free[1] = free2;
+            raw.free[3] = free4;
+            raws.push(raw);
+        },
+    );
 }
 
 /// The spherical wrist: `M = R_03ᵀ·R = Rot_z(θ4)·Rot_x(α4)·Rot_z(θ5)·Rot_x(α5)·Rot_z(θ6)`,
