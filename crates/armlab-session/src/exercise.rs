@@ -6,7 +6,7 @@
 use armlab_core::exercise::mystery_arm;
 use armlab_core::{Robot, RobotError, preset, preset_ids};
 
-use super::session::LinkError;
+use super::error::LinkError;
 
 /// The prefix of a mystery arm's id.
 const MYSTERY: &str = "mystery-";

@@ -2,6 +2,9 @@
 //! numbers through [`number`], so a value reads the same everywhere and no text grows to
 //! dozens of digits.
 
+use armlab_core::ZyxEuler;
+use nalgebra::IsometryMatrix3;
+
 /// Magnitudes at or above this are written in scientific form (`3.2e8`).
 const LARGE: f64 = 1e6;
 /// Non-zero magnitudes below this are written in scientific form (`2.5e-7`).
@@ -85,6 +88,28 @@ pub fn number_list(values: &[f64], decimals: usize) -> String {
         .map(|v| number(*v, decimals))
         .collect::<Vec<_>>()
         .join(",")
+}
+
+/// A target pose from `[x, y, z, α, β, γ]` (Z-Y-X Euler angles, radians).
+pub fn target_from_array(t: &[f64; 6]) -> IsometryMatrix3<f64> {
+    let r = ZyxEuler {
+        alpha: t[3],
+        beta: t[4],
+        gamma: t[5],
+        degenerate: false,
+    }
+    .to_rotation();
+    IsometryMatrix3::from_parts(
+        nalgebra::Translation3::new(t[0], t[1], t[2]),
+        nalgebra::Rotation3::from_matrix_unchecked(r),
+    )
+}
+
+/// `[x, y, z, α, β, γ]` of a pose.
+pub fn target_to_array(pose: &IsometryMatrix3<f64>) -> [f64; 6] {
+    let e = ZyxEuler::from_rotation(pose.rotation.matrix());
+    let p = pose.translation.vector;
+    [p.x, p.y, p.z, e.alpha, e.beta, e.gamma]
 }
 
 #[cfg(test)]

@@ -5,6 +5,7 @@
 //! `app::settings` and `app::format`; here they build with the core alone, so the link
 //! parser is tested and fuzzed natively and as wasm without eframe.
 
+pub mod error;
 pub mod exercise;
 pub mod format;
 pub mod motion;

@@ -31,7 +31,7 @@ use armlab_text::echo::Text;
 use armlab_text::{Key, Lang, fill};
 
 use super::format::number_list;
-use super::session::{target_from_array, target_to_array};
+use super::format::{target_from_array, target_to_array};
 
 /// Decimals of the numbers the motion fields write.
 const DECIMALS: usize = 6;
