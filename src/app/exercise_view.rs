@@ -15,10 +15,10 @@ use armlab_core::{Convention, ForwardKinematics, Robot, preset_names};
 use armlab_session::exercise::ExerciseId;
 use armlab_text::Key;
 
+use super::dh_table::{COLUMNS, DhEditor, RowText, convention_row, dh_rows};
 use super::format::number;
 use super::hook::ScreenPoints;
 use super::model::{Message, Model};
-use super::robot_panel::{COLUMNS, DhEditor, RowText, convention_row, dh_rows};
 use super::{style, tr, trf};
 
 /// The student's answer table, kept while the exercise is open.

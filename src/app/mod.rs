@@ -15,6 +15,7 @@
 #![deny(clippy::too_many_lines)]
 
 pub mod convention_view;
+pub mod dh_table;
 pub mod exercise_view;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod files;
