@@ -432,8 +432,8 @@ pub fn robot_file_name(robot: &Robot) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use armlab_text::Lang;
     use armlab_core::preset_ids;
+    use armlab_text::Lang;
 
     #[test]
     fn every_preset_has_its_description_in_the_catalogue() {

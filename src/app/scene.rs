@@ -4,13 +4,15 @@
 //! the ground grid and the target marker with its handles. Pure geometry: no kinematics
 //! is computed here.
 
-use nalgebra::{Matrix4, Point3, Rotation3, Unit, Vector3};
+use nalgebra::{Matrix4, Point3, Rotation3, Vector3};
 
 use crate::render::camera::OrbitCamera;
 use crate::render::{Instance, Line, Scene, Shape};
 pub(crate) use armlab_core::parts::rotation_to;
 use armlab_core::parts::{Part, PartKind, PartShape, Proportions, robot_parts};
 use armlab_core::{ForwardKinematics, Robot};
+
+use super::viewport::marker::handle_px;
 
 const LINK: [u8; 4] = [196, 202, 210, 255];
 const JOINT: [u8; 4] = [52, 120, 196, 255];
@@ -20,16 +22,6 @@ const GRIPPER: [u8; 4] = [70, 74, 80, 255];
 const HIGHLIGHT: [u8; 4] = [255, 210, 60, 255];
 /// The x, y and z axis colours of every drawn frame.
 pub(crate) const AXIS: [[u8; 4]; 3] = [[230, 60, 50, 255], [60, 190, 70, 255], [60, 110, 240, 255]];
-
-/// The screen-size parameters of the target marker, in pixels.
-pub mod handle_px {
-    /// Radius of the centre ball.
-    pub const BALL: f64 = 11.0;
-    /// Length of an axis arrow (centre to tip).
-    pub const ARROW: f64 = 80.0;
-    /// Radius of a rotation ring.
-    pub const RING: f64 = 58.0;
-}
 
 /// What the marker looks like this frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -313,17 +305,4 @@ fn marker(input: &SceneInput<'_>, out: &mut Vec<Instance>) {
             }
         }
     }
-}
-
-/// Two unit vectors perpendicular to `dir` and to each other.
-pub fn perpendiculars(dir: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
-    let d = Unit::new_normalize(*dir);
-    let helper = if d.x.abs() < 0.9 {
-        Vector3::x()
-    } else {
-        Vector3::y()
-    };
-    let u = d.cross(&helper).normalize();
-    let w = d.cross(&u);
-    (u, w)
 }

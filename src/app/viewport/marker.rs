@@ -6,7 +6,28 @@ use nalgebra::{IsometryMatrix3, Point3, Rotation3, Unit, Vector3};
 
 use crate::render::camera::OrbitCamera;
 
-use crate::app::scene::{handle_px, perpendiculars};
+/// The screen-size parameters of the target marker, in pixels.
+pub mod handle_px {
+    /// Radius of the centre ball.
+    pub const BALL: f64 = 11.0;
+    /// Length of an axis arrow (centre to tip).
+    pub const ARROW: f64 = 80.0;
+    /// Radius of a rotation ring.
+    pub const RING: f64 = 58.0;
+}
+
+/// Two unit vectors perpendicular to `dir` and to each other.
+pub fn perpendiculars(dir: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+    let d = Unit::new_normalize(*dir);
+    let helper = if d.x.abs() < 0.9 {
+        Vector3::x()
+    } else {
+        Vector3::y()
+    };
+    let u = d.cross(&helper).normalize();
+    let w = d.cross(&u);
+    (u, w)
+}
 
 /// A grabbable part of the target marker.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

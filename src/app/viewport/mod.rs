@@ -24,12 +24,13 @@ use super::convention_view;
 use super::hook::{self, ScreenPoints};
 use super::jacobian_view::{self, JacobianScene};
 use super::model::{HoverSource, Model};
-use super::scene::{self, MarkerLook, handle_px};
+use super::scene::{self, MarkerLook};
 use super::settings::{CameraPose, Overlay, OverlaySet};
 use super::style;
 use super::top_bar::ViewAction;
 use super::workspace_view;
 use marker::{Handle, MarkerDrag, ViewGeometry, dist_to_segment, drag_marker, pick};
+use marker::{handle_px, perpendiculars};
 
 /// What the pointer is dragging.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -471,7 +472,7 @@ impl Viewport {
                 &(centre + axes[i] * ((handle_px::ARROW - 18.0) * view.px)),
             );
             if rings {
-                let (u, _) = scene::perpendiculars(&axes[i]);
+                let (u, _) = perpendiculars(&axes[i]);
                 add(
                     format!("ring-{name}"),
                     &(centre + u * (handle_px::RING * view.px)),
