@@ -73,8 +73,8 @@ pub enum Setting {
     KeepOut(usize),
 }
 
-/// What can be wrong with a motion, profile or path request. `Display` is the English
-/// sentence; the app shows [`MotionError::sentence`] in its language.
+/// What can be wrong with a motion, profile or path request, as data; `armlab_text` words
+/// it for a person.
 #[derive(Debug, Clone, PartialEq)]
 pub enum MotionError {
     /// A value is NaN or infinite.

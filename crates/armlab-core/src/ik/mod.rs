@@ -353,8 +353,7 @@ pub struct IkResult {
     pub trace: Vec<IkStep>,
 }
 
-/// What can be wrong with an IK request. `Display` is the English sentence; the app shows
-/// [`IkError::sentence`] in its language.
+/// What can be wrong with an IK request, as data; `armlab_text` words it for a person.
 #[derive(Debug, Clone, PartialEq)]
 pub enum IkError {
     /// The seed does not fit the robot.
