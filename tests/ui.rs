@@ -8,10 +8,10 @@ use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 
-use armlab::app::hook::ScreenPoints;
 use armlab::app::ik_panel::IkPanel;
 use armlab::app::joints::JointsPanel;
 use armlab::app::model::{MessageKind, Model};
+use armlab::app::screen_points::ScreenPoints;
 use armlab::app::session::Session;
 use armlab::app::{ArmLabApp, Panel};
 use armlab_core::ik::Reach;
@@ -998,7 +998,7 @@ fn the_workspace_cloud_fills_over_frames_and_says_where_the_target_lies() {
     // The rest at once, then the panel reads it.
     h.state_mut()
         .model_mut()
-        .fill_workspace(m, SAMPLES, f64::INFINITY, armlab::app::hook::now_ms);
+        .fill_workspace(m, SAMPLES, f64::INFINITY, armlab::app::clock::now_ms);
     h.run_steps(2);
     let cloud = h.state().model().workspace().expect("a cloud");
     assert!(cloud.is_full() && cloud.len() == SAMPLES, "{}", cloud.len());

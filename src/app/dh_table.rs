@@ -6,8 +6,8 @@ use armlab_core::{Convention, DhRow, Joint, JointKind, JointLimits, Robot, Robot
 use armlab_text::{Key, Lang, Sentence, fill};
 
 use super::format::number;
-use super::hook::ScreenPoints;
 use super::model::Model;
+use super::screen_points::ScreenPoints;
 use super::session::RobotSource;
 use super::{style, tr, trf};
 

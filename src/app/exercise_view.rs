@@ -17,8 +17,8 @@ use armlab_text::Key;
 
 use super::dh_table::{COLUMNS, DhEditor, RowText, convention_row, dh_rows};
 use super::format::number;
-use super::hook::ScreenPoints;
 use super::model::{Message, Model};
+use super::screen_points::ScreenPoints;
 use super::{style, tr, trf};
 
 /// The student's answer table, kept while the exercise is open.
@@ -175,7 +175,7 @@ pub fn start_ui(model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints)
                     if new.clicked() {
                         // A seed from the clock: each press a different arm (the core has no
                         // clock; the app does).
-                        let seed = (super::hook::now_ms() * 1e3) as u64 % 1_000_000;
+                        let seed = (super::clock::now_ms() * 1e3) as u64 % 1_000_000;
                         chosen = Some(ExerciseId::Mystery(seed));
                     }
                     egui::ComboBox::from_id_salt("exercise_preset")

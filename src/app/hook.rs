@@ -9,32 +9,6 @@ use armlab_core::ik::Reach;
 use super::ArmLabApp;
 use super::session::RobotSource;
 
-/// Milliseconds from an arbitrary origin, for the app's own frame timing (the core has
-/// no clock). `performance.now()` on the web, `Instant` natively.
-pub fn now_ms() -> f64 {
-    #[cfg(target_arch = "wasm32")]
-    {
-        // The clock object is looked up once. Looking up `window.performance` through
-        // wasm-bindgen in every call would take about 2 % of a drag frame's main-thread
-        // time in a CPU profile of the page (a frame reads the clock about ten times).
-        thread_local! {
-            static PERFORMANCE: Option<web_sys::Performance> =
-                web_sys::window().and_then(|w| w.performance());
-        }
-        PERFORMANCE.with(|p| p.as_ref().map_or(0.0, |p| p.now()))
-    }
-    #[cfg(not(target_arch = "wasm32"))]
-    {
-        use std::sync::OnceLock;
-        static START: OnceLock<std::time::Instant> = OnceLock::new();
-        START
-            .get_or_init(std::time::Instant::now)
-            .elapsed()
-            .as_secs_f64()
-            * 1e3
-    }
-}
-
 /// A link to this state: the page's address with the hash replaced.
 pub fn share_link(hash: &str) -> String {
     #[cfg(target_arch = "wasm32")]
@@ -48,36 +22,6 @@ pub fn share_link(hash: &str) -> String {
     #[cfg(not(target_arch = "wasm32"))]
     {
         format!("#{hash}")
-    }
-}
-
-/// Named screen points (egui points, window coordinates) for
-/// `window.armlab.screenPoint` and the UI tests: every panel writes the points it draws
-/// into this one registry, which is emptied at the start of each frame.
-#[derive(Debug, Clone, Default)]
-pub struct ScreenPoints {
-    points: Vec<(String, [f32; 2])>,
-}
-
-impl ScreenPoints {
-    /// Forgets last frame's points.
-    pub fn clear(&mut self) {
-        self.points.clear();
-    }
-
-    /// Records a point by name.
-    pub fn insert(&mut self, name: impl Into<String>, at: egui::Pos2) {
-        self.points.push((name.into(), [at.x, at.y]));
-    }
-
-    /// A named point drawn this frame, if visible.
-    pub fn get(&self, name: &str) -> Option<[f32; 2]> {
-        self.points.iter().find(|(n, _)| n == name).map(|(_, p)| *p)
-    }
-
-    /// Every point, in the order drawn.
-    pub fn all(&self) -> &[(String, [f32; 2])] {
-        &self.points
     }
 }
 

@@ -9,9 +9,9 @@ use armlab_text::Labelled;
 use armlab_text::Key;
 
 use super::format::{error_value, fixed};
-use super::hook::ScreenPoints;
 use super::model::Model;
 use super::notebook::NotebookDemo;
+use super::screen_points::ScreenPoints;
 use super::{Panel, plot, style, tr, trf};
 
 /// The replay of the last full solve.

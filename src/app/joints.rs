@@ -6,9 +6,9 @@ use armlab_core::{Joint, JointKind, tool_velocity};
 use armlab_text::Sentence;
 
 use super::format::number;
-use super::hook::ScreenPoints;
 use super::matrices::overlay_checkbox;
 use super::model::{HoverSource, Model};
+use super::screen_points::ScreenPoints;
 use super::settings::Overlay;
 use super::{Panel, style, tr, trf};
 use armlab_text::Key;

@@ -12,9 +12,9 @@ use armlab_text::text as text_of;
 use armlab_text::{Key, Lang, fill, text};
 
 use super::format::{fixed, number};
-use super::hook::ScreenPoints;
 use super::jacobian_view::{self, LinearSvd};
 use super::model::{HoverSource, Model};
+use super::screen_points::ScreenPoints;
 use super::settings::{Hidden, HiddenSet, MatrixId, Overlay};
 use super::style::NameRow;
 use super::symbolic_view::{SymbolicCache, symbolic_block};

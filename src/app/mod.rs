@@ -14,8 +14,10 @@
 //! model's frames and the renderer draws it.
 #![deny(clippy::too_many_lines)]
 
+pub mod clock;
 pub mod convention_view;
 pub mod dh_table;
+pub mod draft;
 pub mod exercise_view;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod files;
@@ -36,6 +38,7 @@ pub mod path_view;
 pub mod plot;
 pub mod robot_panel;
 pub mod scene;
+pub mod screen_points;
 pub mod shell;
 pub mod solutions;
 pub mod style;
@@ -46,8 +49,8 @@ pub mod viewport;
 pub mod web;
 pub mod workspace_view;
 
-use hook::ScreenPoints;
 use model::{Message, Model};
+use screen_points::ScreenPoints;
 use session::Session;
 use settings::PanelKind;
 
@@ -302,7 +305,7 @@ impl ArmLabApp {
         ui: &mut egui::Ui,
         render_state: Option<&eframe::egui_wgpu::RenderState>,
     ) {
-        let start = hook::now_ms();
+        let start = clock::now_ms();
         self.frame += 1;
         self.points.clear();
         let ctx = ui.ctx().clone();
@@ -356,7 +359,7 @@ impl ArmLabApp {
         matrices::finish_numbers(&ctx);
         #[cfg(target_arch = "wasm32")]
         web::store_hash(self, &ctx);
-        self.record_frame_time(hook::now_ms() - start);
+        self.record_frame_time(clock::now_ms() - start);
         // The browser tests' hook, outside the frame's own time (`FrameTime::hook_ms`).
         #[cfg(target_arch = "wasm32")]
         web::publish(self, &ctx);

@@ -8,6 +8,7 @@
 //! Numbers are typed as text: a value that is not a number, or that the core's checks
 //! refuse, gets a sentence under its field and the last good value stays in force.
 
+use super::draft::Draft;
 use armlab_text::Sentence;
 use std::collections::HashMap;
 
@@ -20,11 +21,11 @@ use armlab_core::profile::ProfileShape;
 use armlab_text::{Key, echo};
 
 use super::format::error_value;
-use super::hook::ScreenPoints;
 use super::jacobian_view::column_color;
 use super::model::Model;
 use super::motion_lab::SLOW_MOTION;
 use super::plot::{self, PlotBox};
+use super::screen_points::ScreenPoints;
 use super::{Panel, style, tr, trf};
 
 /// The controller choices of the menu.
@@ -199,13 +200,6 @@ impl Field {
         }
         s
     }
-}
-
-/// A field's text while it is typed, and its sentence when the text is refused.
-#[derive(Debug, Clone, Default)]
-pub(super) struct Draft {
-    pub(super) text: String,
-    pub(super) error: Option<String>,
 }
 
 /// The Motion panel; it owns the typed texts and their sentences.

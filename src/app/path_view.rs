@@ -15,10 +15,10 @@ use crate::render::{Instance, Line, Shape};
 use armlab_core::path::{Path, PathKind};
 use armlab_text::{Key, echo};
 
+use super::draft::Draft;
 use super::format::number;
-use super::hook::ScreenPoints;
 use super::model::Model;
-use super::motion_view::Draft;
+use super::screen_points::ScreenPoints;
 use super::{style, tr, trf};
 
 /// The joint-space path's colour (blue).

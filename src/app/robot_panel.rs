@@ -13,8 +13,8 @@ use armlab_text::Sentence;
 use armlab_text::Key;
 
 use super::dh_table::{DhEditor, RowText, TableEdit, apply_edit, convention_row, dh_rows};
-use super::hook::ScreenPoints;
 use super::model::{Message, Model};
+use super::screen_points::ScreenPoints;
 use super::session::RobotSource;
 use super::{Panel, style, tr, trf};
 

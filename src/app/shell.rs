@@ -4,9 +4,9 @@
 //! is cut off.
 
 use super::Panel;
-use super::hook::ScreenPoints;
 use super::layout::{Column, EDGE_TAB_WIDTH, Plan, Side};
 use super::model::Model;
+use super::screen_points::ScreenPoints;
 use super::settings::PanelKind;
 use super::{ik_panel, joints, matrices, motion_view, robot_panel, tr as t};
 use armlab_text::Key;

@@ -284,7 +284,7 @@ fn browser_preferences(window: &web_sys::Window) -> super::Preferences {
 pub fn store_hash(app: &ArmLabApp, ctx: &egui::Context) {
     const INTERVAL_MS: f64 = 250.0;
     const HELD_INTERVAL_MS: f64 = 1000.0;
-    let now = super::hook::now_ms();
+    let now = super::clock::now_ms();
     let held = ctx.input(|i| i.pointer.any_down());
     let changes = app.model().robot_changes();
     let robot_changed = ROBOT_CHANGES.with(|c| c.replace(changes) != changes);
@@ -342,7 +342,7 @@ fn write_hash(hash: &str) {
         Err(e) => warn_on_failure::<()>(Err(e), "reaching the browser history"),
     }
     if SAVED.with(|s| s.borrow().0 != hash) {
-        write_storage(hash, super::hook::now_ms());
+        write_storage(hash, super::clock::now_ms());
     }
 }
 
@@ -365,7 +365,7 @@ fn write_storage(hash: &str, now: f64) {
 /// Publishes the state and screen points for `window.armlab`, and opens a hash the page
 /// asked for; its own time goes into the frame's [`super::FrameTime::hook_ms`].
 pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
-    let start = super::hook::now_ms();
+    let start = super::clock::now_ms();
     CTX.with(|c| {
         if c.borrow().is_none() {
             *c.borrow_mut() = Some(ctx.clone());
@@ -398,11 +398,11 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
     });
     FIRST_FRAME.with(|f| {
         if f.borrow().is_none() && app.viewport().rendered() {
-            *f.borrow_mut() = Some(super::hook::now_ms());
+            *f.borrow_mut() = Some(super::clock::now_ms());
         }
     });
     if let Some(mut t) = app.frame_times().back().copied() {
-        t.hook_ms = super::hook::now_ms() - start;
+        t.hook_ms = super::clock::now_ms() - start;
         FRAMES.with(|f| {
             let mut f = f.borrow_mut();
             if f.len() >= 5000 {
@@ -534,10 +534,10 @@ fn install_workspace_benchmark(obj: &js_sys::Object) {
             ("manipulability_ms", WorkspaceMeasure::Manipulability),
             ("sigma_min_ms", WorkspaceMeasure::SigmaMin),
         ] {
-            let start = super::hook::now_ms();
+            let start = super::clock::now_ms();
             let mut cloud = WorkspaceCloud::new(&robot, measure, samples as usize, 0x5eed);
             cloud.fill(samples as usize);
-            let ms = super::hook::now_ms() - start;
+            let ms = super::clock::now_ms() - start;
             set_field(&o, key, &ms.into());
             set_field(&o, "samples", &(cloud.len() as f64).into());
         }
@@ -567,7 +567,7 @@ fn install_collision_benchmark(obj: &js_sys::Object) {
         let Ok(mut fk) = armlab_core::ForwardKinematics::new(&robot, &robot.home()) else {
             return JsValue::NULL;
         };
-        let (mut colliding, start) = (0usize, super::hook::now_ms());
+        let (mut colliding, start) = (0usize, super::clock::now_ms());
         for q in &qs {
             fk.update(&robot, q);
             match checker.check_with(&robot, &fk, collide_parts) {
@@ -575,7 +575,7 @@ fn install_collision_benchmark(obj: &js_sys::Object) {
                 None => return JsValue::NULL,
             }
         }
-        let us = 1e3 * (super::hook::now_ms() - start) / qs.len() as f64;
+        let us = 1e3 * (super::clock::now_ms() - start) / qs.len() as f64;
         let o = js_sys::Object::new();
         set_field(&o, "robot", &id.into());
         set_field(&o, "poses", &(qs.len() as f64).into());

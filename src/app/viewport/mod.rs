@@ -20,11 +20,12 @@ use crate::render::camera::OrbitCamera;
 use armlab_core::Task;
 
 use super::FrameTime;
+use super::clock;
 use super::convention_view;
-use super::hook::{self, ScreenPoints};
 use super::jacobian_view::{self, JacobianScene};
 use super::model::{HoverSource, Model};
 use super::scene::{self, MarkerLook};
+use super::screen_points::ScreenPoints;
 use super::settings::{CameraPose, Overlay, OverlaySet};
 use super::style;
 use super::top_bar::ViewAction;
@@ -158,9 +159,9 @@ impl Viewport {
         if self.dragging() {
             // Every frame of the drag, including frames where the pointer rests: the arm
             // keeps converging (each step moves each joint by at most the per-call limit).
-            let t0 = hook::now_ms();
+            let t0 = clock::now_ms();
             model.drag_step();
-            timing.ik_ms += hook::now_ms() - t0;
+            timing.ik_ms += clock::now_ms() - t0;
             if model.ik().reach == armlab_core::ik::Reach::Pending {
                 ui.ctx().request_repaint();
             }
@@ -404,7 +405,7 @@ impl Viewport {
             (rect.width() * ppp).round() as u32,
             (rect.height() * ppp).round() as u32,
         ];
-        let t0 = hook::now_ms();
+        let t0 = clock::now_ms();
         let (mut scene, step) = scene::build(&scene::SceneInput {
             robot: model.robot(),
             fk: model.fk(),
@@ -436,10 +437,10 @@ impl Viewport {
             }
         }
         self.grid_step = step;
-        let t1 = hook::now_ms();
+        let t1 = clock::now_ms();
         let texture = renderer.render(rs, px_size, &scene);
         timing.scene_ms += t1 - t0;
-        timing.render_ms += hook::now_ms() - t1;
+        timing.render_ms += clock::now_ms() - t1;
         painter.image(
             texture,
             rect,
@@ -573,17 +574,17 @@ fn hovered_link(model: &Model, view: &ViewGeometry<'_>, at: [f64; 2]) -> Option<
 /// the frame's time (repainting while the arm moves).
 fn advance_motion(model: &mut Model, ui: &egui::Ui, timing: &mut FrameTime) {
     if model.motion().collisions_on() {
-        let t0 = hook::now_ms();
+        let t0 = clock::now_ms();
         model.update_collisions();
-        timing.motion_ms += hook::now_ms() - t0;
+        timing.motion_ms += clock::now_ms() - t0;
     }
     if model.motion().on() {
         // The simulation runs the frame's real time × the time scale in 1 ms steps
         // (at most 0.1 s a frame: a stalled frame slows the motion, never jumps it).
         let dt = f64::from(ui.input(|i| i.stable_dt).min(0.1));
-        let t0 = hook::now_ms();
+        let t0 = clock::now_ms();
         timing.motion_steps += model.advance_motion(dt) as f64;
-        timing.motion_ms += hook::now_ms() - t0;
+        timing.motion_ms += clock::now_ms() - t0;
         if model.motion().moving() || model.paths().visit().is_some() {
             ui.ctx().request_repaint();
         }
@@ -598,18 +599,18 @@ fn fill_overlays(model: &mut Model, ui: &egui::Ui, timing: &mut FrameTime) {
     if model.settings().overlays.contains(Overlay::Workspace) {
         let measure = workspace_view::measure(model);
         let (samples, budget) = (workspace_view::SAMPLES, workspace_view::BUDGET_MS);
-        let ms = model.fill_workspace(measure, samples, budget, hook::now_ms);
+        let ms = model.fill_workspace(measure, samples, budget, clock::now_ms);
         timing.workspace_ms += ms;
         if model.workspace().is_some_and(|c| !c.is_full()) {
             ui.ctx().request_repaint();
         }
     }
     if model.settings().overlays.contains(Overlay::Directions) {
-        timing.workspace_ms += model.fill_directions(hook::now_ms);
+        timing.workspace_ms += model.fill_directions(clock::now_ms);
     }
     if model.paths().shown() {
-        let t0 = hook::now_ms();
+        let t0 = clock::now_ms();
         model.update_path_plan();
-        timing.motion_ms += hook::now_ms() - t0;
+        timing.motion_ms += clock::now_ms() - t0;
     }
 }
