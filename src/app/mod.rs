@@ -14,6 +14,7 @@
 //! model's frames and the renderer draws it.
 #![deny(clippy::too_many_lines)]
 
+pub mod checker_state;
 pub mod clock;
 pub mod convention_view;
 pub mod dh_table;

@@ -4,6 +4,7 @@
 //! [`MotionLab`] and passes it the frame's time; the Motion panel
 //! ([`super::motion_view`]) draws it.
 
+pub use super::checker_state::CheckerState;
 use std::collections::VecDeque;
 
 use nalgebra::{IsometryMatrix3, Point3};
@@ -375,18 +376,6 @@ fn check_parts(
     {
         Some(checker.check_parts(parts, tolerance))
     }
-}
-
-/// The state of the code that checks collisions: always ready natively; in the page the
-/// module that holds the collision library (dist/urdf/) loads once per visit.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub enum CheckerState {
-    /// Checks run.
-    Ready,
-    /// The module is being fetched.
-    Loading,
-    /// The module could not be loaded: the browser's words.
-    Failed(String),
 }
 
 /// The state of the code that checks collisions.

@@ -940,8 +940,8 @@ pub fn collide_parts(
 }
 
 /// The collision module's state for the Motion panel.
-pub fn collision_module_state() -> super::motion_lab::CheckerState {
-    use super::motion_lab::CheckerState;
+pub fn collision_module_state() -> super::checker_state::CheckerState {
+    use super::checker_state::CheckerState;
     COLLIDE.with(|c| match &*c.borrow() {
         CollideModule::Ready(_) => CheckerState::Ready,
         CollideModule::Idle | CollideModule::Loading => CheckerState::Loading,
