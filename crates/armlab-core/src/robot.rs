@@ -202,7 +202,7 @@ impl Joint {
         match self.kind {
             JointKind::Prismatic => self.limits.clamp(value),
             JointKind::Revolute if self.wraps() => angles::wrap_to_pi(value),
-            JointKind::Revolute => angles::nearest_equivalent_within(value, current, &self.limits),
+            JointKind::Revolute => nearest_equivalent_within(value, current, &self.limits),
         }
     }
 
@@ -515,4 +515,38 @@ pub fn isometry_from_xyz_rpy(xyz: [f64; 3], rpy: [f64; 3]) -> IsometryMatrix3<f6
         Translation3::from(Vector3::from(xyz)),
         Rotation3::from_euler_angles(rpy[0], rpy[1], rpy[2]),
     )
+}
+
+/// The 2π-equivalent of `value` (value + 2πk) that lies inside `limits` and is nearest
+/// to `current`. When no equivalent lies inside (limits narrower than a turn), the
+/// limit nearest to any equivalent is returned, so the result is always inside.
+pub fn nearest_equivalent_within(value: f64, current: f64, limits: &JointLimits) -> f64 {
+    // The equivalent nearest `current`, then its neighbours one turn either side.
+    let base = current + angles::wrap_to_pi(value - current);
+    let mut best: Option<(f64, f64)> = None; // (distance to current, candidate)
+    let mut k_lo = ((limits.min - base) / std::f64::consts::TAU).floor() as i64;
+    let mut k_hi = ((limits.max - base) / std::f64::consts::TAU).ceil() as i64;
+    // Guard against absurd spans: at most a few turns matter.
+    k_lo = k_lo.max(-8);
+    k_hi = k_hi.min(8);
+    for k in k_lo..=k_hi {
+        let candidate = base + std::f64::consts::TAU * k as f64;
+        if limits.contains(candidate, 1e-12) {
+            let dist = (candidate - current).abs();
+            if best.is_none_or(|(d, _)| dist < d) {
+                best = Some((dist, limits.clamp(candidate)));
+            }
+        }
+    }
+    if let Some((_, candidate)) = best {
+        return candidate;
+    }
+    // No equivalent inside: clamp to the limit closest to the wrapped value's circle.
+    let to_min = angles::wrap_to_pi(limits.min - value).abs();
+    let to_max = angles::wrap_to_pi(limits.max - value).abs();
+    if to_min <= to_max {
+        limits.min
+    } else {
+        limits.max
+    }
 }

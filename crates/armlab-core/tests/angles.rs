@@ -10,7 +10,8 @@ use wasm_bindgen_test::wasm_bindgen_test as test;
 
 use crate::common;
 
-use armlab_core::angles::{nearest_equivalent_within, wrap_to_pi};
+use armlab_core::angles::wrap_to_pi;
+use armlab_core::robot::nearest_equivalent_within;
 use armlab_core::{JointLimits, preset};
 use std::f64::consts::{PI, TAU};
 

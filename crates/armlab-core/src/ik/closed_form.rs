@@ -32,8 +32,9 @@ mod scara;
 
 use super::IkError;
 use super::branches::{Branch, Elbow, Shoulder, Wrist};
-use crate::angles::{nearest_equivalent_within, wrap_to_pi};
+use crate::angles::wrap_to_pi;
 use crate::jacobian::Task;
+use crate::robot::nearest_equivalent_within;
 use crate::robot::{Convention, Joint, JointKind, Robot};
 
 /// The arm families with a closed form here.
