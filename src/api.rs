@@ -133,7 +133,7 @@ struct SettingsFields {
     restarts: Option<Field<u64>>,
     #[serde(default, deserialize_with = "present")]
     seed: Option<Field<u64>>,
-    /// `null`: no limit (which differs from an absent field: a drag's default limit).
+    /// `null` is taken: no limit of its own (a drag then keeps its default step).
     #[serde(default, deserialize_with = "present")]
     max_joint_change: Option<Field<Option<f64>>>,
     #[serde(default, deserialize_with = "present")]

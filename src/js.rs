@@ -10,7 +10,8 @@
 //!
 //! Objects cross as JSON text, written and read by the JS engine (`JSON.stringify`,
 //! `JSON.parse`): the API parses with serde_json either way, and a serde adapter for JS
-//! values would add its own code to the module for the same result.
+//! values (serde-wasm-bindgen) made the Node package's wasm 18.8 kB larger (6.9 kB gzip)
+//! for the same result.
 //!
 //! The package's TypeScript declarations are written here (`TYPES`) rather than
 //! generated: wasm-bindgen would declare every `JsValue` as `any`.

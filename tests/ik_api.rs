@@ -196,7 +196,7 @@ fn each_field_of_the_wrong_type_gets_its_own_sentence_null_included() {
         assert_eq!(err, expected, "{request}");
     }
     // Fields the API does not know are ignored at the top level; null is taken where it
-    // means something: `alpha` (the adaptive step) and `max_joint_change` (no limit).
+    // means something: `alpha` (the adaptive step) and `max_joint_change` (no limit set).
     let out: Value = serde_json::from_str(
         &api::ik(&format!(
             r#"{{"robot": "ur10", "q": [0, -1, 1, -1, -1, 0], {target}, "task": "position",
