@@ -15,9 +15,9 @@ const pkg = process.env.ARMLAB_NODE_PKG ?? path.join(here, '..', 'target', 'arml
 const armlab = require(pkg);
 
 const [samples, repeats] = process.argv.slice(2).map(Number);
-const report = JSON.parse(armlab.workspace_benchmark(
+const report = armlab.workspace_benchmark(
   Number.isInteger(samples) && samples > 0 ? samples : 100000,
   Number.isInteger(repeats) && repeats > 0 ? repeats : 5,
-));
+);
 report.runtime = `node ${process.version}, wasm32 (wasm-bindgen --target nodejs), clock performance.now()`;
 console.log(JSON.stringify(report, null, 2));

@@ -5,7 +5,11 @@
 //! Every request names a robot — a preset id (`"ur10"`) or a whole robot file object —
 //! and a joint vector `q` in the core's units (radians, the robot's length unit).
 
+use std::collections::BTreeMap;
+
 use nalgebra::{IsometryMatrix3, Matrix3};
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Deserializer, Serialize};
 use serde_json::{Value, json};
 use thiserror::Error;
 
@@ -42,9 +46,111 @@ impl From<IkError> for ApiError {
     }
 }
 
-/// A parsed request: the robot and the joint vector.
+/// A request field as serde read it: its value, or, when the JSON holds another type, that
+/// JSON as given. A wrong type is not an error of the whole request here: the function that
+/// reads the field answers with the sentence naming it (serde's own message names
+/// neither the field nor what a person should write).
+enum Field<T> {
+    /// The field has the type asked for.
+    Given(T),
+    /// The field holds something else.
+    Wrong(Value),
+}
+
+impl<'de, T: DeserializeOwned> Deserialize<'de> for Field<T> {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let value = Value::deserialize(deserializer)?;
+        Ok(match T::deserialize(&value) {
+            Ok(given) => Field::Given(given),
+            Err(_) => Field::Wrong(value),
+        })
+    }
+}
+
+/// For `deserialize_with`: a field that is there, `null` included. Without it serde reads
+/// `null` as an absent `Option`, and `"q": null` would quietly mean the home pose.
+fn present<'de, D: Deserializer<'de>, T: Deserialize<'de>>(
+    deserializer: D,
+) -> Result<Option<T>, D::Error> {
+    T::deserialize(deserializer).map(Some)
+}
+
+/// The value of an optional field, or the field's sentence when it holds another type.
+fn read<T>(
+    field: Option<Field<T>>,
+    wrong: impl FnOnce(&Value) -> ApiError,
+) -> Result<Option<T>, ApiError> {
+    match field {
+        None => Ok(None),
+        Some(Field::Given(value)) => Ok(Some(value)),
+        Some(Field::Wrong(value)) => Err(wrong(&value)),
+    }
+}
+
+/// A request's sentence that does not depend on the value given.
+fn says(sentence: &'static str) -> impl FnOnce(&Value) -> ApiError {
+    move |_| ApiError::Request(sentence.into())
+}
+
+/// The fields of a request; each function reads those it takes, and ignores the others
+/// (and fields it does not know).
+#[derive(Deserialize)]
+struct RequestFields {
+    /// A preset id or a robot file object; checked by the robot's own parser.
+    #[serde(default, deserialize_with = "present")]
+    robot: Option<Value>,
+    #[serde(default, deserialize_with = "present")]
+    q: Option<Field<Vec<f64>>>,
+    #[serde(default, deserialize_with = "present")]
+    task: Option<Field<String>>,
+    /// 4×4 rows, `{"position", "rotation"}` or `{"q"}` ([`ik_target`]).
+    #[serde(default, deserialize_with = "present")]
+    target: Option<Value>,
+    #[serde(default, deserialize_with = "present")]
+    method: Option<Field<String>>,
+    /// `null` reads as absent (the adaptive step).
+    #[serde(default)]
+    alpha: Option<Field<f64>>,
+    #[serde(default, deserialize_with = "present")]
+    jacobian: Option<Field<String>>,
+    #[serde(default, deserialize_with = "present")]
+    drag: Option<Field<bool>>,
+    #[serde(default, deserialize_with = "present")]
+    settings: Option<Field<SettingsFields>>,
+}
+
+/// The `settings` of an `ik` request ([`ik`] lists them).
+#[derive(Deserialize)]
+struct SettingsFields {
+    #[serde(default, deserialize_with = "present")]
+    position_tolerance: Option<Field<f64>>,
+    #[serde(default, deserialize_with = "present")]
+    orientation_tolerance: Option<Field<f64>>,
+    #[serde(default, deserialize_with = "present")]
+    max_iterations: Option<Field<u64>>,
+    #[serde(default, deserialize_with = "present")]
+    budget: Option<Field<u64>>,
+    #[serde(default, deserialize_with = "present")]
+    restarts: Option<Field<u64>>,
+    #[serde(default, deserialize_with = "present")]
+    seed: Option<Field<u64>>,
+    /// `null` is taken: no limit of its own (a drag then keeps its default step).
+    #[serde(default, deserialize_with = "present")]
+    max_joint_change: Option<Field<Option<f64>>>,
+    #[serde(default, deserialize_with = "present")]
+    trace: Option<Field<bool>>,
+    #[serde(default, deserialize_with = "present")]
+    wrap: Option<Field<bool>>,
+    #[serde(default, deserialize_with = "present")]
+    objective: Option<Field<String>>,
+    /// Every other key: each is refused with the list of known settings.
+    #[serde(flatten)]
+    unknown: BTreeMap<String, Value>,
+}
+
+/// A parsed request: the robot, the joint vector and the other fields, unread.
 struct Request {
-    value: Value,
+    fields: RequestFields,
     robot: Robot,
     q: Vec<f64>,
 }
@@ -56,9 +162,17 @@ fn parse_request(text: &str) -> Result<Request, ApiError> {
             echo::text_within(&e.to_string(), 80)
         ))
     })?;
-    let robot = match value.get("robot") {
-        Some(Value::String(id)) => preset(id)?,
-        Some(obj @ Value::Object(_)) => robot_from_value(obj)?,
+    // Serde would read a list as the fields in their order; a request names its fields.
+    if !value.is_object() {
+        return Err(ApiError::Request("the field \"robot\" is missing".into()));
+    }
+    // Every field is a `Field` or a JSON value, which take any JSON: this cannot fail, and
+    // a wrong type is answered by the field's reader below.
+    let mut fields = RequestFields::deserialize(value)
+        .map_err(|e| ApiError::Request(echo::text_within(&e.to_string(), 80)))?;
+    let robot = match fields.robot.take() {
+        Some(Value::String(id)) => preset(&id)?,
+        Some(obj @ Value::Object(_)) => robot_from_value(&obj)?,
         Some(_) => {
             return Err(ApiError::Request(
                 "\"robot\" must be a preset id or a robot file object".into(),
@@ -66,61 +180,156 @@ fn parse_request(text: &str) -> Result<Request, ApiError> {
         }
         None => return Err(ApiError::Request("the field \"robot\" is missing".into())),
     };
-    let q = match value.get("q") {
+    let q = match read(fields.q.take(), says("\"q\" must be a list of numbers"))? {
+        Some(q) => q,
         None => robot.home(),
-        Some(Value::Array(list)) => list
-            .iter()
-            .map(|v| v.as_f64())
-            .collect::<Option<Vec<f64>>>()
-            .ok_or_else(|| ApiError::Request("\"q\" must be a list of numbers".into()))?,
-        Some(_) => return Err(ApiError::Request("\"q\" must be a list of numbers".into())),
     };
     robot.check_q(&q)?;
-    Ok(Request { value, robot, q })
+    Ok(Request { fields, robot, q })
 }
+
+/// Rows of a matrix.
+type Rows = Vec<Vec<f64>>;
 
 /// Rows of a pose's 4×4 homogeneous matrix.
 pub fn pose_rows(pose: &IsometryMatrix3<f64>) -> Value {
+    json!(homogeneous_rows(pose))
+}
+
+fn homogeneous_rows(pose: &IsometryMatrix3<f64>) -> Rows {
     matrix_rows(&homogeneous(pose))
 }
 
 fn matrix_rows<R: nalgebra::Dim, C: nalgebra::Dim, S: nalgebra::RawStorage<f64, R, C>>(
     m: &nalgebra::Matrix<f64, R, C, S>,
-) -> Value {
-    json!(
-        (0..m.nrows())
-            .map(|r| (0..m.ncols()).map(|c| m[(r, c)]).collect::<Vec<_>>())
-            .collect::<Vec<_>>()
-    )
+) -> Rows {
+    (0..m.nrows())
+        .map(|r| (0..m.ncols()).map(|c| m[(r, c)]).collect())
+        .collect()
+}
+
+/// The four orientation forms (angles in radians).
+#[derive(Serialize)]
+struct OrientationForms {
+    zyx_euler: EulerAngles,
+    xyz_fixed: EulerAngles,
+    angle_axis: AngleAxis,
+    /// e1, e2, e3, e4 (the scalar last).
+    euler_parameters: [f64; 4],
+}
+
+/// Three angles about three axes; `degenerate` at a gimbal lock.
+#[derive(Serialize)]
+struct EulerAngles {
+    alpha: f64,
+    beta: f64,
+    gamma: f64,
+    degenerate: bool,
+}
+
+/// A rotation angle about a unit axis; `degenerate` when the angle is 0 or π.
+#[derive(Serialize)]
+struct AngleAxis {
+    angle: f64,
+    axis: [f64; 3],
+    degenerate: bool,
+}
+
+impl OrientationForms {
+    fn new(r: &Matrix3<f64>) -> Self {
+        let o = Orientation::from_rotation(r);
+        OrientationForms {
+            zyx_euler: EulerAngles {
+                alpha: o.zyx_euler.alpha,
+                beta: o.zyx_euler.beta,
+                gamma: o.zyx_euler.gamma,
+                degenerate: o.zyx_euler.degenerate,
+            },
+            xyz_fixed: EulerAngles {
+                alpha: o.xyz_fixed.alpha,
+                beta: o.xyz_fixed.beta,
+                gamma: o.xyz_fixed.gamma,
+                degenerate: o.xyz_fixed.degenerate,
+            },
+            angle_axis: AngleAxis {
+                angle: o.angle_axis.angle,
+                axis: [
+                    o.angle_axis.axis.x,
+                    o.angle_axis.axis.y,
+                    o.angle_axis.axis.z,
+                ],
+                degenerate: o.angle_axis.degenerate,
+            },
+            euler_parameters: [
+                o.euler_parameters.e1,
+                o.euler_parameters.e2,
+                o.euler_parameters.e3,
+                o.euler_parameters.e4,
+            ],
+        }
+    }
 }
 
 /// The four orientation forms as JSON (angles in radians).
 pub fn orientation_json(r: &Matrix3<f64>) -> Value {
-    let o = Orientation::from_rotation(r);
-    json!({
-        "zyx_euler": { "alpha": o.zyx_euler.alpha, "beta": o.zyx_euler.beta, "gamma": o.zyx_euler.gamma, "degenerate": o.zyx_euler.degenerate },
-        "xyz_fixed": { "gamma": o.xyz_fixed.gamma, "beta": o.xyz_fixed.beta, "alpha": o.xyz_fixed.alpha, "degenerate": o.xyz_fixed.degenerate },
-        "angle_axis": { "angle": o.angle_axis.angle, "axis": [o.angle_axis.axis.x, o.angle_axis.axis.y, o.angle_axis.axis.z], "degenerate": o.angle_axis.degenerate },
-        "euler_parameters": [o.euler_parameters.e1, o.euler_parameters.e2, o.euler_parameters.e3, o.euler_parameters.e4],
-    })
+    serde_json::to_value(OrientationForms::new(r)).unwrap_or(Value::Null)
+}
+
+/// A response as JSON text. Writing these structs cannot fail (their maps have text keys);
+/// were it to, the caller gets a sentence, not a panic.
+fn answer(response: &impl Serialize) -> Result<String, ApiError> {
+    serde_json::to_string(response).map_err(|e| ApiError::Request(e.to_string()))
+}
+
+/// One preset in the list of [`presets`].
+#[derive(Serialize)]
+struct PresetSummary<'a> {
+    id: &'a str,
+    name: &'a str,
+    dof: usize,
+    convention: &'static str,
+    length_unit: &'static str,
 }
 
 /// The presets: `[{"id", "name", "dof", "convention", "length_unit"}]`.
 pub fn presets() -> String {
-    let list: Vec<Value> = preset_names()
+    let robots: Vec<(&str, Robot)> = preset_names()
         .iter()
-        .filter_map(|(id, _)| preset(id).ok().map(|r| (id, r)))
-        .map(|(id, r)| {
-            json!({ "id": id, "name": r.name, "dof": r.dof(), "convention": r.convention.as_str(), "length_unit": r.length_unit.symbol() })
+        .filter_map(|(id, _)| preset(id).ok().map(|r| (*id, r)))
+        .collect();
+    let list: Vec<PresetSummary> = robots
+        .iter()
+        .map(|(id, r)| PresetSummary {
+            id,
+            name: &r.name,
+            dof: r.dof(),
+            convention: r.convention.as_str(),
+            length_unit: r.length_unit.symbol(),
         })
         .collect();
-    Value::Array(list).to_string()
+    answer(&list).unwrap_or_else(|_| "[]".into())
 }
 
 /// The robot file of a preset (or the normalised file of a robot object), as JSON text.
 pub fn robot(request: &str) -> Result<String, ApiError> {
     let req = parse_request(request)?;
     Ok(robot_to_json(&req.robot))
+}
+
+/// The answer of [`fk`].
+#[derive(Serialize)]
+struct FkResponse<'a> {
+    robot: &'a str,
+    length_unit: &'static str,
+    q: &'a [f64],
+    /// T_0n (tool included) as 4 rows.
+    tool: Rows,
+    position: [f64; 3],
+    orientation: OrientationForms,
+    /// Every A_i.
+    links: Vec<Rows>,
+    /// Every T_0i.
+    frames: Vec<Rows>,
 }
 
 /// Forward kinematics. Request `{"robot", "q"}` (q defaults to the robot's home).
@@ -130,31 +339,53 @@ pub fn fk(request: &str) -> Result<String, ApiError> {
     let req = parse_request(request)?;
     let fk = ForwardKinematics::new(&req.robot, &req.q)?;
     let p = fk.tool_position();
-    Ok(json!({
-        "robot": req.robot.name,
-        "length_unit": req.robot.length_unit.symbol(),
-        "q": req.q,
-        "tool": pose_rows(&fk.base_from_tool),
-        "position": [p.x, p.y, p.z],
-        "orientation": orientation_json(fk.tool_rotation()),
-        "links": fk.link_transforms.iter().map(pose_rows).collect::<Vec<_>>(),
-        "frames": fk.base_from_frames.iter().map(pose_rows).collect::<Vec<_>>(),
+    answer(&FkResponse {
+        robot: &req.robot.name,
+        length_unit: req.robot.length_unit.symbol(),
+        q: &req.q,
+        tool: homogeneous_rows(&fk.base_from_tool),
+        position: [p.x, p.y, p.z],
+        orientation: OrientationForms::new(fk.tool_rotation()),
+        links: fk.link_transforms.iter().map(homogeneous_rows).collect(),
+        frames: fk.base_from_frames.iter().map(homogeneous_rows).collect(),
     })
-    .to_string())
 }
 
-fn task_of(value: &Value) -> Result<Task, ApiError> {
-    match value.get("task") {
-        None => Ok(Task::FullPose),
-        Some(Value::String(name)) => Task::from_id(name).ok_or_else(|| {
-            ApiError::Request(format!(
-                "unknown task \"{}\": use one of {}",
-                echo::text(name),
-                Task::id_list()
-            ))
-        }),
-        Some(_) => Err(ApiError::Request("\"task\" must be a text".into())),
-    }
+fn task_of(fields: &mut RequestFields) -> Result<Task, ApiError> {
+    let Some(name) = read(fields.task.take(), says("\"task\" must be a text"))? else {
+        return Ok(Task::FullPose);
+    };
+    Task::from_id(&name).ok_or_else(|| {
+        ApiError::Request(format!(
+            "unknown task \"{}\": use one of {}",
+            echo::text(&name),
+            Task::id_list()
+        ))
+    })
+}
+
+/// The answer of [`jacobian`].
+#[derive(Serialize)]
+struct JacobianResponse<'a> {
+    robot: &'a str,
+    geometric: Rows,
+    numerical: Rows,
+    task_rows: Rows,
+    singular_values: &'a [f64],
+    manipulability: f64,
+    determinant: Option<f64>,
+    condition_number: Option<f64>,
+    near_singular: bool,
+    length_scale: f64,
+    displayed: DisplayedResponse,
+}
+
+/// The measures of the unscaled task rows, in the robot's units.
+#[derive(Serialize)]
+struct DisplayedResponse {
+    manipulability: f64,
+    determinant: Option<f64>,
+    condition_number: Option<f64>,
 }
 
 /// Jacobians and measures. Request `{"robot", "q", "task"}` (task defaults to `"full"`).
@@ -165,30 +396,29 @@ fn task_of(value: &Value) -> Result<Task, ApiError> {
 /// manipulability, determinant and condition number of the unscaled task rows, in the
 /// robot's units.
 pub fn jacobian(request: &str) -> Result<String, ApiError> {
-    let req = parse_request(request)?;
-    let task = task_of(&req.value)?;
+    let mut req = parse_request(request)?;
+    let task = task_of(&mut req.fields)?;
     let fk = ForwardKinematics::new(&req.robot, &req.q)?;
     let analysis = JacobianAnalysis::new(&req.robot, &fk, &req.q, task);
     let rows = task_jacobian(&analysis.geometric, task, fk.tool_rotation(), 1.0);
     let m = &analysis.measures;
-    Ok(json!({
-        "robot": req.robot.name,
-        "geometric": matrix_rows(&analysis.geometric),
-        "numerical": matrix_rows(&analysis.numerical),
-        "task_rows": matrix_rows(&rows),
-        "singular_values": m.singular_values,
-        "manipulability": m.manipulability,
-        "determinant": m.determinant,
-        "condition_number": m.condition_number,
-        "near_singular": m.near_singular,
-        "length_scale": m.length_scale,
-        "displayed": {
-            "manipulability": m.displayed.manipulability,
-            "determinant": m.displayed.determinant,
-            "condition_number": m.displayed.condition_number,
+    answer(&JacobianResponse {
+        robot: &req.robot.name,
+        geometric: matrix_rows(&analysis.geometric),
+        numerical: matrix_rows(&analysis.numerical),
+        task_rows: matrix_rows(&rows),
+        singular_values: &m.singular_values,
+        manipulability: m.manipulability,
+        determinant: m.determinant,
+        condition_number: m.condition_number,
+        near_singular: m.near_singular,
+        length_scale: m.length_scale,
+        displayed: DisplayedResponse {
+            manipulability: m.displayed.manipulability,
+            determinant: m.displayed.determinant,
+            condition_number: m.displayed.condition_number,
         },
     })
-    .to_string())
 }
 
 fn number_list(value: &Value, what: &str) -> Result<Vec<f64>, ApiError> {
@@ -278,28 +508,32 @@ fn ik_target(robot: &Robot, value: Option<&Value>) -> Result<IsometryMatrix3<f64
     ))
 }
 
-fn ik_method(value: &Value) -> Result<IkMethod, ApiError> {
-    let alpha = match value.get("alpha") {
-        None | Some(Value::Null) => None,
-        Some(v) => Some(
-            v.as_f64()
-                .filter(|a| a.is_finite() && *a > 0.0)
-                .ok_or_else(|| ApiError::Request("\"alpha\" must be a positive number".into()))?,
-        ),
+fn ik_method(fields: &mut RequestFields) -> Result<IkMethod, ApiError> {
+    let positive = says("\"alpha\" must be a positive number");
+    let alpha = match read(fields.alpha.take(), positive)? {
+        None => None,
+        Some(a) if a.is_finite() && a > 0.0 => Some(a),
+        Some(_) => {
+            return Err(ApiError::Request(
+                "\"alpha\" must be a positive number".into(),
+            ));
+        }
     };
-    match value.get("method") {
-        None => Ok(IkMethod::DampedLeastSquares),
-        Some(Value::String(id)) => match IkMethod::from_id(id) {
-            Some(IkMethod::JacobianTranspose { .. }) => Ok(IkMethod::JacobianTranspose { alpha }),
-            Some(method) => Ok(method),
-            None => Err(ApiError::Request(format!(
-                "unknown method \"{}\": use one of {} (or closed-form)",
-                echo::text(id),
-                IkMethod::id_list()
-            ))),
-        },
-        Some(_) => Err(ApiError::Request(format!(
+    let id = read(fields.method.take(), |_| {
+        ApiError::Request(format!(
             "\"method\" must be a text: one of {}",
+            IkMethod::id_list()
+        ))
+    })?;
+    let Some(id) = id else {
+        return Ok(IkMethod::DampedLeastSquares);
+    };
+    match IkMethod::from_id(&id) {
+        Some(IkMethod::JacobianTranspose { .. }) => Ok(IkMethod::JacobianTranspose { alpha }),
+        Some(method) => Ok(method),
+        None => Err(ApiError::Request(format!(
+            "unknown method \"{}\": use one of {} (or closed-form)",
+            echo::text(&id),
             IkMethod::id_list()
         ))),
     }
@@ -348,83 +582,84 @@ pub fn iteration_cap(robot: &Robot, jacobian: armlab_core::JacobianSource, trace
     cap.max(1000)
 }
 
-fn ik_settings(value: &Value, drag: bool) -> Result<armlab_core::IkSettings, ApiError> {
-    use armlab_core::{IkSettings, JacobianSource};
+fn ik_settings(
+    fields: &mut RequestFields,
+    drag: bool,
+) -> Result<armlab_core::IkSettings, ApiError> {
+    use armlab_core::{IkSettings, JacobianSource, Objective};
     let mut s = if drag {
         IkSettings::drag()
     } else {
         IkSettings::default()
     };
-    s.jacobian = match value.get("jacobian").map(|v| v.as_str()) {
-        None | Some(Some("geometric")) => JacobianSource::Geometric,
-        Some(Some("numerical")) => JacobianSource::CentralDifference,
-        _ => {
+    let source = says("\"jacobian\" must be \"geometric\" or \"numerical\"");
+    s.jacobian = match read(fields.jacobian.take(), source)?.as_deref() {
+        None | Some("geometric") => JacobianSource::Geometric,
+        Some("numerical") => JacobianSource::CentralDifference,
+        Some(_) => {
             return Err(ApiError::Request(
                 "\"jacobian\" must be \"geometric\" or \"numerical\"".into(),
             ));
         }
     };
-    let Some(obj) = value.get("settings") else {
+    let settings = read(
+        fields.settings.take(),
+        says("\"settings\" must be an object"),
+    )?;
+    let Some(given) = settings else {
         return Ok(s);
     };
-    let obj = obj
-        .as_object()
-        .ok_or_else(|| ApiError::Request("\"settings\" must be an object".into()))?;
-    for (key, v) in obj {
-        let number = || {
-            v.as_f64().ok_or_else(|| {
-                ApiError::Request(format!("\"settings.{}\" must be a number", echo::text(key)))
-            })
-        };
-        let count = || {
-            v.as_u64()
-                .map(|n| usize::try_from(n).unwrap_or(usize::MAX))
-                .ok_or_else(|| {
-                    ApiError::Request(format!(
-                        "\"settings.{}\" must be a whole number ≥ 0",
-                        echo::text(key)
-                    ))
-                })
-        };
-        match key.as_str() {
-            "position_tolerance" => s.position_tolerance = number()?,
-            "orientation_tolerance" => s.orientation_tolerance = number()?,
-            "max_iterations" => s.max_iterations = count()?,
-            "budget" => s.budget = count()?,
-            "restarts" => s.restarts = count()?.min(MAX_RESTARTS),
-            "seed" => {
-                s.seed = v.as_u64().ok_or_else(|| {
-                    ApiError::Request("\"settings.seed\" must be a whole number ≥ 0".into())
-                })?
-            }
-            "max_joint_change" => {
-                s.max_joint_change = if v.is_null() { None } else { Some(number()?) }
-            }
-            "trace" => {
-                s.record_trace = v.as_bool().ok_or_else(|| {
-                    ApiError::Request("\"settings.trace\" must be true or false".into())
-                })?
-            }
-            "wrap" => {
-                s.wrap = v
-                    .as_bool()
-                    .ok_or_else(|| setting_choice("wrap", v, "true, false".into()))?
-            }
-            "objective" => {
-                s.objective = v
-                    .as_str()
-                    .and_then(armlab_core::Objective::from_id)
-                    .ok_or_else(|| {
-                        setting_choice("objective", v, armlab_core::Objective::id_list())
-                    })?
-            }
-            other => {
-                return Err(ApiError::Request(format!(
-                    "\"settings.{}\" is not known; the known settings are: position_tolerance, orientation_tolerance, max_iterations, budget, restarts, seed, max_joint_change, trace, wrap, objective",
-                    echo::text(other)
-                )));
-            }
+    if let Some(other) = given.unknown.keys().next() {
+        return Err(ApiError::Request(format!(
+            "\"settings.{}\" is not known; the known settings are: position_tolerance, orientation_tolerance, max_iterations, budget, restarts, seed, max_joint_change, trace, wrap, objective",
+            echo::text(other)
+        )));
+    }
+    let number = |name: &'static str| {
+        move |_: &Value| ApiError::Request(format!("\"settings.{name}\" must be a number"))
+    };
+    let count = |name: &'static str| {
+        move |_: &Value| {
+            ApiError::Request(format!("\"settings.{name}\" must be a whole number ≥ 0"))
         }
+    };
+    let size = |n: u64| usize::try_from(n).unwrap_or(usize::MAX);
+    if let Some(v) = read(given.position_tolerance, number("position_tolerance"))? {
+        s.position_tolerance = v;
+    }
+    if let Some(v) = read(given.orientation_tolerance, number("orientation_tolerance"))? {
+        s.orientation_tolerance = v;
+    }
+    if let Some(n) = read(given.max_iterations, count("max_iterations"))? {
+        s.max_iterations = size(n);
+    }
+    if let Some(n) = read(given.budget, count("budget"))? {
+        s.budget = size(n);
+    }
+    if let Some(n) = read(given.restarts, count("restarts"))? {
+        s.restarts = size(n).min(MAX_RESTARTS);
+    }
+    if let Some(n) = read(given.seed, count("seed"))? {
+        s.seed = n;
+    }
+    if let Some(limit) = read(given.max_joint_change, number("max_joint_change"))? {
+        s.max_joint_change = limit;
+    }
+    let switch = says("\"settings.trace\" must be true or false");
+    if let Some(trace) = read(given.trace, switch)? {
+        s.record_trace = trace;
+    }
+    if let Some(wrap) = read(given.wrap, |v| {
+        setting_choice("wrap", v, "true, false".into())
+    })? {
+        s.wrap = wrap;
+    }
+    let objective = read(given.objective, |v| {
+        setting_choice("objective", v, Objective::id_list())
+    })?;
+    if let Some(id) = objective {
+        s.objective = Objective::from_id(&id)
+            .ok_or_else(|| setting_choice("objective", &Value::String(id), Objective::id_list()))?;
     }
     Ok(s)
 }
@@ -467,17 +702,16 @@ fn ik_settings(value: &Value, drag: bool) -> Result<armlab_core::IkSettings, Api
 /// `"right-up-noflip"`) with `family`.
 pub fn ik(request: &str) -> Result<String, ApiError> {
     use armlab_core::{IkSolver, closed_form_solutions, tool_pose};
-    let req = parse_request(request)?;
-    let task = task_of(&req.value)?;
-    let target = ik_target(&req.robot, req.value.get("target"))?;
-    let method = ik_method(&req.value)?;
-    let drag = match req.value.get("drag") {
-        None => false,
-        Some(v) => v
-            .as_bool()
-            .ok_or_else(|| ApiError::Request("\"drag\" must be true or false".into()))?,
-    };
-    let mut settings = ik_settings(&req.value, drag)?;
+    let mut req = parse_request(request)?;
+    let task = task_of(&mut req.fields)?;
+    let target = ik_target(&req.robot, req.fields.target.as_ref())?;
+    let method = ik_method(&mut req.fields)?;
+    let drag = read(
+        req.fields.drag.take(),
+        says("\"drag\" must be true or false"),
+    )?
+    .unwrap_or(false);
+    let mut settings = ik_settings(&mut req.fields, drag)?;
     let cap = iteration_cap(&req.robot, settings.jacobian, settings.record_trace);
     settings.max_iterations = settings.max_iterations.min(cap);
     settings.budget = settings.budget.min(cap);
@@ -487,53 +721,117 @@ pub fn ik(request: &str) -> Result<String, ApiError> {
     } else {
         solver.solve(&req.robot, &target, task, &req.q, method, &settings)
     }?;
-    let trace: Vec<Value> = r
-        .trace
-        .iter()
-        .map(|s| {
-            json!({
-                "q": s.q, "raw_q": s.raw_q, "error": s.error,
-                "position_error": s.position_error, "orientation_error": s.orientation_error,
-                "step": s.step, "damping": s.damping, "accepted": s.accepted, "restart": s.restart,
-            })
-        })
-        .collect();
-    let mut out = json!({
-        "robot": req.robot.name,
-        "method": method.id(),
-        "q": r.q,
-        "success": r.success,
-        "unreachable": r.unreachable,
-        "singular": r.singular,
-        "clipped": r.clipped,
-        "within_limits": r.within_limits,
-        "position_error": r.position_error,
-        "orientation_error": r.orientation_error,
-        "iterations": r.iterations,
-        "restarts": r.restarts,
-        "tool": pose_rows(&tool_pose(&req.robot, &r.q)),
-        "wrapped_q": armlab_core::wrapped_equivalent(&req.robot, &r.q),
-        "trace": trace,
-    });
-    if method == IkMethod::ClosedForm {
-        let set = closed_form_solutions(&req.robot, &target, &req.q)?;
-        if let Some(obj) = out.as_object_mut() {
-            obj.insert("family".into(), json!(set.family.name()));
-            obj.insert(
-                "solutions".into(),
-                json!(
-                    set.solutions
-                        .iter()
-                        .map(|s| json!({
-                            "q": s.q, "label": s.label(), "within_limits": s.within_limits,
-                            "singular": s.singular, "exact": s.exact,
-                            "free_joints": s.free_joints,
-                            "coincident": s.coincident.iter().map(|b| b.id()).collect::<Vec<_>>(),
-                        }))
-                        .collect::<Vec<_>>()
-                ),
-            );
+    let set = if method == IkMethod::ClosedForm {
+        Some(closed_form_solutions(&req.robot, &target, &req.q)?)
+    } else {
+        None
+    };
+    let (family, solutions) = match &set {
+        Some(set) => {
+            let solutions = set
+                .solutions
+                .iter()
+                .map(|s| SolutionResponse {
+                    q: &s.q,
+                    label: s.label(),
+                    within_limits: s.within_limits,
+                    singular: s.singular,
+                    exact: s.exact,
+                    free_joints: &s.free_joints,
+                    coincident: s.coincident.iter().map(|b| b.id()).collect(),
+                })
+                .collect();
+            (Some(set.family.name()), Some(solutions))
+        }
+        None => (None, None),
+    };
+    answer(&IkResponse {
+        robot: &req.robot.name,
+        method: method.id(),
+        q: &r.q,
+        success: r.success,
+        unreachable: r.unreachable,
+        singular: r.singular,
+        clipped: r.clipped,
+        within_limits: r.within_limits,
+        position_error: r.position_error,
+        orientation_error: r.orientation_error,
+        iterations: r.iterations,
+        restarts: r.restarts,
+        tool: homogeneous_rows(&tool_pose(&req.robot, &r.q)),
+        wrapped_q: armlab_core::wrapped_equivalent(&req.robot, &r.q),
+        trace: r.trace.iter().map(StepResponse::from).collect(),
+        family,
+        solutions,
+    })
+}
+
+/// The answer of [`ik`] (its documentation lists the fields).
+#[derive(Serialize)]
+struct IkResponse<'a> {
+    robot: &'a str,
+    method: &'static str,
+    q: &'a [f64],
+    success: bool,
+    unreachable: bool,
+    singular: bool,
+    clipped: bool,
+    within_limits: bool,
+    position_error: f64,
+    orientation_error: f64,
+    iterations: usize,
+    restarts: usize,
+    tool: Rows,
+    wrapped_q: Vec<f64>,
+    trace: Vec<StepResponse<'a>>,
+    /// The closed form's family (`"ur"`, …); only for the closed form.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    family: Option<&'static str>,
+    /// Every branch of the closed form; only for the closed form.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    solutions: Option<Vec<SolutionResponse<'a>>>,
+}
+
+/// One iteration of a traced `ik` run.
+#[derive(Serialize)]
+struct StepResponse<'a> {
+    q: &'a [f64],
+    raw_q: &'a [f64],
+    error: f64,
+    position_error: f64,
+    orientation_error: f64,
+    step: f64,
+    damping: f64,
+    accepted: bool,
+    restart: bool,
+}
+
+impl<'a> From<&'a armlab_core::IkStep> for StepResponse<'a> {
+    fn from(s: &'a armlab_core::IkStep) -> Self {
+        StepResponse {
+            q: &s.q,
+            raw_q: &s.raw_q,
+            error: s.error,
+            position_error: s.position_error,
+            orientation_error: s.orientation_error,
+            step: s.step,
+            damping: s.damping,
+            accepted: s.accepted,
+            restart: s.restart,
         }
     }
-    Ok(out.to_string())
+}
+
+/// One branch of the closed form in an `ik` answer.
+#[derive(Serialize)]
+struct SolutionResponse<'a> {
+    q: &'a [f64],
+    /// The branch id (`"right-up-noflip"`).
+    label: String,
+    within_limits: bool,
+    singular: bool,
+    exact: bool,
+    free_joints: &'a [usize],
+    /// The ids of the branches that coincide with this one here.
+    coincident: Vec<String>,
 }

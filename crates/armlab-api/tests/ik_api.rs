@@ -119,3 +119,90 @@ fn ik_accepts_position_targets_drag_and_reports_errors() {
         Err(api::ApiError::Ik(armlab_core::IkError::NoClosedForm(_)))
     ));
 }
+
+#[test]
+fn each_field_of_the_wrong_type_gets_its_own_sentence_null_included() {
+    // The request is read through serde; a wrong type (null too: it is not an absent
+    // field) must still name the field, in the words a person can act on.
+    let target = r#""target": {"position": [800, -200, 400]}"#;
+    let cases = [
+        (
+            r#"["ur10"]"#.to_string(),
+            "Bad request: the field \"robot\" is missing",
+        ),
+        (
+            r#"{"robot": null}"#.into(),
+            "Bad request: \"robot\" must be a preset id or a robot file object",
+        ),
+        (
+            r#"{"robot": "ur10", "q": null}"#.into(),
+            "Bad request: \"q\" must be a list of numbers",
+        ),
+        (
+            r#"{"robot": "ur10", "q": [0, "1", 0, 0, 0, 0]}"#.into(),
+            "Bad request: \"q\" must be a list of numbers",
+        ),
+        (
+            format!(r#"{{"robot": "ur10", {target}, "task": null}}"#),
+            "Bad request: \"task\" must be a text",
+        ),
+        (
+            format!(r#"{{"robot": "ur10", {target}, "drag": null}}"#),
+            "Bad request: \"drag\" must be true or false",
+        ),
+        (
+            format!(r#"{{"robot": "ur10", {target}, "drag": 1}}"#),
+            "Bad request: \"drag\" must be true or false",
+        ),
+        (
+            format!(r#"{{"robot": "ur10", {target}, "method": 3}}"#),
+            "Bad request: \"method\" must be a text: one of dls, pinv, gradient, closed",
+        ),
+        (
+            format!(r#"{{"robot": "ur10", {target}, "method": "gradient", "alpha": -1}}"#),
+            "Bad request: \"alpha\" must be a positive number",
+        ),
+        (
+            format!(r#"{{"robot": "ur10", {target}, "jacobian": "exact"}}"#),
+            "Bad request: \"jacobian\" must be \"geometric\" or \"numerical\"",
+        ),
+        (
+            format!(r#"{{"robot": "ur10", {target}, "settings": [1]}}"#),
+            "Bad request: \"settings\" must be an object",
+        ),
+        (
+            format!(r#"{{"robot": "ur10", {target}, "settings": {{"seed": 1.5}}}}"#),
+            "Bad request: \"settings.seed\" must be a whole number ≥ 0",
+        ),
+        (
+            format!(r#"{{"robot": "ur10", {target}, "settings": {{"trace": null}}}}"#),
+            "Bad request: \"settings.trace\" must be true or false",
+        ),
+        (
+            format!(
+                r#"{{"robot": "ur10", {target}, "settings": {{"position_tolerance": "small"}}}}"#
+            ),
+            "Bad request: \"settings.position_tolerance\" must be a number",
+        ),
+        (
+            format!(r#"{{"robot": "ur10", {target}, "settings": {{"tolerance": 1}}}}"#),
+            "Bad request: \"settings.tolerance\" is not known; the known settings are: position_tolerance, orientation_tolerance, max_iterations, budget, restarts, seed, max_joint_change, trace, wrap, objective",
+        ),
+    ];
+    for (request, expected) in cases {
+        let err = api::ik(&request).unwrap_err().to_string();
+        assert_eq!(err, expected, "{request}");
+    }
+    // Fields the API does not know are ignored at the top level; null is taken where it
+    // means something: `alpha` (the adaptive step) and `max_joint_change` (no limit set).
+    let out: Value = serde_json::from_str(
+        &api::ik(&format!(
+            r#"{{"robot": "ur10", "q": [0, -1, 1, -1, -1, 0], {target}, "task": "position",
+                "note": "mine", "alpha": null, "settings": {{"max_joint_change": null}}}}"#
+        ))
+        .unwrap(),
+    )
+    .unwrap();
+    assert_eq!(out["clipped"], false, "{out}");
+    assert_eq!(out["success"], true, "{out}");
+}

@@ -366,6 +366,20 @@ catalogue! {
     IkBadChoice: "The IK setting {0} cannot be {1}: use one of {2}." / "IK-asetus {0} ei voi olla {1}: käytä jotakin näistä: {2}.",
     IkNoClosedForm: "\"{0}\" has no closed-form IK in ArmLab (only the planar 2R, the RRR arm, the UR family, the SCARA and arms with a spherical wrist such as the Puma 560 and the Stanford arm do): use a numeric method." / "Robotilla \"{0}\" ei ole ArmLabissa suljetun muodon käänteiskinematiikkaa (vain tason 2R-robotilla, RRR-käsivarrella, UR-perheellä, SCARA-robotilla ja pallomaisen ranteen käsivarsilla, kuten Puma 560:llä ja Stanford-käsivarrella, on): käytä numeerista menetelmää.",
 
+    // --- The JS API: an argument of the wrong kind ({0}: the function's name) -----------------
+    ApiTakesRequest: "{0} takes a request object, such as {1}, or its JSON text; it was given {2}." / "{0} ottaa pyyntöolion, kuten {1}, tai sen JSON-tekstin; sille annettiin {2}.",
+    ApiTakesRobotFile: "{0} takes a robot file object or its JSON text; it was given {1}." / "{0} ottaa robottitiedoston olion tai sen JSON-tekstin; sille annettiin {1}.",
+    ApiTakesUrdf: "{0} takes the text of a URDF file; it was given {1}." / "{0} ottaa URDF-tiedoston tekstin; sille annettiin {1}.",
+    ApiTakesNumbers: "{0} takes a list of numbers (a Float64Array or an array); it was given {1}." / "{0} ottaa lukulistan (Float64Array tai taulukko); sille annettiin {1}.",
+    ApiGotNumber: "the number {0}" / "luku {0}",
+    ApiGotBoolean: "the value {0}" / "arvo {0}",
+    ApiGotUndefined: "nothing (undefined)" / "ei mitään (undefined)",
+    ApiGotNull: "an empty value (null)" / "tyhjä arvo (null)",
+    ApiGotList: "a list (an array)" / "lista (taulukko)",
+    ApiGotObject: "an object" / "olio",
+    ApiGotText: "a text" / "teksti",
+    ApiGotOther: "a value of the type {0}" / "{0}-tyyppinen arvo",
+
     // --- The DH-table exercise ----------------------------------------------------------
     ExerciseCorrect: "Correct: your table gives the robot's tool pose at every pose tried." / "Oikein: taulukkosi antaa robotin työkalun asennon jokaisessa kokeillussa asennossa.",
     ExerciseJointCount: "The robot has {0} joints; your table has {1}." / "Robotilla on {0} niveltä; taulukossasi on {1}.",
