@@ -24,27 +24,14 @@ use parry3d_f64::query::intersection_test;
 use parry3d_f64::shape::{Cuboid, Cylinder, HalfSpace, Shape};
 
 use super::fk::ForwardKinematics;
-use super::motion::{MotionError, Setting};
+use super::motion_error::{MotionError, Setting};
 use super::parts::{Part, PartKind, PartShape, robot_parts_into};
 use super::robot::Robot;
+pub use super::robot::{KeepOut, MAX_KEEP_OUTS};
 
 /// How far two parts may overlap before they count as touching, as a fraction of the
 /// arm's reach (each part is shrunk by this on every side): 0.2 %, 2.6 mm on the UR10.
 pub const TOUCH_TOLERANCE: f64 = 0.002;
-
-/// The most keep-out boxes a scene may hold.
-pub const MAX_KEEP_OUTS: usize = 64;
-
-/// A box the arm must stay out of, in the world frame.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct KeepOut {
-    /// The box's centre.
-    pub centre: Point3<f64>,
-    /// Its full extents along its own x, y, z.
-    pub size: Vector3<f64>,
-    /// Its orientation.
-    pub rotation: Rotation3<f64>,
-}
 
 impl KeepOut {
     /// An axis-aligned box, checked: every number finite and at most 10⁶ in size, every
@@ -68,7 +55,7 @@ impl KeepOut {
             }
         }
         for v in size.iter() {
-            super::motion::check_positive(setting, *v, 1e6)?;
+            super::motion_error::check_positive(setting, *v, 1e6)?;
         }
         Ok(KeepOut {
             centre,

@@ -17,6 +17,7 @@ pub mod fk;
 pub mod ik;
 pub mod jacobian;
 pub mod motion;
+pub mod motion_error;
 pub mod orientation;
 pub mod parts;
 pub mod path;

@@ -10,7 +10,7 @@ use nalgebra::{IsometryMatrix3, Rotation3, Translation3, UnitQuaternion};
 use super::fk::{ForwardKinematics, tool_pose};
 use super::ik::{BadTarget, IkMethod, IkSettings, IkSolver};
 use super::jacobian::{Task, geometric_jacobian, jacobian_measures};
-use super::motion::{MotionError, Setting};
+use super::motion_error::{MotionError, Setting};
 use super::profile::joint_distance_to;
 use super::robot::{JointKind, Robot};
 

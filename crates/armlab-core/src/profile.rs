@@ -9,7 +9,7 @@
 //! plain difference for every other joint (so a limited joint never leaves its range).
 
 use super::angles::wrap_to_pi;
-use super::motion::{MotionError, Setting};
+use super::motion_error::{MotionError, Setting};
 use super::robot::{Joint, JointKind, Robot};
 
 /// A revolute joint's speed limit when its robot file gives none: 90°/s (radians/s here).
@@ -63,8 +63,8 @@ impl MotionLimits {
 
     /// Checks both limits: positive, finite, at most `1e6`.
     pub fn check(&self) -> Result<(), MotionError> {
-        super::motion::check_positive(Setting::MaxSpeed, self.max_speed, 1e6)?;
-        super::motion::check_positive(Setting::MaxAcceleration, self.max_acceleration, 1e9)
+        super::motion_error::check_positive(Setting::MaxSpeed, self.max_speed, 1e6)?;
+        super::motion_error::check_positive(Setting::MaxAcceleration, self.max_acceleration, 1e9)
     }
 }
 

@@ -2,8 +2,7 @@
 //! Denavit–Hartenberg table in either convention, with limits, names, optional base and
 //! tool transforms and the length unit it is written in.
 
-use super::collision::{KeepOut, MAX_KEEP_OUTS};
-use nalgebra::{IsometryMatrix3, Rotation3, Translation3, Vector3};
+use nalgebra::{IsometryMatrix3, Point3, Rotation3, Translation3, Vector3};
 
 use super::angles;
 use super::error::{Field, Place, RobotError};
@@ -549,4 +548,18 @@ pub fn nearest_equivalent_within(value: f64, current: f64, limits: &JointLimits)
     } else {
         limits.max
     }
+}
+
+/// The most keep-out boxes a scene may hold.
+pub const MAX_KEEP_OUTS: usize = 64;
+
+/// A box the arm must stay out of, in the world frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KeepOut {
+    /// The box's centre.
+    pub centre: Point3<f64>,
+    /// Its full extents along its own x, y, z.
+    pub size: Vector3<f64>,
+    /// Its orientation.
+    pub rotation: Rotation3<f64>,
 }
