@@ -31,7 +31,7 @@ mod pieper;
 mod scara;
 
 use super::IkError;
-use super::branches::{Branch, Elbow, Shoulder, Wrist};
+use super::branch::{Branch, Elbow, Shoulder, Wrist};
 use crate::angles::wrap_to_pi;
 use crate::jacobian::Task;
 use crate::robot::nearest_equivalent_within;

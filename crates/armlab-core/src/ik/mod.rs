@@ -21,6 +21,7 @@
 //! [`IkSolver::drag_step`] every frame; the hot loop then never allocates. [`solve`] and
 //! [`drag_step`] are the one-shot forms. The core has no clock: budgets are iterations.
 
+mod branch;
 mod branches;
 mod chain;
 mod closed_form;
