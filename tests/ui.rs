@@ -1177,12 +1177,31 @@ fn a_motion_into_the_base_stops_at_the_last_free_pose_and_names_the_parts() {
         .model_mut()
         .set_motion_goal(&folded)
         .expect("a valid goal");
-    h.run_steps(60);
+    let mut checker = CollisionChecker::new(true, vec![]).expect("a checker");
+    let mut touches = |q: &[f64]| {
+        let fk = ForwardKinematics::new(&robot, q).expect("a valid q");
+        !checker.check(&robot, &fk).is_free()
+    };
+    // Frame by frame, keeping the simulation as each frame starts: the frame that refuses
+    // its pose is replayed from there to find the pose it refused.
+    let stopped = |h: &Harness<'_, ArmLabApp>| {
+        h.state()
+            .model()
+            .message()
+            .is_some_and(|m| m.text.contains("stopped at the last collision-free"))
+    };
+    let mut before = None;
+    let mut frames = 0;
+    while !stopped(&h) && frames < 60 {
+        before = h.state().model().motion().sim().cloned();
+        h.run_steps(1);
+        frames += 1;
+    }
     let model = h.state().model();
     let message = model.message().map(|m| m.text.clone()).unwrap_or_default();
     assert!(
         message.starts_with("Contact: ") && message.contains("stopped at the last collision-free"),
-        "{message}"
+        "after {frames} frames: {message}"
     );
     assert!(
         model.motion().colliding().iter().any(|c| *c),
@@ -1194,12 +1213,31 @@ fn a_motion_into_the_base_stops_at_the_last_free_pose_and_names_the_parts() {
         (q[2] - folded[2]).abs() > 0.05,
         "the arm did not reach the folded pose: {q:?}"
     );
-    let fk = ForwardKinematics::new(&robot, &q).expect("a valid q");
-    let mut checker = CollisionChecker::new(true, vec![]).expect("a checker");
-    assert!(
-        checker.check(&robot, &fk).is_free(),
-        "it rests where nothing touches"
+    assert!(!touches(&q), "it rests where nothing touches: {q:?}");
+    // The last free pose: the one the previous frame took (the check runs once a frame) …
+    let mut refused = before.expect("the motion ran at least one frame");
+    assert_eq!(
+        q,
+        refused.q(),
+        "the arm rests at the pose of the frame before the contact"
     );
+    // … and the same motion one frame on (the steps that frame ran) touches.
+    let steps = model.motion().steps_last_frame();
+    assert!(steps > 0, "the refused frame ran simulation steps");
+    for _ in 0..steps {
+        refused.step();
+    }
+    let next = refused.q().to_vec();
+    assert!(
+        next.iter().zip(&q).any(|(a, b)| (a - b).abs() > 1e-6),
+        "the refused pose lies on: {next:?} vs {q:?}"
+    );
+    assert!(
+        touches(&next),
+        "the next pose of the motion touches: {next:?}"
+    );
+    // The picture after the same 60 frames as ever (the panel shows the simulated time).
+    h.run_steps(60 - frames);
     h.snapshot("motion_collision_stop");
 }
 
