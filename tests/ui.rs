@@ -659,6 +659,22 @@ fn a_closed_panel_reopens_from_its_edge_tab_and_shortcuts_skip_text_fields() {
     h.key_press(egui::Key::P);
     h.run_steps(2);
     assert!(!h.state().model().settings().presentation);
+    // The same key with a text field focused (a DH cell) is the field's, not the
+    // shortcut's.
+    h.get_by_label("DH table (editable)").click();
+    h.run_steps(2);
+    h.query_all_by_role(Role::TextInput)
+        .next()
+        .expect("a DH cell")
+        .focus();
+    h.run_steps(1);
+    assert!(h.ctx.text_edit_focused(), "the text field has the keyboard");
+    h.key_press(egui::Key::P);
+    h.run_steps(2);
+    assert!(
+        !h.state().model().settings().presentation,
+        "P typed into a text field leaves presentation mode off"
+    );
 }
 
 #[test]
@@ -1529,7 +1545,8 @@ fn both_paths_are_drawn_side_by_side_the_line_says_where_it_fails_and_waypoints_
     h.state_mut().model_mut().set_settings(settings);
     h.run_steps(2);
     h.snapshot("motion_paths");
-    // Visit: move turns on and the arm sets off toward waypoint 1 along the line.
+    // Visit in joint space: move turns on and the arm sets off toward waypoint 1, then
+    // goes on to waypoint 2 and rests there.
     h.get_by_label("Joint space").click();
     h.get_by_label("Visit").click();
     h.run_steps(4);
@@ -1538,6 +1555,26 @@ fn both_paths_are_drawn_side_by_side_the_line_says_where_it_fails_and_waypoints_
     assert!(model.paths().visit().is_some(), "the visit is under way");
     assert!(h.query_by_label("Visiting: waypoint 1 of 2.").is_some());
     assert!(model.motion().trail().len() >= 2, "the trail draws");
+    let mut on_to_the_second = false;
+    let mut frames = 4;
+    while frames < 600 {
+        let model = h.state().model();
+        if model.paths().finished() && !model.motion().moving() {
+            break;
+        }
+        on_to_the_second |= h.query_by_label("Visiting: waypoint 2 of 2.").is_some();
+        h.run_steps(1);
+        frames += 1;
+    }
+    let model = h.state().model();
+    assert!(
+        model.paths().finished() && !model.motion().moving(),
+        "the visit ends within {frames} frames"
+    );
+    assert!(on_to_the_second, "waypoint 1 was reached, the arm went on");
+    let last = model.paths().waypoints().poses()[1].translation.vector;
+    let off = (model.fk().tool_position() - last).norm();
+    assert!(off < 0.01, "the tool rests {off} mm from waypoint 2");
 }
 
 #[test]
