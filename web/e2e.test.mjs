@@ -198,7 +198,11 @@ test('a browser without WebAssembly SIMD gets a sentence, not an endless loading
   // Such a browser rejects SIMD modules: it neither validates nor compiles the page's wasm.
   await ctx.addInitScript(() => {
     WebAssembly.validate = () => false;
-    const refuse = () => Promise.reject(new WebAssembly.CompileError('SIMD is not supported'));
+    window.armlabRefusedWasm = 0;
+    const refuse = () => {
+      window.armlabRefusedWasm += 1;
+      return Promise.reject(new WebAssembly.CompileError('SIMD is not supported'));
+    };
     WebAssembly.instantiateStreaming = refuse;
     WebAssembly.instantiate = refuse;
     WebAssembly.compileStreaming = refuse;
@@ -206,9 +210,13 @@ test('a browser without WebAssembly SIMD gets a sentence, not an endless loading
   });
   const page = await ctx.newPage();
   await page.goto(suite.base, { waitUntil: 'load' });
-  await page.waitForTimeout(500);
-  const text = await page.textContent('#armlab_message');
-  assert.match(text, /needs a browser with WebAssembly SIMD/);
+  // The sentence shows, and stays once the page has tried to start its wasm and failed.
+  const sentence = /needs a browser with WebAssembly SIMD/;
+  await page.waitForFunction((source) => new RegExp(source).test(document.getElementById('armlab_message')?.textContent ?? ''),
+    sentence.source, { timeout: 10000 });
+  await page.waitForFunction(() => window.armlabRefusedWasm > 0, null, { timeout: 10000 });
+  await page.evaluate(() => new Promise((r) => setTimeout(r, 0))); // the refusal's handlers ran
+  assert.match(await page.textContent('#armlab_message'), sentence);
   assert.equal(await page.isVisible('#armlab_message'), true);
   await ctx.close();
 });
