@@ -124,6 +124,11 @@ test('driving with collide=on in the link: the checks run in the lazily loaded m
   // collide=on in the link: the checks ran in the collision module (web/collision.test.mjs).
   assert.equal(s.motion.collisions, true);
   assert.equal(s.motion.checker, 'ready');
+  // The drive ended: the arm rests, and nothing on the way stopped it short of the target.
+  assert.ok(s.motion.at_rest && !s.motion.moving, `the arm came to rest (${s.motion.time} s simulated)`);
+  assert.equal(s.motion.contact, null, 'no part touched on the way');
+  assert.ok(s.reached, `the target is reached (${s.position_error} mm off)`);
+  assert.ok(Math.max(...s.motion.error.map(Math.abs)) < 1e-4, `at the goal: ${s.motion.error}`);
   measurements.ur10_collide = {
     frames: moving.length,
     motion_ms_p50: quantile(moving.map((f) => f.motion), 0.5),
