@@ -660,6 +660,22 @@ fn a_closed_panel_reopens_from_its_edge_tab_and_shortcuts_skip_text_fields() {
     h.key_press(egui::Key::P);
     h.run_steps(2);
     assert!(!h.state().model().settings().presentation);
+    // The same key with a text field focused (a DH cell) is the field's, not the
+    // shortcut's.
+    h.get_by_label("DH table (editable)").click();
+    h.run_steps(2);
+    h.query_all_by_role(Role::TextInput)
+        .next()
+        .expect("a DH cell")
+        .focus();
+    h.run_steps(1);
+    assert!(h.ctx.text_edit_focused(), "the text field has the keyboard");
+    h.key_press(egui::Key::P);
+    h.run_steps(2);
+    assert!(
+        !h.state().model().settings().presentation,
+        "P typed into a text field leaves presentation mode off"
+    );
 }
 
 #[test]
@@ -1178,12 +1194,31 @@ fn a_motion_into_the_base_stops_at_the_last_free_pose_and_names_the_parts() {
         .model_mut()
         .set_motion_goal(&folded)
         .expect("a valid goal");
-    h.run_steps(60);
+    let mut checker = CollisionChecker::new(true, vec![]).expect("a checker");
+    let mut touches = |q: &[f64]| {
+        let fk = ForwardKinematics::new(&robot, q).expect("a valid q");
+        !checker.check(&robot, &fk).is_free()
+    };
+    // Frame by frame, keeping the simulation as each frame starts: the frame that refuses
+    // its pose is replayed from there to find the pose it refused.
+    let stopped = |h: &Harness<'_, ArmLabApp>| {
+        h.state()
+            .model()
+            .message()
+            .is_some_and(|m| m.text.contains("stopped at the last collision-free"))
+    };
+    let mut before = None;
+    let mut frames = 0;
+    while !stopped(&h) && frames < 60 {
+        before = h.state().model().motion().sim().cloned();
+        h.run_steps(1);
+        frames += 1;
+    }
     let model = h.state().model();
     let message = model.message().map(|m| m.text.clone()).unwrap_or_default();
     assert!(
         message.starts_with("Contact: ") && message.contains("stopped at the last collision-free"),
-        "{message}"
+        "after {frames} frames: {message}"
     );
     assert!(
         model.motion().colliding().iter().any(|c| *c),
@@ -1195,12 +1230,31 @@ fn a_motion_into_the_base_stops_at_the_last_free_pose_and_names_the_parts() {
         (q[2] - folded[2]).abs() > 0.05,
         "the arm did not reach the folded pose: {q:?}"
     );
-    let fk = ForwardKinematics::new(&robot, &q).expect("a valid q");
-    let mut checker = CollisionChecker::new(true, vec![]).expect("a checker");
-    assert!(
-        checker.check(&robot, &fk).is_free(),
-        "it rests where nothing touches"
+    assert!(!touches(&q), "it rests where nothing touches: {q:?}");
+    // The last free pose: the one the previous frame took (the check runs once a frame) …
+    let mut refused = before.expect("the motion ran at least one frame");
+    assert_eq!(
+        q,
+        refused.q(),
+        "the arm rests at the pose of the frame before the contact"
     );
+    // … and the same motion one frame on (the steps that frame ran) touches.
+    let steps = model.motion().steps_last_frame();
+    assert!(steps > 0, "the refused frame ran simulation steps");
+    for _ in 0..steps {
+        refused.step();
+    }
+    let next = refused.q().to_vec();
+    assert!(
+        next.iter().zip(&q).any(|(a, b)| (a - b).abs() > 1e-6),
+        "the refused pose lies on: {next:?} vs {q:?}"
+    );
+    assert!(
+        touches(&next),
+        "the next pose of the motion touches: {next:?}"
+    );
+    // The picture after the same 60 frames as ever (the panel shows the simulated time).
+    h.run_steps(60 - frames);
     h.snapshot("motion_collision_stop");
 }
 
@@ -1492,7 +1546,8 @@ fn both_paths_are_drawn_side_by_side_the_line_says_where_it_fails_and_waypoints_
     h.state_mut().model_mut().set_settings(settings);
     h.run_steps(2);
     h.snapshot("motion_paths");
-    // Visit: move turns on and the arm sets off toward waypoint 1 along the line.
+    // Visit in joint space: move turns on and the arm sets off toward waypoint 1, then
+    // goes on to waypoint 2 and rests there.
     h.get_by_label("Joint space").click();
     h.get_by_label("Visit").click();
     h.run_steps(4);
@@ -1501,6 +1556,26 @@ fn both_paths_are_drawn_side_by_side_the_line_says_where_it_fails_and_waypoints_
     assert!(model.paths().visit().is_some(), "the visit is under way");
     assert!(h.query_by_label("Visiting: waypoint 1 of 2.").is_some());
     assert!(model.motion().trail().len() >= 2, "the trail draws");
+    let mut on_to_the_second = false;
+    let mut frames = 4;
+    while frames < 600 {
+        let model = h.state().model();
+        if model.paths().finished() && !model.motion().moving() {
+            break;
+        }
+        on_to_the_second |= h.query_by_label("Visiting: waypoint 2 of 2.").is_some();
+        h.run_steps(1);
+        frames += 1;
+    }
+    let model = h.state().model();
+    assert!(
+        model.paths().finished() && !model.motion().moving(),
+        "the visit ends within {frames} frames"
+    );
+    assert!(on_to_the_second, "waypoint 1 was reached, the arm went on");
+    let last = model.paths().waypoints().poses()[1].translation.vector;
+    let off = (model.fk().tool_position() - last).norm();
+    assert!(off < 0.01, "the tool rests {off} mm from waypoint 2");
 }
 
 #[test]

@@ -219,6 +219,66 @@ fn with_every_panel_open_no_text_is_english() {
         english.is_empty(),
         "English on a Finnish screen: {english:#?}"
     );
+
+    // The fifth panel, the motion lab (closed unless a link opens it), with its paths
+    // folded out and the arm driving with checks on.
+    let mut h = harness("#robot=ur10&lang=fi&panels=motion&move=on&collide=on");
+    h.get_by_label(text(Lang::Fi, Key::PathTitle)).click();
+    h.run_steps(2);
+    let texts = scrolled_texts(&mut h, text(Lang::Fi, Key::MotionMove));
+    for finnish in [Key::PanelMotion, Key::MotionMove, Key::PathTitle] {
+        let fi = text(Lang::Fi, finnish);
+        assert!(
+            texts.iter().any(|t| t == fi),
+            "{finnish:?} shows in Finnish ({fi:?}); the texts: {texts:#?}"
+        );
+    }
+    let english = english_labels(&texts);
+    assert!(
+        english.is_empty(),
+        "English in the Finnish motion panel: {english:#?}"
+    );
+}
+
+#[test]
+fn the_language_switch_turns_the_app_finnish_and_back() {
+    let mut h = harness("#robot=ur10&panels=joints,ik");
+    assert_eq!(h.state().model().settings().lang, Lang::En);
+    let shown = |h: &Harness<'_, ArmLabApp>, lang: Lang, key: Key| {
+        h.query_all_by_label(text(lang, key)).next().is_some()
+    };
+    for key in [Key::PanelJoints, Key::Solve] {
+        assert!(shown(&h, Lang::En, key), "{key:?} shows in English first");
+    }
+    // The top bar's menu shows the language in force; its list offers the other.
+    let choose = |h: &mut Harness<'_, ArmLabApp>, from: &str, to: &str| {
+        h.query_all_by_role(Role::ComboBox)
+            .find(|n| n.accesskit_node().value().as_deref() == Some(from))
+            .unwrap_or_else(|| panic!("the language menu shows {from}"))
+            .click();
+        h.run_steps(2);
+        h.get_by_label(to).click();
+        h.run_steps(3);
+    };
+    choose(&mut h, "English", "Suomi");
+    assert_eq!(h.state().model().settings().lang, Lang::Fi);
+    for key in [Key::PanelJoints, Key::Solve] {
+        assert!(shown(&h, Lang::Fi, key), "{key:?} shows in Finnish");
+        assert!(
+            !shown(&h, Lang::En, key),
+            "{key:?} no longer shows in English"
+        );
+    }
+    assert!(h.state().hash().contains("lang=fi"), "{}", h.state().hash());
+    choose(&mut h, "Suomi", "English");
+    assert_eq!(h.state().model().settings().lang, Lang::En);
+    for key in [Key::PanelJoints, Key::Solve] {
+        assert!(shown(&h, Lang::En, key), "{key:?} shows in English again");
+        assert!(
+            !shown(&h, Lang::Fi, key),
+            "{key:?} no longer shows in Finnish"
+        );
+    }
 }
 
 /// Types `text` into the `index`-th text input.

@@ -3,9 +3,11 @@
 // in dist/urdf/ (tools/setup.sh, build_urdf_module), which the page imports only when
 // checks go on. Here: the first load does not fetch it; turning checks on fetches it once;
 // the UR10 driving into a keep-out box stops at a collision-free pose and the panel names
-// the parts that touch; a module that cannot be loaded gets a sentence and a later try
-// loads it. Prints one JSON line of measurements (not asserted): the module's load time on
-// loopback and the check's cost per pose through the module boundary (UR10, Panda).
+// the parts that touch; stepped with the time paused, it rests at the last free pose and
+// the next step of the same motion touches the box; a module that cannot be loaded gets a
+// sentence and a later try loads it. Prints one JSON line of measurements (not asserted):
+// the module's load time on loopback and the check's cost per pose through the module
+// boundary (UR10, Panda).
 //
 // The contexts block service workers: the worker precaches every file of the build after
 // the first load (urdf/ too), and those fetches are not the page's.
@@ -63,13 +65,32 @@ async function click(page, name) {
 // the way.
 const OFFSET = [400, 0, -300];
 
-test('checks on: the module loads once, the driving UR10 stops at a collision-free pose before a keep-out box, the panel names the parts', async () => {
+/** The scene's link: the target OFFSET from the UR10's tool at home, the box around it. */
+async function boxScene() {
   const first = await open('#robot=ur10&panels=ik,motion');
   const tool = (await state(first.page)).tool;
   await first.ctx.close();
   const target = tool.map((v, i) => v + OFFSET[i]);
   const box = `keepout=${target.map((v) => v.toFixed(3)).join(',')},250,250,250`;
-  const scene = `#robot=ur10&target=${target.map((v) => v.toFixed(3)).join(',')},0,0,0&task=position&panels=ik,motion&${box}`;
+  return `#robot=ur10&target=${target.map((v) => v.toFixed(3)).join(',')},0,0,0&task=position&panels=ik,motion&${box}`;
+}
+
+/** With the time paused, presses Step (10 simulated ms) `count` times or until a contact;
+ * returns the state after each press. */
+async function steps(page, count) {
+  const seen = [];
+  for (let i = 0; i < count; i++) {
+    const before = await state(page);
+    await click(page, 'motion-step');
+    const s = await until(page, (st) => st.motion.time >= before.motion.time + 0.0095, `step ${i + 1}`);
+    seen.push(s);
+    if (s.motion.contact !== null) break;
+  }
+  return seen;
+}
+
+test('checks on: the module loads once, the driving UR10 stops at a collision-free pose before a keep-out box, the panel names the parts', async () => {
+  const scene = await boxScene();
   const { page, ctx, requests, errors } = await open(`${scene}&move=on&ctrl=quintic`);
   let s = await until(page, (st) => st.frame > 3, 'a few frames');
   assert.equal(s.motion.keep_outs, 1, 'the link brought the box');
@@ -114,6 +135,51 @@ test('checks on: the module loads once, the driving UR10 stops at a collision-fr
   for (const robot of ['ur10', 'panda']) {
     measurements[`${robot}_check`] = await page.evaluate((r) => window.armlab.collisionBenchmark(r, 4000), robot);
     assert.ok(measurements[`${robot}_check`], `the benchmark ran for ${robot}`);
+  }
+  assert.deepEqual(errors, []);
+  await ctx.close();
+});
+
+// The check runs once per frame (docs/kinematics.md §20.2): the arm rests at the pose of the
+// last frame that was free, and the frame after it is the one that touched. Stepped with
+// the time paused, every frame is one press of Step, so the test sees each pose.
+test('stepped 10 ms at a time, the UR10 rests at the last pose it stepped to before the box, and one step more of the same motion touches it', async () => {
+  const scene = await boxScene();
+  const drive = '&move=on&ctrl=quintic&timescale=0';
+  const { page, ctx, errors } = await open(`${scene}${drive}&collide=on`);
+  let s = await until(page, (st) => st.motion.checker === 'ready' && st.motion.collisions
+    && st.motion.colliding_parts === 0 && st.motion.contact === null, 'the module and the start checked');
+  assert.equal(s.motion.time_scale, 0, 'the time is paused');
+  const start = s.q;
+  await click(page, 'ik-solve');
+  const seen = await steps(page, 400);
+  const last = seen[seen.length - 1];
+  assert.ok(last.motion.contact !== null, `a contact within ${seen.length} steps`);
+  assert.match(last.motion.contact, /touches keep-out box 1\.$/);
+  assert.ok(seen.length >= 3, `the arm stepped toward the box first (${seen.length} steps)`);
+  const free = seen.slice(0, -1);
+  assert.ok(free.every((st) => st.motion.contact === null), 'no contact before the last step');
+  // The last free pose: where the step before the contact took the arm.
+  const stopped = last.q;
+  assert.deepEqual(stopped, free[free.length - 1].q, 'the arm rests at the pose of the step before the contact');
+  const path = [start, ...free.map((st) => st.q)];
+  assert.ok(path.every((q, i) => i === 0 || q.some((v, j) => v !== path[i - 1][j])), 'every step before the contact moved the arm');
+
+  // The same motion again with the checks off: the same poses, then the step that was
+  // refused, which touches the box when checked on its own.
+  await page.evaluate((h) => window.armlab.open(h), `${scene}&q=${start.join(',')}${drive}&collide=off`);
+  s = await until(page, (st) => !st.motion.collisions && st.q.every((v, i) => v === start[i]), 'the start again');
+  await click(page, 'ik-solve');
+  const again = await steps(page, seen.length);
+  assert.equal(again.length, seen.length);
+  again.slice(0, -1).forEach((st, i) => assert.deepEqual(st.q, free[i].q, `step ${i + 1} repeats`));
+  const next = again[again.length - 1].q;
+  assert.ok(next.some((v, i) => Math.abs(v - stopped[i]) > 1e-6), 'the refused step moves on from the stop pose');
+  for (const [q, touches] of [[next, true], [stopped, false]]) {
+    await page.evaluate((h) => window.armlab.open(h), `${scene}&q=${q.join(',')}&collide=on`);
+    s = await until(page, (st) => st.q.every((v, i) => v === q[i]) && st.motion.collisions, 'the pose on its own');
+    s = await until(page, (st) => st.frame > s.frame + 2, 'two more frames');
+    assert.equal(s.motion.contact !== null, touches, `${touches ? 'the next step' : 'the stop pose'} on its own: ${s.motion.contact}`);
   }
   assert.deepEqual(errors, []);
   await ctx.close();

@@ -198,7 +198,11 @@ test('a browser without WebAssembly SIMD gets a sentence, not an endless loading
   // Such a browser rejects SIMD modules: it neither validates nor compiles the page's wasm.
   await ctx.addInitScript(() => {
     WebAssembly.validate = () => false;
-    const refuse = () => Promise.reject(new WebAssembly.CompileError('SIMD is not supported'));
+    window.armlabRefusedWasm = 0;
+    const refuse = () => {
+      window.armlabRefusedWasm += 1;
+      return Promise.reject(new WebAssembly.CompileError('SIMD is not supported'));
+    };
     WebAssembly.instantiateStreaming = refuse;
     WebAssembly.instantiate = refuse;
     WebAssembly.compileStreaming = refuse;
@@ -206,9 +210,13 @@ test('a browser without WebAssembly SIMD gets a sentence, not an endless loading
   });
   const page = await ctx.newPage();
   await page.goto(suite.base, { waitUntil: 'load' });
-  await page.waitForTimeout(500);
-  const text = await page.textContent('#armlab_message');
-  assert.match(text, /needs a browser with WebAssembly SIMD/);
+  // The sentence shows, and stays once the page has tried to start its wasm and failed.
+  const sentence = /needs a browser with WebAssembly SIMD/;
+  await page.waitForFunction((source) => new RegExp(source).test(document.getElementById('armlab_message')?.textContent ?? ''),
+    sentence.source, { timeout: 10000 });
+  await page.waitForFunction(() => window.armlabRefusedWasm > 0, null, { timeout: 10000 });
+  await page.evaluate(() => new Promise((r) => setTimeout(r, 0))); // the refusal's handlers ran
+  assert.match(await page.textContent('#armlab_message'), sentence);
   assert.equal(await page.isVisible('#armlab_message'), true);
   await ctx.close();
 });
@@ -227,6 +235,14 @@ test('the first load (every file of the page, gzip -9) stays within 1.8 MB', () 
   assert.ok(total <= 1_800_000, `the page's files are ${total} bytes gzip -9 (budget 1,800,000)`);
 });
 
+/** Z-Y-X Euler angles [α, β, γ] (radians) of a rotation matrix, R = Rz(α)·Ry(β)·Rx(γ),
+ * as a link's target writes them (away from β = ±90°). */
+const zyxEuler = (r) => [
+  Math.atan2(r[1][0], r[0][0]),
+  Math.atan2(-r[2][0], Math.hypot(r[0][0], r[1][0])),
+  Math.atan2(r[2][1], r[2][2]),
+];
+
 test('a link opens exactly its robot, pose and target', async () => {
   const hash = '#robot=puma560&q=0.1,0.2,-0.3,0.4,0.5,-0.6&target=0.5,-0.1,0.6,0.2,0.1,0.3&task=position&method=pinv';
   const { page, ctx } = await open(hash);
@@ -235,6 +251,11 @@ test('a link opens exactly its robot, pose and target', async () => {
   assert.equal(s.preset, 'puma560');
   assert.deepEqual(s.q.map((v) => +v.toFixed(6)), [0.1, 0.2, -0.3, 0.4, 0.5, -0.6]);
   assert.deepEqual(s.target.position.map((v) => +v.toFixed(6)), [0.5, -0.1, 0.6]);
+  // The target's angles in the link's units: α, β, γ = 0.2, 0.1, 0.3 rad about Z, Y, X.
+  const angles = zyxEuler(s.target.rotation);
+  assert.ok(angles.every((v, i) => Math.abs(v - [0.2, 0.1, 0.3][i]) < 1e-9), `the target's Z-Y-X angles: ${angles}`);
+  const written = /target=([^&]+)/.exec(s.hash)[1].split(',').map(Number);
+  assert.deepEqual(written.map((v) => +v.toFixed(6)), [0.5, -0.1, 0.6, 0.2, 0.1, 0.3], 'the link it writes back');
   assert.equal(s.task, 'position');
   assert.equal(s.method, 'pinv');
   await ctx.close();
@@ -488,7 +509,8 @@ async function checkView(page, screen, minShare) {
 }
 
 for (const screen of SCREENS) {
-  test(`${screen.name}: the arm, its tool and target are in the 3D view and nothing covers them`, async () => {
+  // A touch screen has no hovering pointer to tell what covers the tool.
+  test(`${screen.name}: the arm, its tool and target are in the 3D view${screen.touch ? '' : ' and nothing covers the tool'}`, async () => {
     const { page, ctx, errors } = await openAt(screen, LAYOUT_HASH);
     const narrow = screen.width < 900;
     const { share } = await checkView(page, screen, narrow ? 0.99 : 0.5);
@@ -524,14 +546,20 @@ for (const screen of SCREENS) {
   });
 }
 
-test('presentation mode at 1024×768: the view keeps 60 % and the arm, the chosen panels beside it', async () => {
+test('presentation mode at 1024×768: the view keeps 60 % and the arm, the chosen panels open, the joints beside it', async () => {
   const screen = SCREENS[0];
   const { page, ctx, errors } = await openAt(screen, `${LAYOUT_HASH}&present=on&ppanels=joints,matrices`);
   const s = await state(page);
   assert.equal(s.presentation, true);
   assert.equal(s.open_panels, 'joints,matrices');
-  const { share } = await checkView(page, screen, 0.6);
+  const { rect, share } = await checkView(page, screen, 0.6);
   measurements.view_share_presentation_1024x768 = +share.toFixed(3);
+  // The joints' sliders sit in a column beside the view, inside the window.
+  for (const end of ['slider-1-min', 'slider-6-max']) {
+    const p = await point(page, end);
+    assert.ok((p.x < rect.x || p.x > rect.x + rect.width) && p.x > 0 && p.x < screen.width,
+      `${end} at x ${p.x.toFixed(0)} lies beside the view (x ${rect.x.toFixed(0)} to ${(rect.x + rect.width).toFixed(0)})`);
+  }
   // The P key leaves presentation mode (no text field has the keyboard).
   await page.screenshot({ path: path.join(shots, 'layout-presentation-1024x768.png') });
   await page.keyboard.press('p');
@@ -667,20 +695,68 @@ test('with the browser language fi the page opens in Finnish; a link and the swi
   const en = await openAt({ width: 1280, height: 720 }, '#robot=ur10&lang=en', { locale: 'fi-FI' });
   assert.equal((await state(en.page)).lang, 'en', 'the link wins over the browser');
   await en.ctx.close();
+
+  // The switch in the top bar, in a browser whose language is English: what the app
+  // writes (here the sentence of a link that cannot be opened) follows it.
+  const sw = await openAt({ width: 1280, height: 720 }, '#robot=ur10', { locale: 'en-US' });
+  const broken = '#robot=ur10&q=1,2,banana';
+  const english = /^This link could not be opened/;
+  const finnish = /^Linkkiä ei voitu avata/;
+  const sentence = async () => {
+    await sw.page.evaluate((h) => window.armlab.open(h), broken);
+    await settle(sw.page);
+    return (await state(sw.page)).message;
+  };
+  const choose = async (lang) => {
+    const menu = await point(sw.page, 'language');
+    await sw.page.mouse.click(menu.x, menu.y);
+    await settle(sw.page);
+    const choice = await point(sw.page, `language-${lang}`);
+    await sw.page.mouse.click(choice.x, choice.y);
+    await settle(sw.page);
+  };
+  assert.equal((await state(sw.page)).lang, 'en');
+  assert.match(await sentence(), english);
+  await choose('fi');
+  let s = await state(sw.page);
+  assert.equal(s.lang, 'fi', 'Suomi chosen in the menu');
+  assert.match(s.hash, /lang=fi/);
+  let text = await sentence();
+  assert.match(text, finnish, 'the app writes Finnish');
+  assert.doesNotMatch(text, english);
+  await choose('en');
+  s = await state(sw.page);
+  assert.equal(s.lang, 'en', 'English chosen in the menu');
+  text = await sentence();
+  assert.match(text, english, 'the app writes English again');
+  assert.doesNotMatch(text, finnish);
+  assert.deepEqual(sw.errors, []);
+  await sw.ctx.close();
 });
 
 test('a link carries the angle unit, presentation, language, panels and camera', async () => {
   const hash = '#robot=scara&units=rad&frames=off&decimals=5&present=off&lang=fi&panels=joints,matrices'
-    + '&camera=0.3,0.2,1800,100,50,200';
+    + '&ppanels=ik&camera=0.3,0.2,1800,100,50,200';
   const { page, ctx } = await open(hash);
-  const s = await state(page);
+  let s = await state(page);
   assert.equal(s.degrees, false);
   assert.equal(s.lang, 'fi');
+  assert.equal(s.presentation, false);
   assert.equal(s.open_panels, 'joints,matrices');
   const camera = /camera=([^&]+)/.exec(s.hash)[1].split(',').map(Number);
   assert.deepEqual(camera.map((v) => +v.toFixed(3)), [0.3, 0.2, 1800, 100, 50, 200]);
   assert.match(s.hash, /units=rad/);
   assert.match(s.hash, /decimals=5/);
+  assert.match(s.hash, /(^|&)frames=off(&|$)/);
+  assert.match(s.hash, /(^|&)ppanels=ik(&|$)/);
+  // Presentation on (off is the default): its own panels show, the normal ones are kept.
+  await page.evaluate((h) => window.armlab.open(h), hash.replace('present=off', 'present=on'));
+  await settle(page);
+  s = await state(page);
+  assert.equal(s.presentation, true);
+  assert.equal(s.open_panels, 'ik', 'the presentation layout shows its own panels');
+  assert.match(s.hash, /(^|&)present=on(&|$)/);
+  assert.match(s.hash, /(^|&)panels=joints,matrices(&|$)/);
   await ctx.close();
 });
 

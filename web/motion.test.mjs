@@ -41,6 +41,9 @@ async function openHash(page, hash) {
   }
 }
 
+// How far the tool may stray from the straight lines between waypoints in a visit (mm).
+const LINE_TOL = 3;
+
 const quantile = (xs, q) => {
   const s = [...xs].sort((a, b) => a - b);
   return s.length ? s[Math.min(s.length - 1, Math.floor(s.length * q))] : null;
@@ -124,6 +127,11 @@ test('driving with collide=on in the link: the checks run in the lazily loaded m
   // collide=on in the link: the checks ran in the collision module (web/collision.test.mjs).
   assert.equal(s.motion.collisions, true);
   assert.equal(s.motion.checker, 'ready');
+  // The drive ended: the arm rests, and nothing on the way stopped it short of the target.
+  assert.ok(s.motion.at_rest && !s.motion.moving, `the arm came to rest (${s.motion.time} s simulated)`);
+  assert.equal(s.motion.contact, null, 'no part touched on the way');
+  assert.ok(s.reached, `the target is reached (${s.position_error} mm off)`);
+  assert.ok(Math.max(...s.motion.error.map(Math.abs)) < 1e-4, `at the goal: ${s.motion.error}`);
   measurements.ur10_collide = {
     frames: moving.length,
     motion_ms_p50: quantile(moving.map((f) => f.motion), 0.5),
@@ -172,18 +180,40 @@ test('waypoints from a link and the Add waypoint button are visited along a stra
   assert.equal(s.paths.waypoints.length, 3, 'Add waypoint stored the target');
   assert.ok(s.position_error > 10, `the arm starts away from the last waypoint (${s.position_error} mm)`);
   await page.evaluate(() => window.armlab.frameTimes());
+  const from = s.tool;
   await click('path-visit');
   s = await state(page);
   assert.equal(s.motion.on, true, 'Visit turns Move on');
   assert.ok(s.paths.visiting, 'the visit is under way');
   assert.deepEqual(s.paths.issues, [], 'the line between these waypoints has no problem');
   const frames = [];
+  const tools = [];
   for (let i = 0; i < 1200 && !s.paths.visit_done; i++) {
     await page.waitForTimeout(50);
     s = await state(page);
+    tools.push(s.tool);
     frames.push(...(await page.evaluate(() => window.armlab.frameTimes())));
   }
   assert.ok(s.paths.visit_done, `the visit ends (${s.motion.time} s simulated)`);
+  // Along straight lines: every tool position seen on the way lies on the polyline from
+  // where the arm started through the three waypoints, within LINE_TOL mm. The arm moves
+  // in joint space toward a goal on the line 0.05 rad ahead of it, so between those goals
+  // the tool strays a little (about 1.2 mm at most for these waypoints in the native app;
+  // a joint-space visit of them strays 44 mm).
+  const corners = [from, ...s.paths.waypoints];
+  const sub = (a, b) => a.map((v, i) => v - b[i]);
+  const dot = (a, b) => a.reduce((sum, v, i) => sum + v * b[i], 0);
+  const toSegment = (p, a, b) => {
+    const ab = sub(b, a);
+    const t = Math.min(1, Math.max(0, dot(sub(p, a), ab) / dot(ab, ab)));
+    return Math.hypot(...sub(p, a.map((v, i) => v + t * ab[i])));
+  };
+  const offLine = (p) => Math.min(...corners.slice(1).map((b, k) => toSegment(p, corners[k], b)));
+  const worst = Math.max(...tools.map(offLine));
+  // Points well inside the segments, away from the corners: the check saw the lines.
+  const inside = tools.filter((p) => corners.every((c) => Math.hypot(...sub(p, c)) > 20)).length;
+  assert.ok(inside >= 5, `${inside} tool positions seen between the waypoints`);
+  assert.ok(worst < LINE_TOL, `the tool strays ${worst.toFixed(3)} mm from the straight lines`);
   // The frames below are measured with collision checks on (collide=on: every simulation
   // step's pose goes through the lazily loaded module), and no part touched on the way.
   assert.equal(s.motion.collisions, true);
@@ -200,6 +230,8 @@ test('waypoints from a link and the Add waypoint button are visited along a stra
   assert.ok(moving.length >= 10, `frames while driving: ${moving.length}`);
   measurements.cartesian_visit = {
     final_error_mm: off,
+    largest_distance_from_the_lines_mm: worst,
+    positions_between_waypoints: inside,
     position_error: s.position_error,
     simulated_s: s.motion.time,
     frames: moving.length,

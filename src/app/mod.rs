@@ -323,7 +323,7 @@ impl ArmLabApp {
             self.viewport.apply(action, &ctx);
         }
         egui::Panel::top("armlab_top").show(ui, |ui| {
-            if let Some(action) = top_bar::ui(&mut self.model, ui, narrow) {
+            if let Some(action) = top_bar::ui(&mut self.model, ui, narrow, &mut self.points) {
                 self.viewport.apply(action, ui.ctx());
             }
         });

@@ -18,8 +18,14 @@ pub enum ViewAction {
     View(StandardView),
 }
 
-/// Draws the top bar; returns what it asks of the 3D view.
-pub fn ui(model: &mut Model, ui: &mut egui::Ui, narrow: bool) -> Option<ViewAction> {
+/// Draws the top bar; returns what it asks of the 3D view. The language menu and its
+/// choices go to `points` for the test hook.
+pub fn ui(
+    model: &mut Model,
+    ui: &mut egui::Ui,
+    narrow: bool,
+    points: &mut hook::ScreenPoints,
+) -> Option<ViewAction> {
     let mut action = None;
     super::style::wrapped(ui, |ui| {
         if !narrow {
@@ -40,10 +46,10 @@ pub fn ui(model: &mut Model, ui: &mut egui::Ui, narrow: bool) -> Option<ViewActi
         }
         if narrow {
             ui.menu_button(tr(model, Key::Menu), |ui| {
-                action = action.or(controls(model, ui));
+                action = action.or(controls(model, ui, points));
             });
         } else {
-            action = action.or(controls(model, ui));
+            action = action.or(controls(model, ui, points));
         }
     });
     if let Some(message) = model.message().cloned() {
@@ -53,9 +59,13 @@ pub fn ui(model: &mut Model, ui: &mut egui::Ui, narrow: bool) -> Option<ViewActi
 }
 
 /// The toggles, the language, the standard views and "Copy link".
-fn controls(model: &mut Model, ui: &mut egui::Ui) -> Option<ViewAction> {
+fn controls(
+    model: &mut Model,
+    ui: &mut egui::Ui,
+    points: &mut hook::ScreenPoints,
+) -> Option<ViewAction> {
     let mut action = None;
-    settings_toggles(model, ui);
+    settings_toggles(model, ui, points);
     ui.separator();
     ui.menu_button(tr(model, Key::ViewMenu), |ui| {
         for (key, view) in [
@@ -81,7 +91,7 @@ fn controls(model: &mut Model, ui: &mut egui::Ui) -> Option<ViewAction> {
     action
 }
 
-fn settings_toggles(model: &mut Model, ui: &mut egui::Ui) {
+fn settings_toggles(model: &mut Model, ui: &mut egui::Ui, points: &mut hook::ScreenPoints) {
     let mut settings = model.settings().clone();
     ui.toggle_value(&mut settings.degrees, tr(model, Key::Degrees))
         .on_hover_text(tr(model, Key::DegreesHint));
@@ -89,16 +99,18 @@ fn settings_toggles(model: &mut Model, ui: &mut egui::Ui) {
         .on_hover_text(tr(model, Key::DhFramesHint));
     ui.toggle_value(&mut settings.presentation, tr(model, Key::Presentation))
         .on_hover_text(tr(model, Key::PresentationHint));
-    egui::ComboBox::from_id_salt("language")
+    let menu = egui::ComboBox::from_id_salt("language")
         .selected_text(settings.lang.name())
         .width(80.0)
         .show_ui(ui, |ui| {
             for lang in Lang::ALL {
-                ui.selectable_value(&mut settings.lang, lang, lang.name());
+                let choice = ui.selectable_value(&mut settings.lang, lang, lang.name());
+                points.insert(format!("language-{}", lang.id()), choice.rect.center());
             }
         })
         .response
         .on_hover_text(tr(model, Key::LanguageHint));
+    points.insert("language", menu.rect.center());
     if &settings != model.settings() {
         model.set_settings(settings);
     }
