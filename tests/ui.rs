@@ -1475,6 +1475,78 @@ fn a_robot_file_brings_its_keep_out_boxes_and_a_bad_box_leaves_the_last_good_rob
     assert_eq!(model.motion().keep_outs(), &boxes[..]);
 }
 
+/// Bad text in waypoint 1's x gets a sentence and the last good x stays; a good value is
+/// taken.
+fn edit_waypoint_1_x(h: &mut Harness<'_, ArmLabApp>) {
+    // Bad text in waypoint 1's x: a sentence, and the last good x stays.
+    let x0 = h.state().model().paths().waypoints().poses()[0]
+        .translation
+        .x;
+    let inputs: Vec<_> = h
+        .query_all_by_role(Role::TextInput)
+        .filter(|n| n.accesskit_node().label().as_deref() == Some("Waypoint 1: x, y, z (mm)"))
+        .collect();
+    assert_eq!(inputs.len(), 3, "x, y and z of waypoint 1");
+    inputs[0].focus();
+    drop(inputs);
+    h.run_steps(1);
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.event(egui::Event::Text("12,5x".into()));
+    h.run_steps(2);
+    assert!(
+        h.query_by_label("\"12,5x\" is not a number.").is_some(),
+        "the sentence shows"
+    );
+    assert_eq!(
+        h.state().model().paths().waypoints().poses()[0]
+            .translation
+            .x,
+        x0
+    );
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.event(egui::Event::Text(format!("{}", (x0 + 10.0).round())));
+    h.run_steps(2);
+    let x1 = h.state().model().paths().waypoints().poses()[0]
+        .translation
+        .x;
+    assert_eq!(x1, (x0 + 10.0).round(), "a good value is taken");
+}
+
+/// Visits the two waypoints in joint space: Move turns on, the arm sets off toward
+/// waypoint 1, goes on to waypoint 2 and rests there.
+fn visit_the_waypoints_in_joint_space(h: &mut Harness<'_, ArmLabApp>) {
+    // Visit in joint space: move turns on and the arm sets off toward waypoint 1, then
+    // goes on to waypoint 2 and rests there.
+    h.get_by_label("Joint space").click();
+    h.get_by_label("Visit").click();
+    h.run_steps(4);
+    let model = h.state().model();
+    assert!(model.motion().on(), "Visit turns Move on");
+    assert!(model.paths().visit().is_some(), "the visit is under way");
+    assert!(h.query_by_label("Visiting: waypoint 1 of 2.").is_some());
+    assert!(model.motion().trail().len() >= 2, "the trail draws");
+    let mut on_to_the_second = false;
+    let mut frames = 4;
+    while frames < 600 {
+        let model = h.state().model();
+        if model.paths().finished() && !model.motion().moving() {
+            break;
+        }
+        on_to_the_second |= h.query_by_label("Visiting: waypoint 2 of 2.").is_some();
+        h.run_steps(1);
+        frames += 1;
+    }
+    let model = h.state().model();
+    assert!(
+        model.paths().finished() && !model.motion().moving(),
+        "the visit ends within {frames} frames"
+    );
+    assert!(on_to_the_second, "waypoint 1 was reached, the arm went on");
+    let last = model.paths().waypoints().poses()[1].translation.vector;
+    let off = (model.fk().tool_position() - last).norm();
+    assert!(off < 0.01, "the tool rests {off} mm from waypoint 2");
+}
+
 #[test]
 fn both_paths_are_drawn_side_by_side_the_line_says_where_it_fails_and_waypoints_are_visited() {
     use armlab_core::path::PathKind;
@@ -1508,74 +1580,14 @@ fn both_paths_are_drawn_side_by_side_the_line_says_where_it_fails_and_waypoints_
         h.query_by_label(&sentence).is_some(),
         "the panel says: {sentence}"
     );
-    // Bad text in waypoint 1's x: a sentence, and the last good x stays.
-    let x0 = h.state().model().paths().waypoints().poses()[0]
-        .translation
-        .x;
-    let inputs: Vec<_> = h
-        .query_all_by_role(Role::TextInput)
-        .filter(|n| n.accesskit_node().label().as_deref() == Some("Waypoint 1: x, y, z (mm)"))
-        .collect();
-    assert_eq!(inputs.len(), 3, "x, y and z of waypoint 1");
-    inputs[0].focus();
-    drop(inputs);
-    h.run_steps(1);
-    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
-    h.event(egui::Event::Text("12,5x".into()));
-    h.run_steps(2);
-    assert!(
-        h.query_by_label("\"12,5x\" is not a number.").is_some(),
-        "the sentence shows"
-    );
-    assert_eq!(
-        h.state().model().paths().waypoints().poses()[0]
-            .translation
-            .x,
-        x0
-    );
-    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
-    h.event(egui::Event::Text(format!("{}", (x0 + 10.0).round())));
-    h.run_steps(2);
-    let x1 = h.state().model().paths().waypoints().poses()[0]
-        .translation
-        .x;
-    assert_eq!(x1, (x0 + 10.0).round(), "a good value is taken");
+    edit_waypoint_1_x(&mut h);
     // The panel with both paths drawn, the legend and the line's problem marked.
     let mut settings = h.state().model().settings().clone();
     settings.set_panel_open(armlab::app::settings::PanelKind::Motion, true);
     h.state_mut().model_mut().set_settings(settings);
     h.run_steps(2);
     h.snapshot("motion_paths");
-    // Visit in joint space: move turns on and the arm sets off toward waypoint 1, then
-    // goes on to waypoint 2 and rests there.
-    h.get_by_label("Joint space").click();
-    h.get_by_label("Visit").click();
-    h.run_steps(4);
-    let model = h.state().model();
-    assert!(model.motion().on(), "Visit turns Move on");
-    assert!(model.paths().visit().is_some(), "the visit is under way");
-    assert!(h.query_by_label("Visiting: waypoint 1 of 2.").is_some());
-    assert!(model.motion().trail().len() >= 2, "the trail draws");
-    let mut on_to_the_second = false;
-    let mut frames = 4;
-    while frames < 600 {
-        let model = h.state().model();
-        if model.paths().finished() && !model.motion().moving() {
-            break;
-        }
-        on_to_the_second |= h.query_by_label("Visiting: waypoint 2 of 2.").is_some();
-        h.run_steps(1);
-        frames += 1;
-    }
-    let model = h.state().model();
-    assert!(
-        model.paths().finished() && !model.motion().moving(),
-        "the visit ends within {frames} frames"
-    );
-    assert!(on_to_the_second, "waypoint 1 was reached, the arm went on");
-    let last = model.paths().waypoints().poses()[1].translation.vector;
-    let off = (model.fk().tool_position() - last).norm();
-    assert!(off < 0.01, "the tool rests {off} mm from waypoint 2");
+    visit_the_waypoints_in_joint_space(&mut h);
 }
 
 #[test]

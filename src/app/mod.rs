@@ -7,7 +7,7 @@
 //!   [`ik_panel::IkPanel`], [`robot_panel::RobotPanel`], [`matrices::MatricesPanel`] and
 //!   the 3D [`viewport::Viewport`]. Panels never write each other's state; the
 //!   highlighted link is a value in the model.
-//! - Screen points for the test hook go to one registry, [`hook::ScreenPoints`].
+//! - Screen points for the test hook go to one registry, [`screen_points::ScreenPoints`].
 //!
 //! Data flow per frame: panels ask the model for changes → the model recomputes FK, the
 //! Jacobian and the IK status → the viewport builds a [`crate::render::Scene`] from the

@@ -7,6 +7,7 @@ use armlab_text::{Key, Lang};
 
 use super::hook;
 use super::model::{Message, MessageKind, Model};
+use super::screen_points::ScreenPoints;
 use super::{style, tr};
 
 /// What the top bar asks of the 3D view.
@@ -24,7 +25,7 @@ pub fn ui(
     model: &mut Model,
     ui: &mut egui::Ui,
     narrow: bool,
-    points: &mut hook::ScreenPoints,
+    points: &mut ScreenPoints,
 ) -> Option<ViewAction> {
     let mut action = None;
     super::style::wrapped(ui, |ui| {
@@ -59,11 +60,7 @@ pub fn ui(
 }
 
 /// The toggles, the language, the standard views and "Copy link".
-fn controls(
-    model: &mut Model,
-    ui: &mut egui::Ui,
-    points: &mut hook::ScreenPoints,
-) -> Option<ViewAction> {
+fn controls(model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) -> Option<ViewAction> {
     let mut action = None;
     settings_toggles(model, ui, points);
     ui.separator();
@@ -91,7 +88,7 @@ fn controls(
     action
 }
 
-fn settings_toggles(model: &mut Model, ui: &mut egui::Ui, points: &mut hook::ScreenPoints) {
+fn settings_toggles(model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
     let mut settings = model.settings().clone();
     ui.toggle_value(&mut settings.degrees, tr(model, Key::Degrees))
         .on_hover_text(tr(model, Key::DegreesHint));
