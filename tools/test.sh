@@ -122,12 +122,12 @@ cargo rustc --lib --crate-type cdylib --release --target wasm32-unknown-unknown 
 wasm-bindgen --target nodejs --out-dir "$CARGO_TARGET_DIR/armlab-node" \
   "$CARGO_TARGET_DIR/wasm32-unknown-unknown/release/armlab.wasm"
 export ARMLAB_NODE_PKG="$CARGO_TARGET_DIR/armlab-node/armlab.js"
-run js-api node --test web/api.test.mjs
+run js-api node --test web/tests/api/api.test.mjs
 add js-api
 
 await_background trunk
 build_web
-run e2e node --test --test-concurrency=1 web/e2e.test.mjs web/offline.test.mjs web/urdf.test.mjs web/motion.test.mjs web/collision.test.mjs web/exercise.test.mjs
+run e2e node --test --test-concurrency=1 web/tests/e2e.test.mjs web/tests/offline.test.mjs web/tests/urdf.test.mjs web/tests/motion.test.mjs web/tests/collision.test.mjs web/tests/exercise.test.mjs
 add e2e
 
 say "the snapshots are unchanged"

@@ -5,7 +5,7 @@ import assert from 'node:assert/strict';
 import { createRequire } from 'node:module';
 
 const require = createRequire(import.meta.url);
-const armlab = require(process.env.ARMLAB_NODE_PKG ?? '../target/armlab-node/armlab.js');
+const armlab = require(process.env.ARMLAB_NODE_PKG ?? '../../../target/armlab-node/armlab.js');
 
 test('presets lists every robot', () => {
   const list = JSON.parse(armlab.presets());
