@@ -43,7 +43,7 @@ ensure_trunk() {
 }
 
 # binaryen's wasm-opt (v132, from npm: Debian's v108 breaks eframe pages), esbuild (minifies
-# the page's JS glue: web/minify-build.mjs) and playwright-core, pinned by
+# the page's JS glue: web/build/minify-build.mjs) and playwright-core, pinned by
 # web/package-lock.json.
 ensure_npm() {
   if [ ! -x "$ROOT/web/node_modules/.bin/wasm-opt" ] || [ ! -d "$ROOT/web/node_modules/playwright-core" ] \

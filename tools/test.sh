@@ -1,75 +1,53 @@
 #!/usr/bin/env bash
-# Runs every test (installing what is missing): fmt, clippy (native and wasm32, every
-# crate), the libraries' tests natively and as wasm in Node (same count), the UI tests
+# Runs every test (installing what is missing): fmt, clippy (every crate, native and
+# wasm32), the libraries' tests natively and as wasm in Node (same counts), the UI tests
 # (egui_kittest on lavapipe), the JS API in Node, and the built page in headless Chromium.
+# Each part is a named step (tools/steps.sh): when one fails, the run ends naming it, with
+# the totals line `N passed, M failed`.
 set -euo pipefail
 # egui_kittest overwrites a mismatching snapshot and passes when this is set (and the
 # browser test compares against the same image): never in a test run.
 unset UPDATE_SNAPSHOTS
 source "$(dirname "$0")/setup.sh"
 cd "$ROOT"
+LOG="$(mktemp -d)"
+source "$ROOT/tools/steps.sh"
 START=$SECONDS
+at "install the wasm32 target and web/'s npm packages"
 ensure_wasm_target
 ensure_npm
 # On a fresh machine the installs take about ten minutes of compiling and the Debian
 # packages a download: they run beside the lints and the core's tests, which need none of
 # them, and are awaited where first needed (apt: the UI tests; wasm-bindgen: the core's
-# wasm tests; trunk: the page).
-trap stop_background EXIT
+# wasm tests; trunk: the page). The EXIT trap stops the unfinished ones.
 in_background wasm-bindgen ensure_wasm_bindgen
 in_background trunk ensure_trunk
 if apt_unattended; then
   in_background apt ensure_apt mesa-vulkan-drivers chromium
 else
+  at "install Debian packages (mesa-vulkan-drivers, chromium)"
   ensure_apt mesa-vulkan-drivers chromium
 fi
 
-LOG="$(mktemp -d)"
-passed=0
-failed=0
-count() { # sums cargo's "test result: ... N passed; M failed" and node's "# pass N" / "# fail M"
-  local p f
-  p=$(grep -Eo 'test result: [a-zA-Z]+\. [0-9]+ passed|^# pass [0-9]+' "$1" | grep -Eo '[0-9]+' | awk '{s+=$1} END {print s+0}')
-  f=$(grep -Eo '[0-9]+ passed; [0-9]+ failed|^# fail [0-9]+' "$1" | grep -Eo '[0-9]+$|[0-9]+ failed' | grep -Eo '[0-9]+' | awk '{s+=$1} END {print s+0}')
-  echo "$p $f"
-}
-not_run() { # ignored + filtered out (cargo), skipped + todo (node): tests that exist but did not run
-  { grep -Eo '[0-9]+ ignored;( [0-9]+ measured;)? [0-9]+ filtered out|^# (skipped|todo) [0-9]+' "$1" || true; } \
-    | { grep -Eo '[0-9]+ ignored|[0-9]+ filtered|(skipped|todo) [0-9]+' || true; } \
-    | awk '{ for (i = 1; i <= NF; i++) if ($i ~ /^[0-9]+$/) s += $i } END {print s+0}'
-}
-run() { # run NAME CMD...: runs, keeps the log, adds its counts
-  local name="$1"; shift
-  say "$name"
-  local log="$LOG/$name.log"
-  if "$@" 2>&1 | tee "$log"; then :; else
-    read -r p f < <(count "$log")
-    echo "FAILED: $name"
-    echo "$((passed + p)) passed, $((failed + f + 1)) failed"
-    exit 1
-  fi
-}
-SUITES=""
-add() { # adds a test suite's counts; a suite that ran no test fails the run
-  read -r p f < <(count "$LOG/$1.log")
-  local skipped; skipped=$(not_run "$LOG/$1.log")
-  if [ "$p" -eq 0 ]; then
-    echo "FAILED: the suite $1 ran no test"
-    echo "$passed passed, $((failed + f + 1)) failed"
-    exit 1
-  fi
-  passed=$((passed + p)); failed=$((failed + f))
-  SUITES="$SUITES
-  $1: $p passed, $f failed, $skipped ignored, skipped or filtered out"
-}
 snapshots_hash() { # the snapshot images and their contents (new files count too)
   (cd "$ROOT" && find tests/snapshots -name '*.png' ! -name '*.diff.png' ! -name '*.old.png' ! -name '*.new.png' -print0 \
     | sort -z | xargs -0 sha256sum)
 }
 SNAPSHOTS_BEFORE="$(snapshots_hash)"
+WASM_PASSED=0
+same_count() { # same_count NATIVE WASM WHAT: the wasm run of a suite passed as many tests as its native run
+  local native wasm
+  read -r native _ < <(count "$LOG/$1.log")
+  read -r wasm _ < <(count "$LOG/$2.log")
+  say "$3: $native passed natively, $wasm passed as wasm in Node"
+  if [ "$native" -eq 0 ] || [ "$native" != "$wasm" ]; then
+    fail "$3 must pass in the same number natively and as wasm"
+  fi
+  WASM_PASSED=$((WASM_PASSED + wasm))
+}
 
-# The library crates (everything but the app): they build without the GUI, natively and as
-# wasm; their tests run both ways in equal numbers.
+# The library crates (everything but the app and the JS package): they build without the
+# GUI, natively and as wasm; their tests run both ways in equal numbers.
 LIBS=(-p armlab-core -p armlab-text -p armlab-session -p armlab-api -p armlab-urdf -p armlab-bench)
 
 run fmt cargo fmt --all --check
@@ -79,23 +57,25 @@ run clippy-wasm-libs cargo clippy --target wasm32-unknown-unknown "${LIBS[@]}" -
 
 # The manifests keep the boundaries (crates/armlab-core/Cargo.toml names no GUI, web or
 # text crate); this checks it a second time, on what cargo resolves and on the sources.
-say "the core has no GUI, web or text dependency; no library has a GUI one"
+step "the core has no GUI, web or text dependency; no library has a GUI or web one"
 for lib in armlab-core armlab-text armlab-session armlab-api armlab-urdf armlab-bench; do
-  if cargo tree -p "$lib" -e normal --prefix none | grep -E '^(egui|eframe|wgpu|web-sys|wasm-bindgen|js-sys)[ -]'; then
-    echo "FAILED: $lib pulls in GUI or web crates (above)"; exit 1
+  # The tree first, so that a failing cargo tree fails here instead of matching nothing.
+  tree="$(cargo tree -p "$lib" -e normal --prefix none)"
+  if grep -E '^(egui|eframe|wgpu|web-sys|wasm-bindgen|js-sys)[ -]' <<<"$tree"; then
+    fail "$lib pulls in GUI or web crates (above)"
   fi
 done
-if cargo tree -p armlab-core -e normal --prefix none | grep -E '^armlab-text '; then
-  echo "FAILED: the core depends on the text catalogue"; exit 1
+if grep -E '^armlab-text ' <<<"$(cargo tree -p armlab-core -e normal --prefix none)"; then
+  fail "the core depends on the text catalogue"
 fi
 if grep -rnE '\b(egui|eframe|wgpu|web_sys|wasm_bindgen|js_sys|armlab_text)::' crates/armlab-core/src; then
-  echo "FAILED: crates/armlab-core imports GUI, web or text crates (above)"; exit 1
+  fail "crates/armlab-core imports GUI, web or text crates (above)"
 fi
 
 say "the docs build without warnings"
 run doc env RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --workspace --features armlab-js/urdf -q
 
-say "every test file is built: a test binary of its crate or a module of one"
+step "every test file runs: a test binary of its crate or a module of one; a JS test in a suite's folder"
 for dir in . crates/*; do
   [ -d "$dir/tests" ] || continue
   test_paths="$(awk '/^\[\[test\]\]/ { t = 1; next } /^\[/ { t = 0 } t && /^path = / { gsub(/"/, "", $3); print $3 }' "$dir/Cargo.toml")"
@@ -106,51 +86,63 @@ for dir in . crates/*; do
       || cat "$dir"/tests/*.rs | grep -qx "mod $name;"; then
       continue
     fi
-    echo "FAILED: $f is in no test binary (add 'mod $name;' to its crate's test binary, or a [[test]])"; exit 1
+    fail "$f is in no test binary (add 'mod $name;' to its crate's test binary, or a [[test]] to its Cargo.toml)"
   done
 done
+# The JS suites are folders, not lists of names, so a new test file runs without an edit
+# here: web/tests/*.test.mjs drive the built page in Chromium; web/tests/api/*.test.mjs
+# load the JS API's Node build (ARMLAB_NODE_PKG), no page and no browser.
+shopt -s nullglob
+BROWSER_TESTS=(web/tests/*.test.mjs)
+API_TESTS=(web/tests/api/*.test.mjs)
+shopt -u nullglob
+[ ${#BROWSER_TESTS[@]} -gt 0 ] || fail "no browser test in web/tests/ (*.test.mjs)"
+[ ${#API_TESTS[@]} -gt 0 ] || fail "no JS API test in web/tests/api/ (*.test.mjs)"
+while IFS= read -r f; do
+  case " ${BROWSER_TESTS[*]} ${API_TESTS[*]} " in
+    *" $f "*) ;;
+    *) fail "$f is in no suite (browser tests go in web/tests/, tests of the JS API in Node in web/tests/api/)" ;;
+  esac
+done < <(find web -path web/node_modules -prune -o -name '*.test.mjs' -print)
 
 run libs-native cargo test "${LIBS[@]}" --tests
+add libs-native
 run libs-doc cargo test "${LIBS[@]}" --doc
-add libs-native; add libs-doc
+add libs-doc
 
+at "install Debian packages (mesa-vulkan-drivers, chromium; in the background)"
 await_background apt
 run ui cargo test -p armlab --lib --test ui --test ui_finnish
 add ui
 
+at "install wasm-bindgen-cli (in the background)"
 await_background wasm-bindgen
 run libs-wasm cargo test --profile wasm-test "${LIBS[@]}" --tests --target wasm32-unknown-unknown
-read -r native _ < <(count "$LOG/libs-native.log")
-read -r wasm _ < <(count "$LOG/libs-wasm.log")
-say "library tests: $native passed natively, $wasm passed as wasm in Node"
-if [ "$native" -eq 0 ] || [ "$native" != "$wasm" ]; then
-  echo "FAILED: the libraries' tests must pass in the same number natively and as wasm"; exit 1
-fi
+same_count libs-native libs-wasm "the libraries' tests (core, text, session, JSON API, URDF, benchmarks)"
 add libs-wasm
 
 say "the JS API in Node"
-cargo rustc -p armlab-js --lib --crate-type cdylib --release --target wasm32-unknown-unknown
-wasm-bindgen --target nodejs --out-dir "$CARGO_TARGET_DIR/armlab-node" --out-name armlab \
+run js-api-build cargo rustc -p armlab-js --lib --crate-type cdylib --release --target wasm32-unknown-unknown
+run js-api-bindgen wasm-bindgen --target nodejs --out-dir "$CARGO_TARGET_DIR/armlab-node" --out-name armlab \
   "$CARGO_TARGET_DIR/wasm32-unknown-unknown/release/armlab_js.wasm"
 export ARMLAB_NODE_PKG="$CARGO_TARGET_DIR/armlab-node/armlab.js"
-run js-api node --test web/api.test.mjs
+run js-api node --test "${API_TESTS[@]}"
 add js-api
 
+at "install trunk (in the background)"
 await_background trunk
-build_web
-run e2e node --test --test-concurrency=1 web/e2e.test.mjs web/offline.test.mjs web/urdf.test.mjs web/motion.test.mjs web/collision.test.mjs web/exercise.test.mjs
+run page-build build_web
+run e2e node --test --test-concurrency=1 "${BROWSER_TESTS[@]}"
 add e2e
 
-say "the snapshots are unchanged"
+step "the snapshots are unchanged"
 if [ "$(snapshots_hash)" != "$SNAPSHOTS_BEFORE" ]; then
-  echo "FAILED: a snapshot image in tests/snapshots changed during the run (a test must not write its reference)"
   diff <(echo "$SNAPSHOTS_BEFORE") <(snapshots_hash) || true
-  echo "$passed passed, $((failed + 1)) failed"
-  exit 1
+  fail "a snapshot image in tests/snapshots changed during the run (a test must not write its reference)"
 fi
 
 say "all tests passed in $((SECONDS - START)) s"
 printf 'suites:%s\n' "$SUITES"
 # The libraries' tests run twice (natively and as wasm): the distinct tests count them once.
-echo "distinct tests: $((passed - wasm)) (the $wasm library tests run natively and as wasm)"
+echo "distinct tests: $((passed - WASM_PASSED)) (the $WASM_PASSED library tests run natively and as wasm)"
 echo "$passed passed, $failed failed"

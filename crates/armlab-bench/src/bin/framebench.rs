@@ -1,6 +1,6 @@
 //! The app's main-thread time per frame while the UR10 target is dragged, natively and
 //! without a GPU: egui layout of every panel plus the IK step, then egui's tessellation.
-//! Prints JSON. The browser's figure comes from the page itself (`web/e2e.test.mjs`);
+//! Prints JSON. The browser's figure comes from the page itself (`web/tests/e2e.test.mjs`);
 //! this one is for profiling the same frames (`perf record`) on a quiet machine.
 //!
 //! `cargo run --release --bin framebench [frames]`

@@ -13,9 +13,9 @@ import { fileURLToPath } from 'node:url';
 import { browserSuite } from './browser-suite.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
-const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', 'dist');
+const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', '..', 'dist');
 const shots = path.resolve(here, 'screenshots');
-const snapshot = path.resolve(here, '..', 'tests', 'snapshots', 'ur10.png');
+const snapshot = path.resolve(here, '..', '..', 'tests', 'snapshots', 'ur10.png');
 const VIEW = { width: 1400, height: 860 };
 // The UI tests' snapshot shows this state at this size (tests/ui.rs).
 const SNAPSHOT_HASH = '#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2';
@@ -225,7 +225,7 @@ test('the first load (every file of the page, gzip -9) stays within 1.8 MB', () 
   let total = 0;
   for (const f of fs.readdirSync(dist)) {
     // Folders hold what the page fetches later, not on its first load: urdf/, the URDF
-    // module, only when a URDF file is opened or saved (web/urdf.test.mjs checks that).
+    // module, only when a URDF file is opened or saved (web/tests/urdf.test.mjs checks that).
     if (!fs.statSync(path.join(dist, f)).isFile()) continue;
     const bytes = zlib.gzipSync(fs.readFileSync(path.join(dist, f)), { level: 9 }).length;
     measurements[`gzip_${f.replace(/-[0-9a-f]{16}/, '')}`] = bytes;

@@ -1,6 +1,8 @@
 // The built page (dist/) served on loopback, and headless Chromium, for the scripts that
-// drive the page: the browser tests (through web/browser-suite.mjs) and the scripts outside
-// the test command (web/frametimes.mjs, web/soak.mjs).
+// drive the page: the browser tests (through browser-suite.mjs) and the developer scripts
+// outside the test command (web/scripts/: frametimes.mjs, cpuprofile.mjs, soak.mjs). It
+// lives with the tests, which run on every test command, so that a change that breaks it
+// fails there and not only in a script run by hand.
 import http from 'node:http';
 import fs from 'node:fs';
 import path from 'node:path';

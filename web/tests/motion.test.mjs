@@ -10,7 +10,7 @@ import { fileURLToPath } from 'node:url';
 import { browserSuite } from './browser-suite.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
-const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', 'dist');
+const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', '..', 'dist');
 const VIEW = { width: 1024, height: 768 }; // the lecture-hall projector
 const measurements = {};
 
@@ -124,7 +124,7 @@ test('driving with collide=on in the link: the checks run in the lazily loaded m
   const frames = await page.evaluate(() => window.armlab.frameTimes());
   const moving = frames.filter((f) => f.motion > 0);
   assert.ok(moving.length >= 3, `frames while driving: ${moving.length}`);
-  // collide=on in the link: the checks ran in the collision module (web/collision.test.mjs).
+  // collide=on in the link: the checks ran in the collision module (web/tests/collision.test.mjs).
   assert.equal(s.motion.collisions, true);
   assert.equal(s.motion.checker, 'ready');
   // The drive ended: the arm rests, and nothing on the way stopped it short of the target.

@@ -1,5 +1,5 @@
 // ArmLab's service worker: after one visit the page opens with no network (a lecture hall
-// whose Wi-Fi fails). The build writes it into dist/ (web/service-worker-build.mjs, a trunk
+// whose Wi-Fi fails). The build writes it into dist/ (web/build/service-worker-build.mjs, a trunk
 // post_build hook) with one line before this text: ARMLAB_BUILD = {version, files}, the
 // build's own files and a hash of their contents. Registered by index.html.
 //

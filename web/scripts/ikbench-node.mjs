@@ -5,7 +5,7 @@
 // Build, then run from the repository root:
 //   cargo rustc -p armlab-js --lib --crate-type cdylib --release --target wasm32-unknown-unknown
 //   wasm-bindgen --target nodejs --out-dir target/armlab-node --out-name armlab target/wasm32-unknown-unknown/release/armlab_js.wasm
-//   node web/ikbench-node.mjs [samples] [budget]
+//   node web/scripts/ikbench-node.mjs [samples] [budget]
 // ARMLAB_NODE_PKG points at another build's armlab.js.
 import { createRequire } from 'node:module';
 import { fileURLToPath } from 'node:url';
@@ -13,7 +13,7 @@ import path from 'node:path';
 
 const require = createRequire(import.meta.url);
 const here = path.dirname(fileURLToPath(import.meta.url));
-const pkg = process.env.ARMLAB_NODE_PKG ?? path.join(here, '..', 'target', 'armlab-node', 'armlab.js');
+const pkg = process.env.ARMLAB_NODE_PKG ?? path.join(here, '..', '..', 'target', 'armlab-node', 'armlab.js');
 const armlab = require(pkg);
 
 const request = {};

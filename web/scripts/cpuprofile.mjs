@@ -1,7 +1,7 @@
 // A CPU profile of a built page while the UR10 target is dragged, as frametimes.mjs drags
 // it (a benchmark tool: it asserts nothing, and it is not part of the test command).
 //
-//   node web/cpuprofile.mjs DIST_DIR [out.cpuprofile] [moves=400]
+//   node web/scripts/cpuprofile.mjs DIST_DIR [out.cpuprofile] [moves=400]
 //
 // Writes the Chrome DevTools profile (open it in DevTools' Performance panel, or read it
 // as JSON) and prints the functions that take the largest shares of the app's frame
@@ -12,11 +12,11 @@
 // shares, not times.
 import fs from 'node:fs';
 import path from 'node:path';
-import { serveDist, launchChromium } from './static-server.mjs';
+import { serveDist, launchChromium } from '../tests/static-server.mjs';
 
 const [distArg, outArg, movesArg] = process.argv.slice(2);
 if (!distArg) {
-  console.error('usage: node web/cpuprofile.mjs DIST_DIR [out.cpuprofile] [moves]');
+  console.error('usage: node web/scripts/cpuprofile.mjs DIST_DIR [out.cpuprofile] [moves]');
   process.exit(2);
 }
 const out = outArg ?? 'page.cpuprofile';

@@ -1,8 +1,8 @@
 // The workspace benchmark in Node: the core compiled to wasm (wasm-bindgen --target
 // nodejs), timed with performance.now(). Prints the same JSON as the native
 // `cargo run --release -p armlab-bench --bin workspacebench [samples] [repeats]`.
-// Build as for web/ikbench-node.mjs, then run from the repository root:
-//   node web/workspacebench-node.mjs [samples] [repeats]
+// Build as for web/scripts/ikbench-node.mjs, then run from the repository root:
+//   node web/scripts/workspacebench-node.mjs [samples] [repeats]
 // ARMLAB_NODE_PKG points at another build's armlab.js (e.g. one built like the page,
 // at opt-level "z" with panic = "abort" and wasm-opt -Oz).
 import { createRequire } from 'node:module';
@@ -11,7 +11,7 @@ import path from 'node:path';
 
 const require = createRequire(import.meta.url);
 const here = path.dirname(fileURLToPath(import.meta.url));
-const pkg = process.env.ARMLAB_NODE_PKG ?? path.join(here, '..', 'target', 'armlab-node', 'armlab.js');
+const pkg = process.env.ARMLAB_NODE_PKG ?? path.join(here, '..', '..', 'target', 'armlab-node', 'armlab.js');
 const armlab = require(pkg);
 
 const [samples, repeats] = process.argv.slice(2).map(Number);

@@ -3,7 +3,7 @@
 // the test command). Headless Chromium draws through SwiftShader here, so compare runs
 // made one after the other on the same machine, and read no difference under ~1 ms.
 //
-//   node web/frametimes.mjs DIST_DIR [runs=3] [frames=300] [--pin] [--eager]
+//   node web/scripts/frametimes.mjs DIST_DIR [runs=3] [frames=300] [--pin] [--eager]
 //
 // Each run opens the page at 1400×860 with the arm, the target and the DH frames shown,
 // grabs the target ball and drags it in small steps, holding the button, until the app
@@ -26,14 +26,14 @@
 // change). Compared with a run without it, the difference is V8's warm-up, not the app's.
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
-import { serveDist, launchChromium } from './static-server.mjs';
+import { serveDist, launchChromium } from '../tests/static-server.mjs';
 
 const args = process.argv.slice(2);
 const pin = args.includes('--pin');
 const eager = args.includes('--eager');
 const [distArg, runsArg, framesArg] = args.filter((a) => a !== '--pin' && a !== '--eager');
 if (!distArg) {
-  console.error('usage: node web/frametimes.mjs DIST_DIR [runs] [frames] [--pin] [--eager]');
+  console.error('usage: node web/scripts/frametimes.mjs DIST_DIR [runs] [frames] [--pin] [--eager]');
   process.exit(2);
 }
 const dist = path.resolve(distArg);

@@ -1,7 +1,7 @@
 // A long lecture in headless Chromium: for ARMLAB_SOAK_MINUTES (10 by default)
 // the page is used as a class uses it — the target dragged, robots switched, a DH cell
 // edited, IK solved — and once a minute the JS heap and the wasm memory are sampled.
-// Not part of the test command: `node web/soak.mjs` after `bash tools/test.sh` (or any
+// Not part of the test command: `node web/scripts/soak.mjs` after `bash tools/test.sh` (or any
 // `trunk build --release`) has left the page in dist/.
 //
 // Prints one JSON line: the samples, the wasm memory's growth between minute 2 and the
@@ -12,10 +12,10 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { serveDist, launchChromium } from './static-server.mjs';
+import { serveDist, launchChromium } from '../tests/static-server.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
-const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', 'dist');
+const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', '..', 'dist');
 const minutes = Number(process.env.ARMLAB_SOAK_MINUTES ?? 10);
 const ROBOTS = ['ur10', 'puma560', 'panda', 'rrr', 'scara', 'metrover', 'ur10-standard', 'stanford'];
 

@@ -1,7 +1,7 @@
 // The DH-table exercise in the built page (dist/), in Debian's headless Chromium: a
 // lecturer's link opens the RRR as an exercise with its table hidden; a student types a
 // table with the keyboard, presses Check, and reads the verdict (window.armlab.state()).
-// Run as tools/test.sh runs web/e2e.test.mjs (after build_web).
+// Run as tools/test.sh runs web/tests/e2e.test.mjs (after build_web).
 import { test, before } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -10,7 +10,7 @@ import { fileURLToPath } from 'node:url';
 import { browserSuite } from './browser-suite.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
-const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', 'dist');
+const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', '..', 'dist');
 const shots = path.resolve(here, 'screenshots');
 const VIEW = { width: 1280, height: 720 }; // a lecture-hall projector
 
@@ -46,7 +46,7 @@ async function click(page, name) {
 /** Clicks an answer cell, selects its text and replaces it. The text arrives as one input
  * event (as a paste or an on-screen keyboard's word does), not a key press per character:
  * each frame costs the software renderer a few hundred milliseconds. The keys themselves
- * are tested in web/e2e.test.mjs (a bad DH cell typed with the keyboard). */
+ * are tested in web/tests/e2e.test.mjs (a bad DH cell typed with the keyboard). */
 async function type(page, cell, text) {
   await click(page, cell);
   await page.keyboard.press('Control+A');

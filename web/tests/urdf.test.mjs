@@ -6,7 +6,7 @@
 // while the robot stays, and save the robot as URDF.
 //
 // The contexts block service workers: the worker precaches every file of the build after
-// the page has loaded (urdf/ too, for offline use; web/offline.test.mjs checks its list),
+// the page has loaded (urdf/ too, for offline use; web/tests/offline.test.mjs checks its list),
 // and those fetches are the worker's, not the page's first load.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -16,7 +16,7 @@ import { fileURLToPath } from 'node:url';
 import { browserSuite } from './browser-suite.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
-const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', 'dist');
+const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', '..', 'dist');
 const VIEW = { width: 1400, height: 860 };
 
 // The Franka Emika Panda as franka_description's panda_arm.urdf.xacro publishes its joint

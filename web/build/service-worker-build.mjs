@@ -4,13 +4,13 @@
 // dist/. So the files listed here are exactly the build's files, with trunk's hashed names
 // (armlab-<hash>.js, armlab-<hash>_bg.wasm), and the worker is part of the same build.
 //
-// The worker (dist/service-worker.js) is web/service-worker.js preceded by one line,
+// The worker (dist/service-worker.js) is web/page/service-worker.js preceded by one line,
 //   const ARMLAB_BUILD = {"version":"…","files":["icon.svg","index.html",…]};
 // `files`: every file of the build except the worker itself and dot files, relative to the
 // folder, sorted; `version`: the first 16 hex digits of the SHA-256 of, for each file in
 // that order, its path, a newline, the SHA-256 (hex) of its contents and a newline. Every
 // build whose files differ has another version, so its worker installs and replaces the
-// cache (web/offline.test.mjs recomputes it from dist/).
+// cache (web/tests/offline.test.mjs recomputes it from dist/).
 //
 // `files` includes urdf/, the URDF module (tools/setup.sh, build_urdf_module), which the
 // page itself fetches only when a URDF file is opened or saved. The worker precaches it
@@ -19,14 +19,14 @@
 // rest of the page (the lecture hall whose Wi-Fi fails). The cost is the module's ~225 kB
 // gzip once per build per browser, in the background.
 //
-// Run by hand on a built folder: TRUNK_STAGING_DIR=dist node web/service-worker-build.mjs
+// Run by hand on a built folder: TRUNK_STAGING_DIR=dist node web/build/service-worker-build.mjs
 import crypto from 'node:crypto';
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 const WORKER = 'service-worker.js';
-const template = path.join(path.dirname(fileURLToPath(import.meta.url)), 'service-worker.js');
+const template = path.join(path.dirname(fileURLToPath(import.meta.url)), '..', 'page', 'service-worker.js');
 
 /** The build's files under `dir`, as sorted relative paths with forward slashes. */
 function buildFiles(dir, prefix = '') {

@@ -10,7 +10,7 @@
 // minified file; a browser refuses a preload whose hash does not match.
 //
 // Only release builds (TRUNK_PROFILE=release): `trunk serve` keeps readable glue.
-// Run by hand on a built folder: TRUNK_PROFILE=release TRUNK_STAGING_DIR=dist node web/minify-build.mjs
+// Run by hand on a built folder: TRUNK_PROFILE=release TRUNK_STAGING_DIR=dist node web/build/minify-build.mjs
 import crypto from 'node:crypto';
 import fs from 'node:fs';
 import path from 'node:path';

@@ -19,7 +19,7 @@ import { fileURLToPath } from 'node:url';
 import { launchChromium } from './static-server.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
-const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', 'dist');
+const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', '..', 'dist');
 const VIEW = { width: 1400, height: 860 };
 // The target ball sits on the tool when a link opens: green (reached) where the tool is.
 const HASH = '#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2';
@@ -216,7 +216,7 @@ test('a new build\'s worker replaces the cache on the next load', async () => {
     const marker = '<!-- the second build -->';
     const index = path.join(dir, 'index.html');
     fs.writeFileSync(index, fs.readFileSync(index, 'utf8').replace('</body>', `${marker}\n</body>`));
-    execFileSync(process.execPath, [path.join(here, 'service-worker-build.mjs')], { env: { ...process.env, TRUNK_STAGING_DIR: dir } });
+    execFileSync(process.execPath, [path.join(here, '..', 'build', 'service-worker-build.mjs')], { env: { ...process.env, TRUNK_STAGING_DIR: dir } });
     const second = workerBuild(dir);
     assert.notEqual(second.version, first, 'another build, another version');
     assert.deepEqual(second, expectedBuild(dir));

@@ -18,7 +18,7 @@ import { fileURLToPath } from 'node:url';
 import { browserSuite } from './browser-suite.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
-const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', 'dist');
+const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', '..', 'dist');
 const VIEW = { width: 1024, height: 768 }; // the lecture-hall projector
 const measurements = {};
 

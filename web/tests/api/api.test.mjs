@@ -7,7 +7,7 @@ import { readFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 
 const require = createRequire(import.meta.url);
-const pkg = process.env.ARMLAB_NODE_PKG ?? '../target/armlab-node/armlab.js';
+const pkg = process.env.ARMLAB_NODE_PKG ?? '../../../target/armlab-node/armlab.js';
 const armlab = require(pkg);
 
 /** The largest difference between two equally shaped nested lists of numbers. */
