@@ -411,10 +411,10 @@ impl RobotError {
 }
 
 impl std::fmt::Display for RobotError {
-    /// The variant and its values, for logs and developers; a person reads the sentence
-    /// the text catalogue makes of it (`armlab_text::Sentence`).
+    /// What kind of error this is, for logs; `{:?}` shows its data, and a person reads the
+    /// sentence the text catalogue makes of it (`armlab_text::Sentence`).
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{self:?}")
+        f.write_str("a robot description or its joint values are not valid")
     }
 }
 

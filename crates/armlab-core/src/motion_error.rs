@@ -100,10 +100,10 @@ pub enum MotionError {
 }
 
 impl std::fmt::Display for MotionError {
-    /// The variant and its values, for logs and developers; a person reads the sentence
-    /// the text catalogue makes of it (`armlab_text::Sentence`).
+    /// What kind of error this is, for logs; `{:?}` shows its data, and a person reads the
+    /// sentence the text catalogue makes of it (`armlab_text::Sentence`).
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{self:?}")
+        f.write_str("a motion, profile or path setting that is not valid")
     }
 }
 

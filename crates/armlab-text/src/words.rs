@@ -71,7 +71,9 @@ impl Name for Expected {
 
 impl Sentence for RobotError {
     fn sentence(&self, lang: Lang) -> String {
-        file_sentence(self, lang).unwrap_or_else(|| value_sentence(self, lang))
+        file_sentence(self, lang)
+            .or_else(|| value_sentence(self, lang))
+            .unwrap_or_default()
     }
 }
 
@@ -124,11 +126,10 @@ fn file_sentence(error: &RobotError, lang: Lang) -> Option<String> {
 }
 
 /// The sentence of an error in a robot's values (a number out of range, limits, the joint
-/// vector, the pose). The form's errors are [`file_sentence`]'s; shown here, one would read
-/// as its variant.
-fn value_sentence(error: &RobotError, lang: Lang) -> String {
+/// vector, the pose); `None` for an error in the file's form.
+fn value_sentence(error: &RobotError, lang: Lang) -> Option<String> {
     let at = |place: &Place| place.name(lang);
-    match error {
+    Some(match error {
         RobotError::NotFinite {
             place,
             field,
@@ -198,8 +199,8 @@ fn value_sentence(error: &RobotError, lang: Lang) -> String {
             &[joint, &Number(*value), &Number(*min), &Number(*max)],
         ),
         RobotError::PoseNotFinite => text(lang, Key::ErrPoseNotFinite).to_string(),
-        other => format!("{other:?}"),
-    }
+        _ => return None,
+    })
 }
 
 impl Sentence for IkError {

@@ -405,10 +405,10 @@ pub enum BadTarget {
 }
 
 impl std::fmt::Display for IkError {
-    /// The variant and its values, for logs and developers; a person reads the sentence
-    /// the text catalogue makes of it (`armlab_text::Sentence`).
+    /// What kind of error this is, for logs; `{:?}` shows its data, and a person reads the
+    /// sentence the text catalogue makes of it (`armlab_text::Sentence`).
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{self:?}")
+        f.write_str("an IK request that cannot run as given")
     }
 }
 
