@@ -111,12 +111,24 @@ ensure_apt() {
 # panic), then wasm-opt -Oz through trunk (index.html's data-wasm-opt), which also strips
 # names (stripping in cargo would hide the wasm feature section from wasm-bindgen). Its own
 # target folder, so that these profile settings do not rebuild the JS API's release build.
+#
+# A panic in the page aborts into the crash screen, which says what to do in words: the
+# file, line and column of every place that can panic (a bounds check, an `expect`) are
+# bytes no visitor reads. `-Zlocation-detail=none` leaves them out (stable rustc takes
+# this one -Z flag with RUSTC_BOOTSTRAP, set for the page's build alone), and the crates'
+# paths that remain are written without the folder cargo unpacks them into. These flags
+# replace .cargo/config.toml's for wasm32, so they repeat its SIMD flag.
 build_web() {
   say "building the page (trunk build --release)"
-  (cd "$ROOT" && cargo fetch --target wasm32-unknown-unknown -q \
-    && CARGO_TARGET_DIR="$CARGO_TARGET_DIR/web" CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_PROFILE_RELEASE_PANIC=abort \
+  (cd "$ROOT" && cargo fetch --target wasm32-unknown-unknown -q) || return 1
+  local flags="-Ctarget-feature=+simd128 -Zlocation-detail=none" registry
+  for registry in "${CARGO_HOME:-$HOME/.cargo}"/registry/src/*/; do
+    flags="$flags --remap-path-prefix=$registry="
+  done
+  (cd "$ROOT" && CARGO_TARGET_DIR="$CARGO_TARGET_DIR/web" CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_PROFILE_RELEASE_PANIC=abort \
        CARGO_PROFILE_RELEASE_LTO=fat \
        CARGO_PROFILE_RELEASE_CODEGEN_UNITS=1 \
+       CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUSTFLAGS="$flags" RUSTC_BOOTSTRAP=1 \
        trunk build --release --offline "$@")
 }
 
