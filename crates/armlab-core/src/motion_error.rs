@@ -19,7 +19,7 @@ pub enum Setting {
     DeadBand,
     /// The time scale (simulated seconds per real second).
     TimeScale,
-    /// The time passed to [`MotionSim::advance`].
+    /// The time passed to [`MotionSim::advance`](crate::motion::MotionSim::advance).
     FrameTime,
     /// The velocity servo's time constant τ.
     TimeConstant,
