@@ -85,7 +85,7 @@ for dir in . crates/*; do
   for f in "$dir"/tests/*.rs; do
     name="$(basename "$f" .rs)"
     if grep -qx "tests/$name.rs" <<<"$test_paths" || grep -qx "$name" <<<"$test_names" \
-      || cat "$dir"/tests/*.rs | grep -qx "mod $name;"; then
+      || grep -qx "mod $name;" "$dir"/tests/*.rs; then
       continue
     fi
     fail "$f is in no test binary (add 'mod $name;' to its crate's test binary, or a [[test]] to its Cargo.toml)"
