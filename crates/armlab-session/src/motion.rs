@@ -550,7 +550,12 @@ mod tests {
             })
         );
         assert_eq!(patch.read("q", "1"), Ok(false));
+    }
+
+    #[test]
+    fn bad_path_fields_are_dropped_with_their_errors() {
         // Path fields never fail the link: a bad value is dropped with its error.
+        let mut patch = MotionPatch::default();
         assert_eq!(patch.read("path", "curvy"), Ok(true));
         assert_eq!(patch.read("wp", "1,2,3,0,0,0;1,2;4,5,6,0,0,NaN"), Ok(true));
         assert_eq!(patch.waypoints.as_ref().map(Vec::len), Some(1));
