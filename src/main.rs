@@ -11,7 +11,7 @@ fn main() -> eframe::Result {
     };
     // A hash on the command line opens that state, like a shared link: `armlab '#robot=ur10'`.
     // Without one, the last session returns (written when the window closes).
-    let session_file = armlab::app::session::native_session_file();
+    let session_file = armlab_session::session::native_session_file();
     let hash = std::env::args().nth(1).unwrap_or_else(|| {
         session_file
             .as_ref()
@@ -31,5 +31,5 @@ fn main() -> eframe::Result {
 
 #[cfg(target_arch = "wasm32")]
 fn main() {
-    armlab::app::web::start();
+    armlab::app::platform::web::start();
 }

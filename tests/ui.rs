@@ -8,13 +8,14 @@ use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 
-use armlab::app::ik_panel::IkPanel;
-use armlab::app::joints::JointsPanel;
-use armlab::app::model::{MessageKind, Model};
+use armlab::app::ArmLabApp;
+use armlab::app::panels::Panel;
+use armlab::app::panels::ik::IkPanel;
+use armlab::app::panels::joints::JointsPanel;
 use armlab::app::screen_points::ScreenPoints;
-use armlab::app::session::Session;
-use armlab::app::{ArmLabApp, Panel};
+use armlab::app::state::model::{MessageKind, Model};
 use armlab_core::ik::Reach;
+use armlab_session::session::Session;
 
 const SIZE: [f32; 2] = [1400.0, 860.0];
 
@@ -304,7 +305,7 @@ fn metrover_snapshot_with_its_part_sizes() {
 
 #[test]
 fn the_native_file_dialog_saves_and_opens_a_robot_file() {
-    use armlab::app::files::{FileDialog, Mode};
+    use armlab::app::panels::file_dialog::{FileDialog, Mode};
     let dir = std::env::temp_dir().join(format!("armlab-ui-files-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp folder");
     let mut h = harness("#robot=scara");
@@ -361,7 +362,7 @@ fn the_native_app_keeps_its_session_when_it_closes() {
     h.state_mut().set_session_file(Some(file.clone()));
     eframe::App::on_exit(h.state_mut());
     let hash = std::fs::read_to_string(&file).expect("the session was written");
-    let reopened = armlab::app::session::Session::from_hash(&hash)
+    let reopened = armlab_session::session::Session::from_hash(&hash)
         .expect("a valid hash")
         .expect("a non-empty hash");
     assert_eq!(reopened.robot.name, "Puma 560");
@@ -382,7 +383,7 @@ fn alone<P: Panel + 'static>(preset: &str, panel: P) -> Harness<'static, Alone<P
     let model = Model::new(Session::for_preset(preset).expect("a preset"));
     let mut h = Harness::builder()
         .with_size([420.0, 520.0])
-        .with_context_setup(armlab::app::style::install_fonts)
+        .with_context_setup(armlab::app::widgets::style::install_fonts)
         .build_ui_state(
             |ui, s: &mut Alone<P>| {
                 s.points.clear();
@@ -623,7 +624,7 @@ fn narrow_layout_snapshot_with_the_joints_sheet() {
     h.run_steps(3);
     assert_eq!(
         h.state().sheet(),
-        Some(armlab::app::settings::PanelKind::Joints)
+        Some(armlab_session::settings::PanelKind::Joints)
     );
     let share = view_share_and_points(&h, 390.0);
     assert!(
@@ -824,7 +825,7 @@ fn the_jacobian_columns_and_the_velocity_ellipsoid_are_drawn_at_the_tool() {
             .model()
             .settings()
             .overlays
-            .contains(armlab::app::settings::Overlay::VelocityEllipsoid)
+            .contains(armlab_session::settings::Overlay::VelocityEllipsoid)
     );
     h.snapshot("jacobian_columns_ellipsoid");
 }
@@ -982,7 +983,7 @@ fn the_notebook_demos_print_the_notebooks_numbers_and_plot_the_error() {
 
 #[test]
 fn the_workspace_cloud_fills_over_frames_and_says_where_the_target_lies() {
-    use armlab::app::workspace_view::{SAMPLES, measure};
+    use armlab::app::view3d::workspace::{SAMPLES, measure};
     let mut h = harness("#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2&show=cloud&panels=ik");
     h.get_by_label("Reachable workspace").click();
     h.run_steps(1);
@@ -1012,9 +1013,12 @@ fn the_workspace_cloud_fills_over_frames_and_says_where_the_target_lies() {
     }
     assert_eq!(counts, [768, 1536, 2304], "three slices of 256 a frame");
     // The rest at once, then the panel reads it.
-    h.state_mut()
-        .model_mut()
-        .fill_workspace(m, SAMPLES, f64::INFINITY, armlab::app::clock::now_ms);
+    h.state_mut().model_mut().fill_workspace(
+        m,
+        SAMPLES,
+        f64::INFINITY,
+        armlab::app::platform::clock::now_ms,
+    );
     h.run_steps(2);
     let cloud = h.state().model().workspace().expect("a cloud");
     assert!(cloud.is_full() && cloud.len() == SAMPLES, "{}", cloud.len());
@@ -1139,7 +1143,7 @@ fn with_move_on_the_arm_drives_to_the_answer_and_the_motion_panel_plots_it() {
     );
     // The Motion panel alone in its column: its measures and plots in sight.
     let mut settings = h.state().model().settings().clone();
-    settings.set_panel_open(armlab::app::settings::PanelKind::Ik, false);
+    settings.set_panel_open(armlab_session::settings::PanelKind::Ik, false);
     h.state_mut().model_mut().set_settings(settings);
     h.run_steps(2);
     h.snapshot("motion_panel_plots");
@@ -1147,7 +1151,7 @@ fn with_move_on_the_arm_drives_to_the_answer_and_the_motion_panel_plots_it() {
 
 #[test]
 fn the_motion_panel_fits_a_projector_and_a_phone() {
-    use armlab::app::settings::PanelKind;
+    use armlab_session::settings::PanelKind;
     for (size, min_share) in [([1024.0, 768.0], 0.5), ([390.0, 844.0], 0.99)] {
         let mut h = harness_at(
             "#robot=ur10&panels=joints,motion&move=on&ctrl=pid&gains=100,200,20",
@@ -1380,7 +1384,7 @@ fn a_mystery_exercise_draws_its_axes_and_fits_every_screen() {
     assert!((2..=6).contains(&model.robot().dof()));
     assert!(model.hash().starts_with("exercise=mystery-42&"));
     // What the view labels: every joint's axis and at least one length per joint.
-    let dims = armlab::app::exercise_view::dimensions(model.robot(), model.fk());
+    let dims = armlab::app::view3d::exercise::dimensions(model.robot(), model.fk());
     let lengths = dims.iter().filter(|d| d.length > 1e-6).count();
     assert!(lengths >= model.robot().dof(), "{dims:?}");
     h.snapshot("exercise_mystery_42");
@@ -1439,7 +1443,7 @@ fn predict_then_reveal_hides_entries_until_a_click_and_the_link_keeps_them() {
 /// gets the file's sentence naming the box, and the last good robot and boxes stay.
 #[test]
 fn a_robot_file_brings_its_keep_out_boxes_and_a_bad_box_leaves_the_last_good_robot() {
-    use armlab::app::robot_panel::RobotPanel;
+    use armlab::app::panels::robot::RobotPanel;
     let mut model = Model::new(Session::for_preset("ur10").expect("a preset"));
     let mut panel = RobotPanel::new(model.robot());
     let ur10 = armlab_core::preset("ur10").expect("the UR10");
@@ -1583,7 +1587,7 @@ fn both_paths_are_drawn_side_by_side_the_line_says_where_it_fails_and_waypoints_
     edit_waypoint_1_x(&mut h);
     // The panel with both paths drawn, the legend and the line's problem marked.
     let mut settings = h.state().model().settings().clone();
-    settings.set_panel_open(armlab::app::settings::PanelKind::Motion, true);
+    settings.set_panel_open(armlab_session::settings::PanelKind::Motion, true);
     h.state_mut().model_mut().set_settings(settings);
     h.run_steps(2);
     h.snapshot("motion_paths");
@@ -1592,7 +1596,7 @@ fn both_paths_are_drawn_side_by_side_the_line_says_where_it_fails_and_waypoints_
 
 #[test]
 fn the_paths_part_with_waypoints_fits_a_projector_and_a_phone() {
-    use armlab::app::settings::PanelKind;
+    use armlab_session::settings::PanelKind;
     let hash = "#robot=ur10&panels=motion&path=line&wp=900,100,300,0,0,0;700,-200,500,0,1,0";
     for size in [
         [1024.0, 768.0],

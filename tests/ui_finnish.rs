@@ -8,8 +8,8 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::{By, NodeT, Queryable};
 
 use armlab::app::ArmLabApp;
-use armlab::app::files::{FileDialog, Mode};
-use armlab::app::model::MessageKind;
+use armlab::app::panels::file_dialog::{FileDialog, Mode};
+use armlab::app::state::model::MessageKind;
 use armlab_core::ik::Reach;
 use armlab_text::{Key, Lang, places, text};
 

@@ -6,24 +6,8 @@ use serde_json::json;
 
 use armlab_core::ik::Reach;
 
-use super::ArmLabApp;
-use super::session::RobotSource;
-
-/// A link to this state: the page's address with the hash replaced.
-pub fn share_link(hash: &str) -> String {
-    #[cfg(target_arch = "wasm32")]
-    {
-        let base = web_sys::window()
-            .and_then(|w| w.location().href().ok())
-            .unwrap_or_default();
-        let base = base.split('#').next().unwrap_or_default().to_string();
-        format!("{base}#{hash}")
-    }
-    #[cfg(not(target_arch = "wasm32"))]
-    {
-        format!("#{hash}")
-    }
-}
+use crate::app::ArmLabApp;
+use armlab_session::session::RobotSource;
 
 /// `window.armlab.state()`: robot, q, target pose, reach, task, method, settings, the
 /// message and the DH editor's error, the link hash, and the viewport's frame facts.
@@ -93,13 +77,13 @@ pub fn state_json(app: &ArmLabApp) -> String {
 
 /// The motion lab's part of the state: on, the controller's id, simulated time, whether
 /// the arm is still moving, every joint's error and goal, collisions and the contact.
-fn motion_json(model: &super::model::Model) -> serde_json::Value {
-    use super::motion_lab::{REST_ERROR, REST_SPEED};
+fn motion_json(model: &crate::app::state::model::Model) -> serde_json::Value {
+    use crate::app::state::motion_lab::{REST_ERROR, REST_SPEED};
     let m = model.motion();
     let sim = m.sim();
     json!({
         "on": m.on(),
-        "controller": super::motion_view::Choice::of(&m.settings().controller).id(),
+        "controller": crate::app::panels::motion::Choice::of(&m.settings().controller).id(),
         "time_scale": m.time_scale(),
         "time": sim.map(|s| s.time()),
         "moving": m.moving(),
@@ -109,10 +93,10 @@ fn motion_json(model: &super::model::Model) -> serde_json::Value {
         "goal": sim.map(|s| s.goal().to_vec()),
         "collisions": m.collisions_on(),
         "contact": m.contact(),
-        "checker": match super::motion_lab::checker_state() {
-            super::motion_lab::CheckerState::Ready => "ready",
-            super::motion_lab::CheckerState::Loading => "loading",
-            super::motion_lab::CheckerState::Failed(_) => "failed",
+        "checker": match crate::app::state::motion_lab::checker_state() {
+            crate::app::state::motion_lab::CheckerState::Ready => "ready",
+            crate::app::state::motion_lab::CheckerState::Loading => "loading",
+            crate::app::state::motion_lab::CheckerState::Failed(_) => "failed",
         },
         "colliding_parts": m.colliding().iter().filter(|c| **c).count(),
         "keep_outs": m.keep_outs().len(),
@@ -123,7 +107,7 @@ fn motion_json(model: &super::model::Model) -> serde_json::Value {
 /// The paths' part of the state: the path kind, the waypoints' positions (robot units),
 /// the problems of the path followed (the visit's, else the drawn straight line's), and
 /// whether a visit is under way or done (every waypoint visited and the arm at rest).
-fn paths_json(model: &super::model::Model) -> serde_json::Value {
+fn paths_json(model: &crate::app::state::model::Model) -> serde_json::Value {
     let p = model.paths();
     let path = p
         .visit()

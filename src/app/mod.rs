@@ -1,97 +1,42 @@
-//! The eframe/egui application.
+//! The eframe/egui application, grouped by role:
 //!
-//! - [`model::Model`] holds the session (robot, q, target, task, method), the display
-//!   settings and what is derived from them; its methods are the only writers.
-//! - Each panel is a type that owns its own state and has one `ui` method that reads the
-//!   model and calls its methods: [`top_bar`], [`joints::JointsPanel`],
-//!   [`ik_panel::IkPanel`], [`robot_panel::RobotPanel`], [`matrices::MatricesPanel`] and
-//!   the 3D [`viewport::Viewport`]. Panels never write each other's state; the
-//!   highlighted link is a value in the model.
-//! - Screen points for the test hook go to one registry, [`screen_points::ScreenPoints`].
+//! - [`state`]: the model (the session and what is derived from it) and one sub-model per
+//!   lab; its methods are the only writers. No egui.
+//! - [`panels`]: one type per panel with one `ui` method that reads the model and asks it
+//!   for changes, the folds each holds, and the layout that places them. Panels never
+//!   write each other's state; the highlighted link is a value in the model.
+//! - [`widgets`]: the controls and style the panels share (the DH table editor, number
+//!   fields' drafts, plots, colours and text sizes).
+//! - [`view3d`]: the 3D view: camera and input, the target marker, overlays, and the
+//!   scene built from the model's frames.
+//! - [`platform`]: the web and the native side: the clock, start-up, storage, files,
+//!   downloads, the lazily loaded module.
+//! - [`hook`] and [`screen_points`]: what the browser and UI tests read.
 //!
 //! Data flow per frame: panels ask the model for changes → the model recomputes FK, the
-//! Jacobian and the IK status → the viewport builds a [`crate::render::Scene`] from the
+//! Jacobian and the IK status → the 3D view builds a [`crate::render::Scene`] from the
 //! model's frames and the renderer draws it.
 #![deny(clippy::too_many_lines)]
 
-pub mod checker_state;
-pub mod clock;
-pub mod convention_view;
-pub mod dh_table;
-pub mod draft;
-pub mod exercise_view;
-#[cfg(not(target_arch = "wasm32"))]
-pub mod files;
-// The link format lives beside the core (no GUI): the app uses it under its old paths.
-pub use armlab_session::{format, session, settings};
 pub mod hook;
-pub mod ik_panel;
-pub mod jacobian_view;
-pub mod joints;
-pub mod layout;
-pub mod matrices;
-pub mod model;
-pub mod motion_lab;
-pub mod motion_view;
-pub mod notebook;
-pub mod path_lab;
-pub mod path_view;
-pub mod plot;
-pub mod robot_panel;
-pub mod scene;
+pub mod panels;
+pub mod platform;
 pub mod screen_points;
-pub mod shell;
-pub mod solutions;
-pub mod style;
-pub mod symbolic_view;
-pub mod top_bar;
-pub mod viewport;
-#[cfg(target_arch = "wasm32")]
-pub mod web;
-pub mod workspace_view;
+pub mod state;
+pub mod view3d;
+pub mod widgets;
 
-use model::{Message, Model};
+use armlab_session::session::Session;
+use armlab_session::settings::PanelKind;
+use panels::{ik, joints, layout, matrices, motion, robot, shell, top_bar};
+use platform::clock;
+use platform::clock::FrameTime;
 use screen_points::ScreenPoints;
-use session::Session;
-use settings::PanelKind;
+use state::model::{Message, Model};
+use state::trf;
+use widgets::style;
 
 use armlab_text::Key;
-
-/// The text of `key` in the model's language.
-pub fn tr(model: &Model, key: Key) -> &'static str {
-    armlab_text::text(model.settings().lang, key)
-}
-
-/// The text of `key` in the model's language, its places filled by `args`.
-pub fn trf(model: &Model, key: Key, args: &[&dyn std::fmt::Display]) -> String {
-    armlab_text::fill(model.settings().lang, key, args)
-}
-
-/// Main-thread milliseconds of one frame of the app, in parts.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct FrameTime {
-    /// The app's own work: egui layout of every panel, scene preparation and IK; all of
-    /// the frame except `render_ms`.
-    pub app_ms: f64,
-    /// Of `app_ms`: the IK step of a drag.
-    pub ik_ms: f64,
-    /// Of `app_ms`: building the scene (instances, lines, camera).
-    pub scene_ms: f64,
-    /// Encoding and submitting the 3D view's draw calls to wgpu (GPU work issued from the
-    /// main thread: on WebGL2 these are the GL calls).
-    pub render_ms: f64,
-    /// Of `app_ms`: filling the workspace cloud (at most about 4 ms a frame).
-    pub workspace_ms: f64,
-    /// Of `app_ms`: the motion simulation's steps (and their collision checks).
-    pub motion_ms: f64,
-    /// The simulation steps (1 ms each) run in the frame.
-    pub motion_steps: f64,
-    /// After `app_ms`, not part of it: publishing the frame for the browser tests' hook
-    /// (`window.armlab`), which writes the whole state as JSON in every frame once a script
-    /// has asked for it. A person's frames never pay this; a test's do, so it is kept
-    /// apart from the app's time and reported on its own.
-    pub hook_ms: f64,
-}
 
 /// What the device says before any link is read: the browser's language and whether its
 /// main pointer is a finger.
@@ -114,7 +59,7 @@ pub struct ArmLabApp {
     sheet: Option<PanelKind>,
     /// Touch screen: larger hit areas (from the browser's pointer, or the first touch).
     touch: bool,
-    viewport: viewport::Viewport,
+    viewport: view3d::Viewport,
     points: ScreenPoints,
     /// The parts of the frame being drawn, filled in as they run.
     timing: FrameTime,
@@ -146,7 +91,7 @@ impl ArmLabApp {
             style::Screen::of(&cc.egui_ctx),
         );
         let mut app = ArmLabApp::with_session(Session::default_session());
-        app.viewport = viewport::Viewport::new(cc.wgpu_render_state.as_ref());
+        app.viewport = view3d::Viewport::new(cc.wgpu_render_state.as_ref());
         app.touch = preferences.touch;
         let mut settings = app.model.settings().clone();
         settings.lang = preferences.lang;
@@ -160,16 +105,16 @@ impl ArmLabApp {
         let model = Model::new(session);
         ArmLabApp {
             panels: shell::SidePanels {
-                robot: robot_panel::RobotPanel::new(model.robot()),
+                robot: robot::RobotPanel::new(model.robot()),
                 joints: joints::JointsPanel::default(),
-                ik: ik_panel::IkPanel::default(),
+                ik: ik::IkPanel::default(),
                 matrices: matrices::MatricesPanel::default(),
-                motion: motion_view::MotionPanel::default(),
+                motion: motion::MotionPanel::default(),
             },
             model,
             sheet: None,
             touch: false,
-            viewport: viewport::Viewport::new(None),
+            viewport: view3d::Viewport::new(None),
             points: ScreenPoints::default(),
             timing: FrameTime::default(),
             frame_ms: std::collections::VecDeque::new(),
@@ -217,22 +162,22 @@ impl ArmLabApp {
     }
 
     /// The 3D view.
-    pub fn viewport(&self) -> &viewport::Viewport {
+    pub fn viewport(&self) -> &view3d::Viewport {
         &self.viewport
     }
 
     /// The robot panel (its DH editor and file dialog).
-    pub fn robot_panel(&self) -> &robot_panel::RobotPanel {
+    pub fn robot_panel(&self) -> &robot::RobotPanel {
         &self.panels.robot
     }
 
     /// The robot panel, to open its file dialog (tests).
-    pub fn robot_panel_mut(&mut self) -> &mut robot_panel::RobotPanel {
+    pub fn robot_panel_mut(&mut self) -> &mut robot::RobotPanel {
         &mut self.panels.robot
     }
 
     /// The IK panel (its replay).
-    pub fn ik_panel(&self) -> &ik_panel::IkPanel {
+    pub fn ik_panel(&self) -> &ik::IkPanel {
         &self.panels.ik
     }
 
@@ -359,17 +304,17 @@ impl ArmLabApp {
         // Last, once every text of the frame has its glyphs in the font atlas.
         matrices::finish_numbers(&ctx);
         #[cfg(target_arch = "wasm32")]
-        web::store_hash(self, &ctx);
+        platform::web::store_hash(self, &ctx);
         self.record_frame_time(clock::now_ms() - start);
         // The browser tests' hook, outside the frame's own time (`FrameTime::hook_ms`).
         #[cfg(target_arch = "wasm32")]
-        web::publish(self, &ctx);
+        platform::web::publish(self, &ctx);
     }
 
     /// The keyboard shortcuts (none while a text field has the keyboard): F frames the
     /// arm, P toggles presentation mode, 1–9 focus joint N's slider (the arrow keys then
     /// move it), Escape closes the narrow layout's sheet.
-    fn shortcuts(&mut self, ctx: &egui::Context, narrow: bool) -> Option<top_bar::ViewAction> {
+    fn shortcuts(&mut self, ctx: &egui::Context, narrow: bool) -> Option<view3d::ViewAction> {
         if ctx.text_edit_focused() {
             return None;
         }
@@ -405,24 +350,17 @@ impl ArmLabApp {
                 self.panels.joints.focus(i, ctx);
             }
         }
-        pressed(egui::Key::F).then_some(top_bar::ViewAction::Fit)
+        pressed(egui::Key::F).then_some(view3d::ViewAction::Fit)
     }
 }
 
 /// The window's width in CSS pixels.
 fn screen(ctx: &egui::Context) -> style::Screen {
     #[cfg(target_arch = "wasm32")]
-    if let Some(css_width) = web::measure_canvas(ctx) {
+    if let Some(css_width) = platform::web::measure_canvas(ctx) {
         return style::Screen { css_width };
     }
     style::Screen::of(ctx)
-}
-
-/// A side panel: a type that owns its own state and draws itself from the model, asking
-/// the model's methods for every change.
-pub trait Panel {
-    /// Draws the panel; named points go to `points` for the test hook.
-    fn ui(&mut self, model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints);
 }
 
 impl eframe::App for ArmLabApp {

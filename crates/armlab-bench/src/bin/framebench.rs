@@ -7,9 +7,9 @@
 
 use std::time::Instant;
 
-use armlab::app::session::Session;
 use armlab::app::{ArmLabApp, style};
 use armlab_bench::stats::Summary;
+use armlab_session::session::Session;
 
 /// Median, 95th percentile and maximum of a frame-time list, in milliseconds.
 fn summary(mut ms: Vec<f64>) -> serde_json::Value {

@@ -1,0 +1,287 @@
+//! Draws the [`layout::Plan`](crate::app::panels::layout::Plan): the wide layout's side columns with
+//! their edge tabs, or the narrow layout's tab bar and bottom sheet. The panels themselves
+//! draw into whatever room they get; every column and sheet scrolls both ways, so no text
+//! is cut off.
+
+use crate::app::panels::Panel;
+use crate::app::panels::ik;
+use crate::app::panels::joints;
+use crate::app::panels::layout::{Column, EDGE_TAB_WIDTH, Plan, Side};
+use crate::app::panels::matrices;
+use crate::app::panels::motion;
+use crate::app::panels::robot;
+use crate::app::screen_points::ScreenPoints;
+use crate::app::state::model::Model;
+use crate::app::state::tr as t;
+use armlab_session::settings::PanelKind;
+use armlab_text::Key;
+
+/// The four side panels.
+pub struct SidePanels {
+    /// The joint sliders.
+    pub joints: joints::JointsPanel,
+    /// Task, method, solve and replay.
+    pub ik: ik::IkPanel,
+    /// Presets, the DH editor, files.
+    pub robot: robot::RobotPanel,
+    /// The matrices and the Jacobian.
+    pub matrices: matrices::MatricesPanel,
+    /// The motion lab: controllers, time scale, plots.
+    pub motion: motion::MotionPanel,
+}
+
+impl SidePanels {
+    /// Draws one panel.
+    pub fn ui(
+        &mut self,
+        kind: PanelKind,
+        model: &mut Model,
+        ui: &mut egui::Ui,
+        points: &mut ScreenPoints,
+    ) {
+        match kind {
+            PanelKind::Joints => self.joints.ui(model, ui, points),
+            PanelKind::Ik => self.ik.ui(model, ui, points),
+            PanelKind::Matrices => self.matrices.ui(model, ui, points),
+            PanelKind::Robot => self.robot.ui(model, ui, points),
+            PanelKind::Motion => self.motion.ui(model, ui, points),
+        }
+    }
+
+    /// The wide layout's columns; returns nothing, the central view takes what is left.
+    pub fn wide(
+        &mut self,
+        plan: &Plan,
+        model: &mut Model,
+        ui: &mut egui::Ui,
+        points: &mut ScreenPoints,
+    ) {
+        let mut used = 0.0;
+        for (index, column) in plan.columns.iter().enumerate() {
+            edge_tabs(column, model, ui, points);
+            if column.open.is_empty() {
+                continue;
+            }
+            let max = plan.max_width_after(index, used);
+            let id = match column.side {
+                Side::Left => "armlab_left",
+                Side::Right => "armlab_right",
+            };
+            // A column remembers the width it was dragged to, per zoom and screen width (to
+            // 50 points): a width kept from another zoom or screen (presentation mode, a
+            // resized window, the page's first frame before its canvas had its size) would
+            // not fit this one.
+            let salt = (
+                id,
+                (ui.ctx().zoom_factor() * 100.0).round() as i32,
+                (plan.width / 50.0).round() as i32,
+            );
+            let panel = match column.side {
+                Side::Left => egui::Panel::left(salt),
+                Side::Right => egui::Panel::right(salt),
+            };
+            let response = panel
+                .default_size(column.default_width.min(max))
+                .size_range(column.min_width.min(max)..=max)
+                .resizable(true)
+                .show(ui, |ui| {
+                    let width = visible_width(ui);
+                    egui::ScrollArea::both()
+                        .id_salt(id)
+                        .auto_shrink([false, false])
+                        .show(ui, |ui| {
+                            for (i, kind) in column.open.iter().enumerate() {
+                                if i > 0 {
+                                    ui.separator();
+                                }
+                                if section_header(*kind, model, ui) {
+                                    let mut settings = model.settings().clone();
+                                    settings.set_panel_open(*kind, false);
+                                    model.set_settings(settings);
+                                }
+                                ui.scope(|ui| {
+                                    wrap_at(ui, width);
+                                    self.ui(*kind, model, ui, points);
+                                });
+                            }
+                        });
+                });
+            used += response.response.rect.width();
+        }
+    }
+
+    /// The narrow layout: a tab bar at the bottom and, when a tab is chosen, its panel as
+    /// a sheet above the bar (the 3D view keeps the rest).
+    pub fn narrow(
+        &mut self,
+        plan: &Plan,
+        sheet: &mut Option<PanelKind>,
+        model: &mut Model,
+        ui: &mut egui::Ui,
+        points: &mut ScreenPoints,
+    ) {
+        egui::Panel::bottom("armlab_tabs")
+            .resizable(false)
+            .show(ui, |ui| {
+                // Five tabs share a phone's 390 points: narrow gaps keep "Matrices" (and
+                // the Finnish "Matriisit") on one line.
+                ui.spacing_mut().item_spacing.x = 2.0;
+                ui.columns(PanelKind::ALL.len(), |cols| {
+                    for (col, kind) in cols.iter_mut().zip(PanelKind::ALL) {
+                        let open = *sheet == Some(kind);
+                        let size = egui::vec2(col.available_width(), 40.0);
+                        let response = col.add_sized(
+                            size,
+                            egui::Button::selectable(
+                                open,
+                                tab_label(col, t(model, tab_title(kind))),
+                            ),
+                        );
+                        points.insert(format!("tab-{}", kind.id()), response.rect.center());
+                        if response.clicked() {
+                            *sheet = if open { None } else { Some(kind) };
+                        }
+                    }
+                });
+            });
+        let Some(kind) = *sheet else {
+            return;
+        };
+        egui::Panel::bottom("armlab_sheet")
+            .exact_size(plan.sheet_height)
+            .resizable(false)
+            .show(ui, |ui| {
+                if section_header(kind, model, ui) {
+                    *sheet = None;
+                }
+                let width = visible_width(ui);
+                egui::ScrollArea::both()
+                    .id_salt("armlab_sheet_scroll")
+                    .auto_shrink([false, false])
+                    .show(ui, |ui| {
+                        wrap_at(ui, width);
+                        self.ui(kind, model, ui, points);
+                    });
+            });
+    }
+}
+
+/// A tab's title in the narrow bar, its text made smaller (down to three quarters) when
+/// it would not fit its column on one line: with five tabs on a phone, "Matrices" wrapped
+/// into "Matrice / s".
+fn tab_label(ui: &egui::Ui, title: &str) -> egui::RichText {
+    let font = egui::TextStyle::Button.resolve(ui.style());
+    let room = ui.available_width() - 2.0 * ui.spacing().button_padding.x;
+    let width = crate::app::widgets::style::text_width(ui, title, &font);
+    let text = egui::RichText::new(title);
+    if width > room && width > 0.0 {
+        text.size(font.size * (room / width).max(0.75))
+    } else {
+        text
+    }
+}
+
+/// The width a panel's content can be seen in: its room, but no wider than its clip
+/// rectangle (egui keeps a panel's content as wide as it once grew and clips it to the
+/// panel's maximum, so the room alone can be wider than what shows).
+fn visible_width(ui: &egui::Ui) -> f32 {
+    let margin = ui.max_rect().left() - ui.clip_rect().left();
+    ui.available_width()
+        .min(ui.clip_rect().right() - ui.cursor().left() - margin.max(0.0))
+}
+
+/// Inside a scroll area that scrolls sideways, text would never wrap: it wraps at the
+/// column's width instead, and only what cannot wrap (a matrix, the DH table) scrolls.
+/// Each panel gets its own scope, since egui widens a layout to fit anything wider: one
+/// panel's matrix must not widen the next panel's text.
+fn wrap_at(ui: &mut egui::Ui, width: f32) {
+    ui.set_max_width((width - ui.spacing().scroll.bar_width).max(120.0));
+}
+
+/// A panel's title.
+pub fn title(kind: PanelKind) -> Key {
+    match kind {
+        PanelKind::Joints => Key::PanelJoints,
+        PanelKind::Ik => Key::PanelIk,
+        PanelKind::Matrices => Key::PanelMatrices,
+        PanelKind::Robot => Key::PanelRobot,
+        PanelKind::Motion => Key::PanelMotion,
+    }
+}
+
+/// A panel's short title, for the narrow layout's tab bar.
+pub fn tab_title(kind: PanelKind) -> Key {
+    match kind {
+        PanelKind::Ik => Key::TabIk,
+        other => title(other),
+    }
+}
+
+/// A panel's title row with a close button; returns whether it was closed.
+fn section_header(kind: PanelKind, model: &Model, ui: &mut egui::Ui) -> bool {
+    let mut close = false;
+    ui.horizontal(|ui| {
+        close = ui
+            .small_button("×")
+            .on_hover_text(t(model, Key::ClosePanel))
+            .clicked();
+        ui.strong(t(model, title(kind)));
+    });
+    close
+}
+
+/// A column's strip of edge tabs: one vertical tab per panel, lit when open; a click
+/// opens or closes that panel.
+fn edge_tabs(column: &Column, model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
+    let id = match column.side {
+        Side::Left => "armlab_left_tabs",
+        Side::Right => "armlab_right_tabs",
+    };
+    let panel = match column.side {
+        Side::Left => egui::Panel::left(id),
+        Side::Right => egui::Panel::right(id),
+    };
+    panel
+        .exact_size(EDGE_TAB_WIDTH)
+        .resizable(false)
+        .frame(egui::Frame::side_top_panel(ui.style()).inner_margin(egui::Margin::symmetric(2, 6)))
+        .show(ui, |ui| {
+            ui.spacing_mut().item_spacing.y = 6.0;
+            for kind in &column.tabs {
+                let open = column.open.contains(kind);
+                let response = edge_tab(ui, t(model, title(*kind)), open);
+                points.insert(format!("tab-{}", kind.id()), response.rect.center());
+                if response.clicked() {
+                    let mut settings = model.settings().clone();
+                    settings.set_panel_open(*kind, !open);
+                    model.set_settings(settings);
+                }
+            }
+        });
+}
+
+/// One vertical tab: its label turned a quarter, reading upward.
+fn edge_tab(ui: &mut egui::Ui, text: &str, open: bool) -> egui::Response {
+    let font = egui::TextStyle::Button.resolve(ui.style());
+    let color = ui.visuals().text_color();
+    let galley = ui.painter().layout_no_wrap(text.to_owned(), font, color);
+    let size = egui::vec2(EDGE_TAB_WIDTH - 4.0, galley.size().x + 18.0);
+    let (rect, response) = ui.allocate_exact_size(size, egui::Sense::click());
+    let visuals = ui.style().interact_selectable(&response, open);
+    ui.painter().rect_filled(
+        rect,
+        4.0,
+        if open {
+            visuals.bg_fill
+        } else {
+            visuals.weak_bg_fill
+        },
+    );
+    let at = egui::pos2(rect.center().x - galley.size().y / 2.0, rect.bottom() - 9.0);
+    ui.painter().add(
+        egui::epaint::TextShape::new(at, galley, visuals.text_color())
+            .with_angle(-std::f32::consts::FRAC_PI_2),
+    );
+    response.widget_info(|| egui::WidgetInfo::selected(egui::Role::Button, true, open, text));
+    response
+}

@@ -1,0 +1,121 @@
+//! The top bar: the robot's name, the display toggles, the language, the camera buttons,
+//! "Copy link", the shortcut keys, and the message of the moment drawn by its kind. On a
+//! narrow screen everything but the name and "Fit" goes into a menu.
+
+use crate::app::view3d::ViewAction;
+use crate::render::camera::StandardView;
+use armlab_text::{Key, Lang};
+
+use crate::app::platform;
+use crate::app::screen_points::ScreenPoints;
+use crate::app::state::model::{Message, MessageKind, Model};
+use crate::app::state::tr;
+use crate::app::widgets::style;
+
+/// Draws the top bar; returns what it asks of the 3D view. The language menu and its
+/// choices go to `points` for the test hook.
+pub fn ui(
+    model: &mut Model,
+    ui: &mut egui::Ui,
+    narrow: bool,
+    points: &mut ScreenPoints,
+) -> Option<ViewAction> {
+    let mut action = None;
+    crate::app::widgets::style::wrapped(ui, |ui| {
+        if !narrow {
+            ui.heading(tr(model, Key::AppName));
+        }
+        // An exercise's robot has no name (it would give the table away); an empty label
+        // in a wrapping row makes egui draw the next button over the heading.
+        if !model.robot().name.is_empty() {
+            ui.label(egui::RichText::new(&model.robot().name).strong());
+        }
+        ui.separator();
+        if ui
+            .button(tr(model, Key::Fit))
+            .on_hover_text(tr(model, Key::FitHint))
+            .clicked()
+        {
+            action = Some(ViewAction::Fit);
+        }
+        if narrow {
+            ui.menu_button(tr(model, Key::Menu), |ui| {
+                action = action.or(controls(model, ui, points));
+            });
+        } else {
+            action = action.or(controls(model, ui, points));
+        }
+    });
+    if let Some(message) = model.message().cloned() {
+        message_line(model, ui, &message);
+    }
+    action
+}
+
+/// The toggles, the language, the standard views and "Copy link".
+fn controls(model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) -> Option<ViewAction> {
+    let mut action = None;
+    settings_toggles(model, ui, points);
+    ui.separator();
+    ui.menu_button(tr(model, Key::ViewMenu), |ui| {
+        for (key, view) in [
+            (Key::ViewTop, StandardView::Top),
+            (Key::ViewFront, StandardView::Front),
+            (Key::ViewSide, StandardView::Side),
+            (Key::View3d, StandardView::Iso),
+        ] {
+            if ui.button(tr(model, key)).clicked() {
+                action = Some(ViewAction::View(view));
+            }
+        }
+    });
+    ui.separator();
+    if ui
+        .button(tr(model, Key::CopyLink))
+        .on_hover_text(tr(model, Key::CopyLinkHint))
+        .clicked()
+    {
+        ui.ctx().copy_text(platform::share_link(&model.hash()));
+        model.set_message(Message::info(tr(model, Key::LinkCopied)));
+    }
+    action
+}
+
+fn settings_toggles(model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
+    let mut settings = model.settings().clone();
+    ui.toggle_value(&mut settings.degrees, tr(model, Key::Degrees))
+        .on_hover_text(tr(model, Key::DegreesHint));
+    ui.toggle_value(&mut settings.show_frames, tr(model, Key::DhFrames))
+        .on_hover_text(tr(model, Key::DhFramesHint));
+    ui.toggle_value(&mut settings.presentation, tr(model, Key::Presentation))
+        .on_hover_text(tr(model, Key::PresentationHint));
+    let menu = egui::ComboBox::from_id_salt("language")
+        .selected_text(settings.lang.name())
+        .width(80.0)
+        .show_ui(ui, |ui| {
+            for lang in Lang::ALL {
+                let choice = ui.selectable_value(&mut settings.lang, lang, lang.name());
+                points.insert(format!("language-{}", lang.id()), choice.rect.center());
+            }
+        })
+        .response
+        .on_hover_text(tr(model, Key::LanguageHint));
+    points.insert("language", menu.rect.center());
+    if &settings != model.settings() {
+        model.set_settings(settings);
+    }
+}
+
+fn message_line(model: &mut Model, ui: &mut egui::Ui, message: &Message) {
+    let (sign, color) = match message.kind {
+        MessageKind::Info => ("✓", style::INFO),
+        MessageKind::Warning => ("⚠", style::WARNING),
+        MessageKind::Error => ("⚠", style::ERROR),
+    };
+    crate::app::widgets::style::wrapped(ui, |ui| {
+        ui.colored_label(color, format!("{sign} {}", message.text));
+        if ui.small_button(tr(model, Key::Dismiss)).clicked() {
+            model.dismiss_message();
+        }
+    });
+}

@@ -1,0 +1,24 @@
+//! The web and the native side of the app: its clock, whether the collision checker has
+//! loaded, the page's start-up, storage, downloads and lazily
+//! loaded module.
+
+pub mod checker;
+pub mod clock;
+#[cfg(target_arch = "wasm32")]
+pub mod web;
+
+/// A link to this state: the page's address with the hash replaced.
+pub fn share_link(hash: &str) -> String {
+    #[cfg(target_arch = "wasm32")]
+    {
+        let base = web_sys::window()
+            .and_then(|w| w.location().href().ok())
+            .unwrap_or_default();
+        let base = base.split('#').next().unwrap_or_default().to_string();
+        format!("{base}#{hash}")
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        format!("#{hash}")
+    }
+}

@@ -1,0 +1,629 @@
+//! The 3D viewport: orbit (left drag), pan (right or middle drag, or shift + left), zoom
+//! (wheel, pinch); the target marker is dragged in the view plane by its ball, along an
+//! axis by its arrow, and turned by its rings (5D and full-pose tasks). Every frame of a
+//! drag asks the model for an IK step warm-started at the current q.
+//!
+//! The viewport owns its interaction state, the camera and the renderer. A frame runs in
+//! named steps: input (camera and marker drags; the marker geometry is the pure
+//! [`marker`] module), the IK step, the scene, the overlay text, and the test points.
+
+pub mod convention;
+pub mod exercise;
+mod ghosts;
+pub mod jacobian;
+pub mod marker;
+mod motion;
+mod overlay;
+pub mod paths;
+pub mod scene;
+pub mod workspace;
+
+use eframe::egui_wgpu::RenderState;
+use egui::{Color32, Pos2, Rect, Sense};
+use nalgebra::{Point3, Vector3};
+
+use crate::render::SceneRenderer;
+use crate::render::camera::{OrbitCamera, StandardView};
+use armlab_core::Task;
+
+use crate::app::platform::clock;
+use crate::app::platform::clock::FrameTime;
+use crate::app::screen_points::ScreenPoints;
+use crate::app::state::model::{HoverSource, Model};
+use crate::app::widgets::style;
+use armlab_session::settings::{CameraPose, Overlay, OverlaySet};
+use jacobian::JacobianScene;
+use marker::{Handle, MarkerDrag, ViewGeometry, dist_to_segment, drag_marker, pick};
+use marker::{handle_px, perpendiculars};
+use scene::MarkerLook;
+
+/// What the top bar asks of the 3D view.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ViewAction {
+    /// Frame the arm.
+    Fit,
+    /// A standard view direction.
+    View(StandardView),
+}
+
+/// What the pointer is dragging.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Drag {
+    Orbit,
+    Pan,
+    Marker(MarkerDrag),
+}
+
+/// The 3D view: camera, interaction state and renderer.
+pub struct Viewport {
+    camera: OrbitCamera,
+    renderer: Option<SceneRenderer>,
+    drag: Option<Drag>,
+    hover: Option<Handle>,
+    /// The model's reframe count and the view's size the camera last framed the arm at.
+    framed_at: Option<(u64, egui::Vec2)>,
+    /// The model's camera-load count last applied (a link's camera).
+    camera_loaded: u64,
+    rect: Option<Rect>,
+    grid_step: f64,
+    rendered: bool,
+    /// Where and when (egui's input time, s) the press of the current drag began: a
+    /// release near it soon after is a click (on a ghost arm).
+    press: Option<(egui::Pos2, f64)>,
+}
+
+/// A press released within this distance (points) of where it began is a click.
+const CLICK_DISTANCE: f32 = 6.0;
+/// ... and within this time (s).
+const CLICK_SECONDS: f64 = 0.8;
+
+impl Viewport {
+    /// A viewport drawing with wgpu when a render state is given (none: a placeholder
+    /// sentence, for tests of the logic).
+    pub fn new(render_state: Option<&RenderState>) -> Self {
+        Viewport {
+            camera: OrbitCamera::default(),
+            renderer: render_state.map(SceneRenderer::new),
+            drag: None,
+            hover: None,
+            framed_at: None,
+            camera_loaded: 0,
+            rect: None,
+            grid_step: 0.0,
+            rendered: false,
+            press: None,
+        }
+    }
+
+    /// True while the user drags the target marker.
+    pub fn dragging(&self) -> bool {
+        matches!(self.drag, Some(Drag::Marker(_)))
+    }
+
+    /// Whether the 3D picture was drawn by the wgpu renderer last frame.
+    pub fn rendered(&self) -> bool {
+        self.rendered
+    }
+
+    /// The 3D render passes drawn so far (frames whose scene changed; 0 without a
+    /// renderer).
+    pub fn scene_passes(&self) -> u64 {
+        self.renderer.as_ref().map_or(0, SceneRenderer::passes)
+    }
+
+    /// The view's rectangle last frame (egui points).
+    pub fn rect(&self) -> Option<Rect> {
+        self.rect
+    }
+
+    /// The grid spacing last drawn (robot units).
+    pub fn grid_step(&self) -> f64 {
+        self.grid_step
+    }
+
+    /// The camera.
+    pub fn camera(&self) -> &OrbitCamera {
+        &self.camera
+    }
+
+    /// Carries out what the top bar asked.
+    pub fn apply(&mut self, action: ViewAction, ctx: &egui::Context) {
+        if let ViewAction::View(view) = action {
+            self.camera.set_view(view);
+        }
+        self.framed_at = None;
+        ctx.request_repaint();
+    }
+
+    /// Frames the robot (a sphere of 0.85 reach about a point above the base) for the
+    /// view's aspect ratio, so a narrow or wide view keeps the whole arm in sight.
+    fn fit(&mut self, model: &Model, size: egui::Vec2) {
+        let reach = model.robot().reach();
+        let base = model.robot().world_from_base.translation.vector;
+        let centre = Point3::from(base + Vector3::new(0.0, 0.0, reach * 0.35));
+        let aspect = (size.x / size.y.max(1.0)) as f64;
+        self.camera.fit(centre, reach * 0.85, aspect);
+        self.framed_at = Some((model.reframes(), size));
+    }
+
+    /// Shows the viewport and handles its input.
+    pub fn ui(
+        &mut self,
+        model: &mut Model,
+        ui: &mut egui::Ui,
+        points: &mut ScreenPoints,
+        render_state: Option<&RenderState>,
+        timing: &mut FrameTime,
+    ) {
+        let rect = ui.available_rect_before_wrap();
+        self.take_link_camera(model, rect.size());
+        // Framed anew on load, on a robot change, on Fit and when the view's size changes.
+        if self.framed_at != Some((model.reframes(), rect.size())) {
+            self.fit(model, rect.size());
+        }
+        // Drags only: a widget that also senses clicks waits to see whether a press is a
+        // click, and on a touch screen egui turns a finger held still past the click time
+        // (0.8 s) into a long press and drops that drag, so a student who rests a finger on
+        // the target before moving it would move nothing. The view has no click action.
+        let response = ui.allocate_rect(rect, Sense::drag());
+        self.rect = Some(rect);
+        let axes = marker_axes(model);
+        self.handle_input(model, ui, &response, &axes);
+        if self.dragging() {
+            // Every frame of the drag, including frames where the pointer rests: the arm
+            // keeps converging (each step moves each joint by at most the per-call limit).
+            let t0 = clock::now_ms();
+            model.drag_step();
+            timing.ik_ms += clock::now_ms() - t0;
+            if model.ik().reach == armlab_core::ik::Reach::Pending {
+                ui.ctx().request_repaint();
+            }
+        }
+        if response.drag_stopped() {
+            self.drag_stopped(model, ui, rect);
+        }
+        advance_motion(model, ui, timing);
+        self.update_hover(model, &response, &axes);
+        fill_overlays(model, ui, timing);
+        self.draw_scene(model, ui, rect, render_state, &axes, timing);
+        let touch = ui.spacing().interact_size.y >= style::TOUCH_TARGET;
+        overlay::draw(model, &ui.painter_at(rect), rect, self.grid_step, touch);
+        let view = view_geometry(&self.camera, model, rect);
+        let project = |p: &Point3<f64>| {
+            view.project(p)
+                .map(|s| egui::pos2(s[0] as f32, s[1] as f32))
+        };
+        if model.exercise().is_some() {
+            // The exercise's joint axes and dimensions, over the picture.
+            exercise::draw_in_view(model, &ui.painter_at(rect), &project);
+        }
+        paths::draw_in_view(model, &ui.painter_at(rect), &project);
+        self.publish_points(model, rect, &axes, points);
+        if response.hovered() && self.hover.is_some() {
+            ui.ctx().set_cursor_icon(egui::CursorIcon::Grab);
+        }
+        let pose = self.camera_pose();
+        if model.camera() != Some(pose) {
+            model.note_camera(pose);
+        }
+    }
+
+    /// A press and release without movement (egui's click) on a ghost arm moves the arm
+    /// to that solution; on the target it was only a grab.
+    fn drag_stopped(&mut self, model: &mut Model, ui: &egui::Ui, rect: Rect) {
+        let grabbed = self.dragging();
+        self.drag = None;
+        // egui's own click flag, or a release near the press and soon after it: in
+        // the browser egui reports no click for a widget that senses drags only.
+        let (now, at, egui_click) =
+            ui.input(|i| (i.time, i.pointer.interact_pos(), i.pointer.any_click()));
+        let near_press = self.press.take().zip(at).is_some_and(|((p, t), at)| {
+            at.distance(p) <= CLICK_DISTANCE && now - t <= CLICK_SECONDS
+        });
+        let click = (egui_click || near_press).then_some(at);
+        if let (false, Some(Some(at))) = (grabbed, click) {
+            let view = view_geometry(&self.camera, model, rect);
+            if let Some(i) = ghosts::pick(model, &view, to_array(at)) {
+                let q = model
+                    .branches()
+                    .and_then(|b| b.rows.get(i))
+                    .map(|r| r.q.clone());
+                if let Some(q) = q {
+                    model.set_q_exact(q);
+                }
+            }
+        }
+    }
+
+    /// Where the camera is, as a link writes it.
+    pub fn camera_pose(&self) -> CameraPose {
+        let c = &self.camera;
+        CameraPose {
+            yaw: c.yaw,
+            pitch: c.pitch,
+            distance: c.distance,
+            focus: [c.focus.x, c.focus.y, c.focus.z],
+        }
+    }
+
+    /// Takes the camera a link named (instead of framing the arm), once per link.
+    fn take_link_camera(&mut self, model: &Model, size: egui::Vec2) {
+        if self.camera_loaded == model.camera_loads() {
+            return;
+        }
+        self.camera_loaded = model.camera_loads();
+        if let Some(pose) = model.camera() {
+            self.camera.yaw = pose.yaw;
+            self.camera.pitch = pose.pitch;
+            self.camera.distance = pose.distance;
+            self.camera.focus = Point3::from(pose.focus);
+            self.framed_at = Some((model.reframes(), size));
+        }
+    }
+
+    /// Wheel and pinch zoom, orbit, pan, two-finger pan, and marker drags.
+    fn handle_input(
+        &mut self,
+        model: &mut Model,
+        ui: &egui::Ui,
+        response: &egui::Response,
+        axes: &[Vector3<f64>; 3],
+    ) {
+        let (shift, scroll, zoom, multi) = ui.input(|i| {
+            (
+                i.modifiers.shift,
+                i.smooth_scroll_delta,
+                i.zoom_delta(),
+                i.multi_touch(),
+            )
+        });
+        if response.hovered() {
+            if scroll.y != 0.0 {
+                self.camera.zoom((scroll.y as f64 * 0.0015).exp());
+            }
+            if zoom != 1.0 {
+                self.camera.zoom(zoom as f64);
+            }
+        }
+        if response.drag_started() {
+            let press = ui
+                .input(|i| i.pointer.press_origin())
+                .or(response.hover_pos())
+                .or(response.interact_pointer_pos());
+            let primary = response.dragged_by(egui::PointerButton::Primary);
+            self.drag = Some(self.start_drag(model, press, primary && !shift, axes));
+            self.press = press.map(|p| (p, ui.input(|i| i.time)));
+        }
+        let height = response.rect.height().max(1.0) as f64;
+        if response.dragged() {
+            let delta = response.drag_delta();
+            match self.drag {
+                Some(Drag::Orbit) if multi.is_none() => {
+                    self.camera.orbit(delta.x as f64, delta.y as f64);
+                }
+                Some(Drag::Pan) => self.camera.pan(delta.x as f64, delta.y as f64, height),
+                Some(Drag::Marker(drag)) => {
+                    let pointer = response.hover_pos().or(response.interact_pointer_pos());
+                    if let Some(p) = pointer {
+                        let view = view_geometry(&self.camera, model, response.rect);
+                        let target = drag_marker(&drag, axes, &view, to_array(p));
+                        model.set_target(target);
+                    }
+                }
+                Some(Drag::Orbit) | None => {}
+            }
+        }
+        if let Some(mt) = multi {
+            // Two fingers: pan with their centre, pinch already zooms.
+            let d = mt.translation_delta;
+            self.camera.pan(d.x as f64, d.y as f64, height);
+        }
+    }
+
+    /// What a new drag holds: a marker handle under the press, else orbit or pan.
+    fn start_drag(
+        &self,
+        model: &Model,
+        press: Option<Pos2>,
+        primary: bool,
+        axes: &[Vector3<f64>; 3],
+    ) -> Drag {
+        let Some(rect) = self.rect else {
+            return Drag::Orbit;
+        };
+        let view = view_geometry(&self.camera, model, rect);
+        let rings = model.task() != Task::Position;
+        let grabbed = press.filter(|_| primary).and_then(|p| {
+            pick(model.target(), axes, rings, &view, to_array(p)).map(|handle| (handle, p))
+        });
+        match grabbed {
+            Some((handle, p)) => Drag::Marker(MarkerDrag::start(
+                handle,
+                model.target(),
+                axes,
+                &view,
+                to_array(p),
+            )),
+            None if primary => Drag::Orbit,
+            None => Drag::Pan,
+        }
+    }
+
+    /// The handle under the pointer (or held), and the link under the pointer, which
+    /// highlights its matrices.
+    fn update_hover(
+        &mut self,
+        model: &mut Model,
+        response: &egui::Response,
+        axes: &[Vector3<f64>; 3],
+    ) {
+        let view = view_geometry(&self.camera, model, response.rect);
+        let rings = model.task() != Task::Position;
+        self.hover = match &self.drag {
+            Some(Drag::Marker(drag)) => Some(drag.handle),
+            _ => response
+                .hover_pos()
+                .and_then(|p| pick(model.target(), axes, rings, &view, to_array(p))),
+        };
+        let link = match (
+            self.drag.is_none() && self.hover.is_none(),
+            response.hover_pos(),
+        ) {
+            (true, Some(p)) => hovered_link(model, &view, to_array(p)),
+            _ => None,
+        };
+        if model.hover_source() != Some(HoverSource::Matrices) {
+            model.set_hovered_link(link, HoverSource::View);
+        }
+        let column = match (self.drag.is_none(), response.hover_pos()) {
+            (true, Some(p)) => hovered_column(model, &view, to_array(p)),
+            _ => None,
+        };
+        model.set_hovered_column(column, HoverSource::View);
+    }
+
+    /// Builds the scene from the model and has the renderer draw it into the view.
+    fn draw_scene(
+        &mut self,
+        model: &Model,
+        ui: &egui::Ui,
+        rect: Rect,
+        render_state: Option<&RenderState>,
+        axes: &[Vector3<f64>; 3],
+        timing: &mut FrameTime,
+    ) {
+        let painter = ui.painter_at(rect);
+        let presentation = model.settings().presentation;
+        let bg = style::background(presentation);
+        self.rendered = false;
+        let (Some(rs), Some(renderer)) = (render_state, self.renderer.as_mut()) else {
+            painter.rect_filled(rect, 0.0, bg);
+            painter.text(
+                rect.center(),
+                egui::Align2::CENTER_CENTER,
+                "The 3D view needs WebGPU, WebGL2 or Vulkan.",
+                egui::FontId::proportional(16.0),
+                style::ERROR,
+            );
+            return;
+        };
+        let look = MarkerLook {
+            color: style::reach_color(model.shown_reach()).to_array(),
+            axes: *axes,
+            rings: model.task() != Task::Position,
+            active: self.hover,
+        };
+        let ppp = ui.ctx().pixels_per_point();
+        let px_size = [
+            (rect.width() * ppp).round() as u32,
+            (rect.height() * ppp).round() as u32,
+        ];
+        let t0 = clock::now_ms();
+        let (mut scene, step) = scene::build(&scene::SceneInput {
+            robot: model.robot(),
+            fk: model.fk(),
+            camera: &self.camera,
+            viewport_px: [rect.width().max(1.0) as f64, rect.height().max(1.0) as f64],
+            // The DH frames would show the exercise's hidden table.
+            show_frames: model.settings().show_frames && !model.table_hidden(),
+            highlighted_link: model.hovered_link(),
+            target: model.target(),
+            marker: &look,
+            background: [bg.r(), bg.g(), bg.b()],
+        });
+        if model.settings().overlays != OverlaySet::NONE {
+            jacobian::instances(&jacobian_scene(model), &mut scene.instances);
+        }
+        workspace::instances(model, &mut scene.instances);
+        workspace::direction_instances(model, &mut scene.instances);
+        if !model.table_hidden() {
+            convention::instances(model, model.robot().reach(), &mut scene.instances);
+        }
+        ghosts::instances(model, &mut scene.instances);
+        motion::trail_lines(model, &mut scene.lines);
+        motion::keep_out_instances(model, &mut scene.instances);
+        paths::scene_parts(model, &mut scene.lines, &mut scene.instances);
+        // The arm's parts come first in the scene, in the core's part order.
+        for (instance, red) in scene.instances.iter_mut().zip(model.motion().colliding()) {
+            if *red {
+                instance.color = [230, 60, 50, 255];
+            }
+        }
+        self.grid_step = step;
+        let t1 = clock::now_ms();
+        let texture = renderer.render(rs, px_size, &scene);
+        timing.scene_ms += t1 - t0;
+        timing.render_ms += clock::now_ms() - t1;
+        painter.image(
+            texture,
+            rect,
+            Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0)),
+            Color32::WHITE,
+        );
+        self.rendered = true;
+    }
+
+    /// Screen points for the browser tests: the marker's handles, the tool and the base.
+    fn publish_points(
+        &self,
+        model: &Model,
+        rect: Rect,
+        axes: &[Vector3<f64>; 3],
+        points: &mut ScreenPoints,
+    ) {
+        let view = view_geometry(&self.camera, model, rect);
+        let centre = Point3::from(model.target().translation.vector);
+        let mut add = |name: String, p: &Point3<f64>| {
+            if let Some(s) = view.project(p) {
+                points.insert(name, egui::pos2(s[0] as f32, s[1] as f32));
+            }
+        };
+        add("target".into(), &centre);
+        let rings = model.task() != Task::Position;
+        for (i, name) in ["x", "y", "z"].iter().enumerate() {
+            add(
+                format!("target-{name}"),
+                &(centre + axes[i] * ((handle_px::ARROW - 18.0) * view.px)),
+            );
+            if rings {
+                let (u, _) = perpendiculars(&axes[i]);
+                add(
+                    format!("ring-{name}"),
+                    &(centre + u * (handle_px::RING * view.px)),
+                );
+            }
+        }
+        ghosts::points(model, &mut add);
+        paths::points(model, &mut add);
+        add("tool".into(), &Point3::from(model.fk().tool_position()));
+        let base = model.robot().world_from_base.translation.vector;
+        add("base".into(), &Point3::from(base));
+    }
+}
+
+/// The view's geometry this frame: the camera, the view's placement, and the world length
+/// of one point at the target's depth.
+fn view_geometry<'a>(camera: &'a OrbitCamera, model: &Model, rect: Rect) -> ViewGeometry<'a> {
+    let size = [rect.width().max(1.0) as f64, rect.height().max(1.0) as f64];
+    let centre = Point3::from(model.target().translation.vector);
+    let px = camera.world_per_pixel(size[1]) * (camera.eye() - centre).norm() / camera.distance;
+    ViewGeometry {
+        camera,
+        size,
+        origin: [rect.min.x as f64, rect.min.y as f64],
+        px,
+    }
+}
+
+fn to_array(p: Pos2) -> [f64; 2] {
+    [p.x as f64, p.y as f64]
+}
+
+/// The axes the marker's arrows and rings use: world axes for position-only targets,
+/// the target's own axes otherwise.
+fn marker_axes(model: &Model) -> [Vector3<f64>; 3] {
+    match model.task() {
+        Task::Position => [Vector3::x(), Vector3::y(), Vector3::z()],
+        _ => {
+            let r = model.target().rotation.matrix();
+            [0, 1, 2].map(|c| r.column(c).into_owned())
+        }
+    }
+}
+
+/// The link (1-based) whose segment between consecutive frame origins is under `at`.
+/// The Jacobian column whose arrow passes within 8 points of `at`, when the arrows are
+/// drawn.
+fn hovered_column(model: &Model, view: &ViewGeometry<'_>, at: [f64; 2]) -> Option<usize> {
+    if !model.settings().overlays.contains(Overlay::JacobianColumns) {
+        return None;
+    }
+    let scene = jacobian_scene(model);
+    let tool = view.project(&scene.tool)?;
+    let mut best: Option<(f64, usize)> = None;
+    for (i, tip) in jacobian::column_tips(&scene).iter().enumerate() {
+        if let Some(b) = view.project(tip) {
+            let d = dist_to_segment(at, tool, b);
+            if d < 8.0 && best.is_none_or(|(bd, _)| d < bd) {
+                best = Some((d, i));
+            }
+        }
+    }
+    best.map(|(_, i)| i)
+}
+
+/// What the Jacobian overlays are drawn from this frame.
+fn jacobian_scene(model: &Model) -> JacobianScene<'_> {
+    JacobianScene {
+        jacobian: model.jacobian(),
+        tool: Point3::from(model.fk().tool_position()),
+        reach: model.robot().reach(),
+        overlays: model.settings().overlays,
+        hovered: model.hovered_column(),
+        robot: model.robot(),
+        q: model.q(),
+        task: model.task(),
+        speeds: model.joint_speeds(),
+    }
+}
+
+fn hovered_link(model: &Model, view: &ViewGeometry<'_>, at: [f64; 2]) -> Option<usize> {
+    let mut prev = Point3::from(model.robot().world_from_base.translation.vector);
+    let mut best: Option<(f64, usize)> = None;
+    for (i, frame) in model.fk().base_from_frames.iter().enumerate() {
+        let o = Point3::from(frame.translation.vector);
+        if let (Some(a), Some(b)) = (view.project(&prev), view.project(&o)) {
+            let d = dist_to_segment(at, a, b);
+            if d < 10.0 && best.is_none_or(|(bd, _)| d < bd) {
+                best = Some((d, i + 1));
+            }
+        }
+        prev = o;
+    }
+    best.map(|(_, i)| i)
+}
+
+/// The motion lab's frame: the collision check of the pose, and the simulation run for
+/// the frame's time (repainting while the arm moves).
+fn advance_motion(model: &mut Model, ui: &egui::Ui, timing: &mut FrameTime) {
+    if model.motion().collisions_on() {
+        let t0 = clock::now_ms();
+        model.update_collisions();
+        timing.motion_ms += clock::now_ms() - t0;
+    }
+    if model.motion().on() {
+        // The simulation runs the frame's real time × the time scale in 1 ms steps
+        // (at most 0.1 s a frame: a stalled frame slows the motion, never jumps it).
+        let dt = f64::from(ui.input(|i| i.stable_dt).min(0.1));
+        let t0 = clock::now_ms();
+        timing.motion_steps += model.advance_motion(dt) as f64;
+        timing.motion_ms += clock::now_ms() - t0;
+        if model.motion().moving() || model.paths().visit().is_some() {
+            ui.ctx().request_repaint();
+        }
+    }
+}
+
+/// The overlays that fill over frames: the workspace cloud (a few milliseconds a frame,
+/// repainting until full), the sphere of tool directions and the ghosts' solutions
+/// (redone when the target moves).
+fn fill_overlays(model: &mut Model, ui: &egui::Ui, timing: &mut FrameTime) {
+    crate::app::state::branches::ghost_rows(model);
+    if model.settings().overlays.contains(Overlay::Workspace) {
+        let measure = workspace::measure(model);
+        let (samples, budget) = (workspace::SAMPLES, workspace::BUDGET_MS);
+        let ms = model.fill_workspace(measure, samples, budget, clock::now_ms);
+        timing.workspace_ms += ms;
+        if model.workspace().is_some_and(|c| !c.is_full()) {
+            ui.ctx().request_repaint();
+        }
+    }
+    if model.settings().overlays.contains(Overlay::Directions) {
+        timing.workspace_ms += model.fill_directions(clock::now_ms);
+    }
+    if model.paths().shown() {
+        let t0 = clock::now_ms();
+        model.update_path_plan();
+        timing.motion_ms += clock::now_ms() - t0;
+    }
+}

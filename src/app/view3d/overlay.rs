@@ -1,0 +1,98 @@
+//! Text drawn over the 3D picture: the grid's scale, the controls and the shortcut keys,
+//! the IK status in its colour, and the highlighted joint. Every line wraps within the
+//! view, so a phone shows all of it.
+
+use egui::{Color32, Rect};
+
+use crate::app::state::model::Model;
+use crate::app::state::{tr, trf};
+use crate::app::widgets::style;
+use armlab_core::ik::Reach;
+use armlab_session::format::number;
+use armlab_text::{Key, Lang, fill};
+
+/// Draws the labels over the picture; `touch` names finger gestures instead of the mouse.
+pub fn draw(model: &Model, painter: &egui::Painter, rect: Rect, grid_step: f64, touch: bool) {
+    let presentation = model.settings().presentation;
+    let unit = model.robot().length_unit.symbol();
+    let small = egui::FontId::proportional(if presentation { 15.0 } else { 12.0 });
+    let text_color = if presentation {
+        Color32::WHITE
+    } else {
+        Color32::from_gray(200)
+    };
+    let wrap = (rect.width() - 20.0).max(40.0);
+    let controls = tr(
+        model,
+        if touch {
+            Key::TouchControls
+        } else {
+            Key::MouseControls
+        },
+    );
+    let mut bottom = trf(
+        model,
+        Key::GridControls,
+        &[&number(grid_step, 4), &unit, &controls],
+    );
+    if !touch {
+        bottom = format!("{bottom}\n{}", tr(model, Key::ShortcutHint));
+    }
+    let galley = painter.layout(bottom, small.clone(), text_color, wrap);
+    painter.galley(
+        rect.left_bottom() + egui::vec2(10.0, -10.0 - galley.size().y),
+        galley,
+        text_color,
+    );
+    let reach = model.shown_reach();
+    let status = match reach {
+        Reach::Reached => Key::StatusReached,
+        Reach::OutOfReach => Key::StatusOutOfReach,
+        Reach::Pending => Key::StatusPending,
+    };
+    let color = style::reach_color(reach);
+    let galley = painter.layout(tr(model, status).to_owned(), small.clone(), color, wrap);
+    let status_height = galley.size().y;
+    painter.galley(rect.left_top() + egui::vec2(10.0, 10.0), galley, color);
+    if let Some(link) = model.hovered_link()
+        && let Some(joint) = model.robot().joints.get(link.wrapping_sub(1))
+    {
+        let text = highlight_text(model.settings().lang, link, &joint.name);
+        let galley = painter.layout(text, small, style::HIGHLIGHT, wrap);
+        let at = rect.right_top() + egui::vec2(-10.0 - galley.size().x, 14.0 + status_height);
+        painter.galley(at, galley, style::HIGHLIGHT);
+    }
+}
+
+/// The line naming the highlighted joint `link` (1-based) and its matrices. A name that
+/// only numbers the joint ("joint 3", the Panda's) is not said twice.
+fn highlight_text(lang: Lang, link: usize, name: &str) -> String {
+    let name = name.trim();
+    if name.is_empty() || name.eq_ignore_ascii_case(&format!("joint {link}")) {
+        fill(lang, Key::JointHighlightedUnnamed, &[&link])
+    } else {
+        fill(lang, Key::JointHighlighted, &[&link, &name])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_joint_is_named_once() {
+        for (lang, link, name, want) in [
+            (
+                Lang::En,
+                2,
+                "shoulder",
+                "joint 2: shoulder — A_2 and T_02 highlighted",
+            ),
+            (Lang::En, 3, "joint 3", "joint 3 — A_3 and T_03 highlighted"),
+            (Lang::Fi, 3, "Joint 3 ", "nivel 3 — A_3 ja T_03 korostettu"),
+            (Lang::En, 4, "", "joint 4 — A_4 and T_04 highlighted"),
+        ] {
+            assert_eq!(highlight_text(lang, link, name), want);
+        }
+    }
+}

@@ -1,0 +1,8 @@
+//! The controls and the style the panels share: the DH table editor, a number field's
+//! draft, the hand-drawn plot, colours and text sizes.
+
+pub mod dh_table;
+pub mod draft;
+pub mod plot;
+pub mod style;
+pub mod toggles;
