@@ -1142,9 +1142,9 @@ fn with_move_on_the_arm_drives_to_the_answer_and_the_motion_panel_plots_it() {
         Controller::Proportional { gain: 5.0 }
     );
     // The Motion panel alone in its column: its measures and plots in sight.
-    let mut settings = h.state().model().settings().clone();
-    settings.set_panel_open(armlab_session::settings::PanelKind::Ik, false);
-    h.state_mut().model_mut().set_settings(settings);
+    h.state_mut()
+        .model_mut()
+        .set_panel_open(armlab_session::settings::PanelKind::Ik, false);
     h.run_steps(2);
     h.snapshot("motion_panel_plots");
 }
@@ -1586,9 +1586,9 @@ fn both_paths_are_drawn_side_by_side_the_line_says_where_it_fails_and_waypoints_
     );
     edit_waypoint_1_x(&mut h);
     // The panel with both paths drawn, the legend and the line's problem marked.
-    let mut settings = h.state().model().settings().clone();
-    settings.set_panel_open(armlab_session::settings::PanelKind::Motion, true);
-    h.state_mut().model_mut().set_settings(settings);
+    h.state_mut()
+        .model_mut()
+        .set_panel_open(armlab_session::settings::PanelKind::Motion, true);
     h.run_steps(2);
     h.snapshot("motion_paths");
     visit_the_waypoints_in_joint_space(&mut h);

@@ -93,9 +93,7 @@ impl ArmLabApp {
         let mut app = ArmLabApp::with_session(Session::default_session());
         app.viewport = view3d::Viewport::new(cc.wgpu_render_state.as_ref());
         app.touch = preferences.touch;
-        let mut settings = app.model.settings().clone();
-        settings.lang = preferences.lang;
-        app.model.set_settings(settings);
+        app.model.set_lang(preferences.lang);
         app.open_hash(hash);
         app
     }
@@ -140,9 +138,7 @@ impl ArmLabApp {
                     .find_map(|part| part.strip_prefix("lang="))
                     .and_then(armlab_text::Lang::from_id);
                 if let Some(lang) = asked {
-                    let mut settings = self.model.settings().clone();
-                    settings.lang = lang;
-                    self.model.set_settings(settings);
+                    self.model.set_lang(lang);
                 }
                 let reason = reason.sentence(self.model.settings().lang);
                 let text = trf(&self.model, Key::LinkNotOpened, &[&reason]);
@@ -320,9 +316,8 @@ impl ArmLabApp {
         }
         let pressed = |key| ctx.input_mut(|i| i.consume_key(egui::Modifiers::NONE, key));
         if pressed(egui::Key::P) {
-            let mut settings = self.model.settings().clone();
-            settings.presentation = !settings.presentation;
-            self.model.set_settings(settings);
+            let on = self.model.settings().presentation;
+            self.model.set_presentation(!on);
         }
         if pressed(egui::Key::Escape) {
             self.sheet = None;
@@ -343,9 +338,7 @@ impl ArmLabApp {
                 if narrow {
                     self.sheet = Some(PanelKind::Joints);
                 } else {
-                    let mut settings = self.model.settings().clone();
-                    settings.set_panel_open(PanelKind::Joints, true);
-                    self.model.set_settings(settings);
+                    self.model.set_panel_open(PanelKind::Joints, true);
                 }
                 self.panels.joints.focus(i, ctx);
             }

@@ -95,9 +95,7 @@ impl SidePanels {
                                     ui.separator();
                                 }
                                 if section_header(*kind, model, ui) {
-                                    let mut settings = model.settings().clone();
-                                    settings.set_panel_open(*kind, false);
-                                    model.set_settings(settings);
+                                    model.set_panel_open(*kind, false);
                                 }
                                 ui.scope(|ui| {
                                     wrap_at(ui, width);
@@ -252,9 +250,7 @@ fn edge_tabs(column: &Column, model: &mut Model, ui: &mut egui::Ui, points: &mut
                 let response = edge_tab(ui, t(model, title(*kind)), open);
                 points.insert(format!("tab-{}", kind.id()), response.rect.center());
                 if response.clicked() {
-                    let mut settings = model.settings().clone();
-                    settings.set_panel_open(*kind, !open);
-                    model.set_settings(settings);
+                    model.set_panel_open(*kind, !open);
                 }
             }
         });

@@ -81,28 +81,54 @@ fn controls(model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) -> 
     action
 }
 
+/// A model method that switches one setting.
+type Writer = fn(&mut Model, bool);
+
 fn settings_toggles(model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
-    let mut settings = model.settings().clone();
-    ui.toggle_value(&mut settings.degrees, tr(model, Key::Degrees))
-        .on_hover_text(tr(model, Key::DegreesHint));
-    ui.toggle_value(&mut settings.show_frames, tr(model, Key::DhFrames))
-        .on_hover_text(tr(model, Key::DhFramesHint));
-    ui.toggle_value(&mut settings.presentation, tr(model, Key::Presentation))
-        .on_hover_text(tr(model, Key::PresentationHint));
+    let toggles: [(bool, Key, Key, Writer); 3] = [
+        (
+            model.settings().degrees,
+            Key::Degrees,
+            Key::DegreesHint,
+            Model::set_degrees,
+        ),
+        (
+            model.settings().show_frames,
+            Key::DhFrames,
+            Key::DhFramesHint,
+            Model::set_show_frames,
+        ),
+        (
+            model.settings().presentation,
+            Key::Presentation,
+            Key::PresentationHint,
+            Model::set_presentation,
+        ),
+    ];
+    for (mut on, label, hint, set) in toggles {
+        if ui
+            .toggle_value(&mut on, tr(model, label))
+            .on_hover_text(tr(model, hint))
+            .changed()
+        {
+            set(model, on);
+        }
+    }
+    let mut lang = model.settings().lang;
     let menu = egui::ComboBox::from_id_salt("language")
-        .selected_text(settings.lang.name())
+        .selected_text(lang.name())
         .width(80.0)
         .show_ui(ui, |ui| {
-            for lang in Lang::ALL {
-                let choice = ui.selectable_value(&mut settings.lang, lang, lang.name());
-                points.insert(format!("language-{}", lang.id()), choice.rect.center());
+            for choice in Lang::ALL {
+                let item = ui.selectable_value(&mut lang, choice, choice.name());
+                points.insert(format!("language-{}", choice.id()), item.rect.center());
             }
         })
         .response
         .on_hover_text(tr(model, Key::LanguageHint));
     points.insert("language", menu.rect.center());
-    if &settings != model.settings() {
-        model.set_settings(settings);
+    if lang != model.settings().lang {
+        model.set_lang(lang);
     }
 }
 

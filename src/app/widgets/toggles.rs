@@ -21,8 +21,6 @@ pub fn overlay_checkbox(
         .on_hover_text(tr(model, hint))
         .changed()
     {
-        let mut settings = model.settings().clone();
-        settings.overlays.set(overlay, on);
-        model.set_settings(settings);
+        model.set_overlay(overlay, on);
     }
 }

@@ -20,6 +20,7 @@ use armlab_session::session::{RobotSource, Session};
 pub use armlab_session::settings::Settings;
 use armlab_session::settings::{CameraPose, DisplayPatch};
 
+mod display;
 mod drag;
 mod exercise;
 mod explore;
