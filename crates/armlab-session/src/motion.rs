@@ -33,6 +33,8 @@ use armlab_text::{Key, Lang, fill};
 use super::format::number_list;
 use super::format::{target_from_array, target_to_array};
 
+pub(crate) mod stored;
+
 /// Decimals of the numbers the motion fields write.
 const DECIMALS: usize = 6;
 
