@@ -445,6 +445,18 @@ fn rows_matrix<const R: usize>(value: &Value, what: &str) -> Result<[[f64; 3]; R
     Ok(out)
 }
 
+/// The object forms of an `ik` request's target: `{"q"}`, or `{"position", "rotation"}`.
+#[derive(Deserialize, Default)]
+struct TargetFields {
+    #[serde(default, deserialize_with = "present")]
+    q: Option<Field<Vec<f64>>>,
+    #[serde(default, deserialize_with = "present")]
+    position: Option<Field<Vec<f64>>>,
+    /// 3×3 rows, read by [`rows_matrix`].
+    #[serde(default, deserialize_with = "present")]
+    rotation: Option<Value>,
+}
+
 /// The target of an `ik` request: 4×4 rows, `{"position", "rotation"}` or `{"q"}`.
 fn ik_target(robot: &Robot, value: Option<&Value>) -> Result<IsometryMatrix3<f64>, ApiError> {
     let value = value.ok_or_else(|| ApiError::Request("the field \"target\" is missing".into()))?;
@@ -477,28 +489,27 @@ fn ik_target(robot: &Robot, value: Option<&Value>) -> Result<IsometryMatrix3<f64
             Matrix3::from_fn(|i, j| r[i][j]),
         ));
     }
-    if let Some(q) = value.get("q") {
-        let q = number_list(q, "target.q")?;
+    // Anything but an object has none of the fields (every field takes any JSON).
+    let fields = TargetFields::deserialize(value).unwrap_or_default();
+    if let Some(q) = read(fields.q, says("\"target.q\" must be a list of numbers"))? {
         robot.check_q(&q)?;
         return Ok(armlab_core::tool_pose(robot, &q));
     }
-    let position = value
-        .get("position")
-        .ok_or_else(|| {
-            ApiError::Request(
-                "\"target\" must be 4×4 rows, {\"position\", \"rotation\"} or {\"q\"}".into(),
-            )
-        })
-        .and_then(|p| number_list(p, "target.position"))?;
+    let list = says("\"target.position\" must be a list of numbers");
+    let position = read(fields.position, list)?.ok_or_else(|| {
+        ApiError::Request(
+            "\"target\" must be 4×4 rows, {\"position\", \"rotation\"} or {\"q\"}".into(),
+        )
+    })?;
     if position.len() != 3 {
         return Err(ApiError::Request(
             "\"target.position\" must be 3 numbers".into(),
         ));
     }
-    let rotation = match value.get("rotation") {
+    let rotation = match fields.rotation {
         None => Matrix3::identity(),
         Some(rows) => {
-            let r = rows_matrix::<3>(rows, "target.rotation")?;
+            let r = rows_matrix::<3>(&rows, "target.rotation")?;
             Matrix3::from_fn(|i, j| r[i][j])
         }
     };

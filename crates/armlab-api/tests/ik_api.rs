@@ -85,6 +85,22 @@ fn ik_accepts_position_targets_drag_and_reports_errors() {
             "\"target.position\" must be 3 numbers",
         ),
         (
+            r#"{"robot": "ur10", "target": {"position": [1, "2", 3]}}"#,
+            "\"target.position\" must be a list of numbers",
+        ),
+        (
+            r#"{"robot": "ur10", "target": {"q": null, "position": [1, 2, 3]}}"#,
+            "\"target.q\" must be a list of numbers",
+        ),
+        (
+            r#"{"robot": "ur10", "target": "home"}"#,
+            "\"target\" must be 4×4 rows, {\"position\", \"rotation\"} or {\"q\"}",
+        ),
+        (
+            r#"{"robot": "ur10", "target": {"position": [1, 2, 3], "rotation": [[1, 0, 0], [0, 1, 0]]}}"#,
+            "\"target.rotation\" must be 3 rows of numbers",
+        ),
+        (
             r#"{"robot": "ur10", "target": {"position": [1, 2, 3]}, "method": "magic"}"#,
             "unknown method \"magic\": use one of dls, pinv, gradient, closed",
         ),

@@ -30,7 +30,7 @@ pub mod symbolic;
 pub mod workspace;
 
 pub use error::{DhColumn, Expected, Field, Place, RobotError};
-pub use file::{robot_from_json, robot_from_value, robot_to_json};
+pub use file::{robot_from_json, robot_from_value, robot_to_json, robot_to_value};
 pub use fk::{
     ForwardKinematics, link_transform, modified_dh_transform, standard_dh_transform, tool_pose,
 };

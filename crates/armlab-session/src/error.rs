@@ -59,6 +59,8 @@ pub enum LinkError {
     ExerciseWithRobot,
     /// An item of `hide=` that is not a matrix, an entry or a Jacobian column.
     BadHidden(String),
+    /// Stored JSON that is not a session's (not JSON, a field missing or of another type).
+    UnreadableSession,
 }
 
 impl LinkError {
@@ -99,6 +101,7 @@ impl LinkError {
             LinkError::UnknownExercise(id) => fill(lang, Key::LinkUnknownExercise, &[&Text(id)]),
             LinkError::ExerciseWithRobot => plain(Key::LinkExerciseWithRobot),
             LinkError::BadHidden(item) => fill(lang, Key::LinkBadHidden, &[&Text(item)]),
+            LinkError::UnreadableSession => plain(Key::LinkUnreadableSession),
         }
     }
 }

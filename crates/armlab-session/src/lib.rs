@@ -11,3 +11,4 @@ pub mod format;
 pub mod motion;
 pub mod session;
 pub mod settings;
+pub mod stored;

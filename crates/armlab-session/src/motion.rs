@@ -33,6 +33,8 @@ use armlab_text::{Key, Lang, fill};
 use super::format::number_list;
 use super::format::{target_from_array, target_to_array};
 
+pub(crate) mod stored;
+
 /// Decimals of the numbers the motion fields write.
 const DECIMALS: usize = 6;
 
@@ -166,22 +168,12 @@ impl MotionPatch {
             parts.push(format!("move={}", on(m)));
         }
         if let Some(s) = &self.settings {
-            let (id, gains): (&str, Vec<f64>) = match s.controller {
-                Controller::OnOff { dead_band } => ("onoff", vec![dead_band]),
-                Controller::Proportional { gain } => ("p", vec![gain]),
-                Controller::Pid(g) if g.ki == 0.0 => ("pd", vec![g.kp, g.kd]),
-                Controller::Pid(g) => ("pid", vec![g.kp, g.ki, g.kd]),
-                Controller::Profile {
-                    shape,
-                    synchronised,
-                } => (shape.id(), vec![if synchronised { 1.0 } else { 0.0 }]),
-            };
+            let (id, gains) = controller_link(&s.controller);
             parts.push(format!("ctrl={id}"));
             parts.push(format!("gains={}", number_list(&gains, DECIMALS)));
-            let p = &s.plant;
             parts.push(format!(
                 "plant={}",
-                number_list(&[p.time_constant, p.inertia, p.friction, p.load], DECIMALS)
+                number_list(&plant_link(&s.plant), DECIMALS)
             ));
         }
         if let Some(t) = self.time_scale {
@@ -316,13 +308,14 @@ impl MotionPatch {
 
     /// Once every part is read: builds and checks the settings from `ctrl`, `gains` and
     /// `plant` (a field the link lacks takes its default).
+    /// The fields are read once: a patch that is read equals the patch that was written.
     pub fn finish(&mut self) -> Result<(), MotionLinkError> {
-        if self.ctrl.is_none() && self.gains.is_none() && self.plant.is_none() {
+        let (ctrl, gains, plant) = (self.ctrl.take(), self.gains.take(), self.plant.take());
+        if ctrl.is_none() && gains.is_none() && plant.is_none() {
             return Ok(());
         }
         let defaults = MotionSettings::default();
-        let id = self.ctrl.clone().unwrap_or_else(|| "p".to_string());
-        let gains = self.gains.clone();
+        let id = ctrl.unwrap_or_else(|| "p".to_string());
         let want = |n: usize| -> Result<Option<Vec<f64>>, MotionLinkError> {
             match &gains {
                 Some(g) if g.len() != n => Err(MotionLinkError::WrongCount {
@@ -368,7 +361,7 @@ impl MotionPatch {
                 }
             }
         };
-        let plant = match &self.plant {
+        let plant = match &plant {
             None => defaults.plant,
             Some(p) => {
                 let [time_constant, inertia, friction, load] = p[..] else {
@@ -395,6 +388,25 @@ impl MotionPatch {
         self.settings = Some(settings);
         Ok(())
     }
+}
+
+/// A controller as the link writes it: its id (`ctrl=`) and its gains (`gains=`).
+fn controller_link(controller: &Controller) -> (&'static str, Vec<f64>) {
+    match *controller {
+        Controller::OnOff { dead_band } => ("onoff", vec![dead_band]),
+        Controller::Proportional { gain } => ("p", vec![gain]),
+        Controller::Pid(g) if g.ki == 0.0 => ("pd", vec![g.kp, g.kd]),
+        Controller::Pid(g) => ("pid", vec![g.kp, g.ki, g.kd]),
+        Controller::Profile {
+            shape,
+            synchronised,
+        } => (shape.id(), vec![if synchronised { 1.0 } else { 0.0 }]),
+    }
+}
+
+/// A plant as the link writes it (`plant=τ,I,b,L`).
+fn plant_link(p: &Plant) -> Vec<f64> {
+    vec![p.time_constant, p.inertia, p.friction, p.load]
 }
 
 /// A comma-separated list of finite numbers.

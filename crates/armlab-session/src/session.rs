@@ -15,6 +15,9 @@
 //!   field a link lacks keeps the viewer's own setting (the language: the browser's);
 //! - `camera=yaw,pitch,distance,x,y,z`: the 3D view's direction (radians), distance and
 //!   focus (robot units); without it the view frames the arm.
+//!
+//! The same session as JSON, for storage: [`Session::to_json`] and [`Session::from_json`]
+//! ([`crate::stored`]).
 
 use nalgebra::IsometryMatrix3;
 

@@ -316,6 +316,7 @@ catalogue! {
     LinkUnknownMethod: "the link's method \"{0}\" is not known" / "linkin menetelmä \"{0}\" on tuntematon",
     LinkNoRobot: "the link names no robot (robot=...)" / "linkki ei nimeä robottia (robot=...)",
     LinkCustomWithoutTable: "the link says robot=custom but carries no dh= table" / "linkissä on robot=custom mutta ei dh=-taulukkoa",
+    LinkUnreadableSession: "the stored session could not be read" / "tallennettua istuntoa ei voitu lukea",
     AllowedOnOff: "on or off" / "on tai off",
     AllowedDegRad: "deg or rad" / "deg tai rad",
     AllowedDecimals: "a whole number from 0 to 8" / "kokonaisluku väliltä 0–8",
