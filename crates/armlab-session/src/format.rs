@@ -35,6 +35,16 @@ pub fn number(v: f64, decimals: usize) -> String {
     }
 }
 
+/// Decimals of the numbers a link writes (1e-6 rad, 1e-6 of a length unit).
+pub const LINK_DECIMALS: usize = 6;
+
+/// A pose's six numbers `[x, y, z, α, β, γ]` as a link writes them: each rounded to the
+/// link's decimals (and read back as the link's text reads). A pose made of such numbers
+/// gives them back exactly, so the stored session keeps poses as links do.
+pub fn pose_as_linked(pose: &IsometryMatrix3<f64>) -> [f64; 6] {
+    target_to_array(pose).map(|v| number(v, LINK_DECIMALS).parse().unwrap_or(v))
+}
+
 /// An error or a residual, which spans many orders of magnitude: from 0.01 up as
 /// [`number`] with 3 decimals (`450.123`, `0.012`), below that in scientific form with
 /// at most `decimals` decimals in the mantissa (`4.5e-3`, `1.976e-8`), where 3 decimals

@@ -25,13 +25,10 @@ use armlab_core::{IkMethod, Robot, RobotError, Task, preset, robot_from_json, ro
 
 pub use super::error::LinkError;
 use super::exercise::ExerciseId;
-use super::format::number_list;
+use super::format::{LINK_DECIMALS, number_list};
 pub use super::format::{target_from_array, target_to_array};
 use super::motion::MotionPatch;
 use super::settings::{CameraPose, DisplayPatch, HiddenSet};
-
-/// Decimals of the numbers a link writes (1e-6 rad, 1e-6 of a length unit).
-const LINK_DECIMALS: usize = 6;
 
 /// Where the robot came from.
 #[derive(Debug, Clone, PartialEq)]

@@ -2,10 +2,11 @@
 //! and any program that keeps sessions: [`Session::to_json`] and [`Session::from_json`],
 //! and serde's `Serialize` and `Deserialize` for the session and each part it holds.
 //!
-//! It carries what a link carries, at full precision and in the link's vocabulary: the
-//! robot as its robot file (`armlab_core::robot_to_value`; none for an exercise, whose
-//! table the stored session must not show), the target and the waypoints as the link's
-//! six numbers `[x, y, z, α, β, γ]`, the camera as `[yaw, pitch, distance, x, y, z]`, and
+//! It carries what a link carries, in the link's vocabulary: the robot as its robot file
+//! (`armlab_core::robot_to_value`; none for an exercise, whose table the stored session
+//! must not show), the target and the waypoints as the link's six numbers
+//! `[x, y, z, α, β, γ]` with the link's six decimals (a pose turned into angles and back
+//! moves by a last bit, so only numbers the link would write give the same pose again), the camera as `[yaw, pitch, distance, x, y, z]`, and
 //! the task, method, language, panels, overlays and hidden items by their link ids.
 //!
 //! ```json
@@ -27,7 +28,7 @@ use armlab_text::{Key, Lang};
 
 use super::error::LinkError;
 use super::exercise::ExerciseId;
-use super::format::{target_from_array, target_to_array};
+use super::format::{pose_as_linked, target_from_array};
 use super::motion::stored::StoredMotion;
 use super::session::{RobotSource, Session};
 use super::settings::{CameraPose, DisplayPatch, Flag, FlagSet, Hidden, HiddenSet, MAX_DECIMALS};
@@ -68,7 +69,7 @@ impl StoredSession {
                 .then(|| robot_to_value(&session.robot)),
             source: source_id(&session.source).to_string(),
             q: session.q.clone(),
-            target: session.target.as_ref().map(target_to_array),
+            target: session.target.as_ref().map(pose_as_linked),
             task: session.task.id().to_string(),
             method: session.method.id().to_string(),
             display: StoredDisplay::of(&session.display),

@@ -9,7 +9,7 @@ use armlab_core::motion::{MotionError, Setting, check_time_scale};
 use armlab_core::path::{MAX_WAYPOINTS, PathKind};
 
 use super::{MotionLinkError, MotionPatch, controller_link, plant_link};
-use crate::format::{target_from_array, target_to_array};
+use crate::format::{pose_as_linked, target_from_array};
 
 /// A [`MotionPatch`] as stored: each field the patch has. The errors of the values a link
 /// dropped are not stored (they were reported when the link was read).
@@ -72,7 +72,7 @@ impl StoredMotion {
             waypoints: patch
                 .waypoints
                 .as_ref()
-                .map(|poses| poses.iter().map(target_to_array).collect()),
+                .map(|poses| poses.iter().map(pose_as_linked).collect()),
         }
     }
 
