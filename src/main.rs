@@ -12,17 +12,20 @@ fn main() -> eframe::Result {
     // A hash on the command line opens that state, like a shared link: `armlab '#robot=ur10'`.
     // Without one, the last session returns (written when the window closes).
     let session_file = armlab_session::session::native_session_file();
-    let hash = std::env::args().nth(1).unwrap_or_else(|| {
-        session_file
-            .as_ref()
-            .and_then(|path| std::fs::read_to_string(path).ok())
-            .unwrap_or_default()
-    });
+    let link = std::env::args().nth(1).unwrap_or_default();
+    let stored = session_file
+        .as_ref()
+        .and_then(|path| std::fs::read_to_string(path).ok());
     eframe::run_native(
         "ArmLab",
         options,
         Box::new(move |cc| {
-            let mut app = armlab::app::ArmLabApp::new(cc, &hash);
+            let mut app = armlab::app::ArmLabApp::new_with(
+                cc,
+                &link,
+                stored.as_deref(),
+                armlab::app::Preferences::default(),
+            );
             app.set_session_file(session_file);
             Ok(Box::new(app))
         }),

@@ -73,14 +73,15 @@ pub struct ArmLabApp {
 impl ArmLabApp {
     /// Creates the app, opening the state of `hash` (a URL hash) when it is valid.
     pub fn new(cc: &eframe::CreationContext<'_>, hash: &str) -> Self {
-        ArmLabApp::new_with(cc, hash, Preferences::default())
+        ArmLabApp::new_with(cc, hash, None, Preferences::default())
     }
 
     /// Creates the app with the device's preferences; a link's own settings (its
     /// language) win over them.
     pub fn new_with(
         cc: &eframe::CreationContext<'_>,
-        hash: &str,
+        link: &str,
+        stored: Option<&str>,
         preferences: Preferences,
     ) -> Self {
         style::install_fonts(&cc.egui_ctx);
@@ -94,7 +95,11 @@ impl ArmLabApp {
         app.viewport = view3d::Viewport::new(cc.wgpu_render_state.as_ref());
         app.touch = preferences.touch;
         app.model.set_lang(preferences.lang);
-        app.open_hash(hash);
+        if link.trim_start_matches('#').trim().is_empty() {
+            app.open_stored(stored.unwrap_or_default());
+        } else {
+            app.open_hash(link);
+        }
         app
     }
 
@@ -145,6 +150,30 @@ impl ArmLabApp {
                 self.model.set_message(Message::warning(text));
             }
         }
+    }
+
+    /// Opens the last session as it was stored (its JSON; a session stored as its link
+    /// hash opens as that link). On garbage, says so and shows the default robot; an
+    /// empty store changes nothing.
+    pub fn open_stored(&mut self, text: &str) {
+        let text = text.trim();
+        if !text.starts_with('{') {
+            return self.open_hash(text);
+        }
+        match Session::from_json(text) {
+            Ok(session) => self.model.open(session),
+            Err(reason) => {
+                self.model.open(Session::default_session());
+                let reason = reason.sentence(self.model.settings().lang);
+                let text = trf(&self.model, Key::StoredNotOpened, &[&reason]);
+                self.model.set_message(Message::warning(text));
+            }
+        }
+    }
+
+    /// The session as it is stored (localStorage, the native session file): JSON.
+    pub fn stored_session(&self) -> String {
+        self.model.session().to_json()
     }
 
     /// The model: the session and what is derived from it.
@@ -369,7 +398,7 @@ impl eframe::App for ArmLabApp {
             let written = path
                 .parent()
                 .map_or(Ok(()), std::fs::create_dir_all)
-                .and_then(|()| std::fs::write(path, self.model.hash()));
+                .and_then(|()| std::fs::write(path, self.stored_session()));
             if let Err(e) = written {
                 log::warn!("could not keep the session in {}: {e}", path.display());
             }

@@ -334,7 +334,7 @@ pub fn percent_decode(text: &str) -> Result<String, LinkError> {
     String::from_utf8(out).map_err(|_| LinkError::NotUtf8)
 }
 
-/// Where the native app keeps the last session's link hash:
+/// Where the native app keeps the last session (its JSON):
 /// `$XDG_CONFIG_HOME/armlab/session` (or `~/.config/armlab/session`; `%APPDATA%` on Windows).
 #[cfg(not(target_arch = "wasm32"))]
 pub fn native_session_file() -> Option<std::path::PathBuf> {

@@ -304,6 +304,7 @@ catalogue! {
 
     // --- Links ("This link could not be opened (…)") ---------------------------------------
     LinkNotOpened: "This link could not be opened ({0}); showing the default robot instead." / "Linkkiä ei voitu avata ({0}); näytetään oletusrobotti.",
+    StoredNotOpened: "The last session could not be reopened ({0}); showing the default robot instead." / "Edellistä istuntoa ei voitu avata uudelleen ({0}); näytetään oletusrobotti.",
     LinkNoEquals: "the link part \"{0}\" has no '='" / "linkin osassa \"{0}\" ei ole merkkiä '='",
     LinkUnknownPart: "the link has an unknown part \"{0}\"" / "linkissä on tuntematon osa \"{0}\"",
     LinkBrokenEscape: "the link has a broken %-escape" / "linkissä on rikkinäinen %-koodaus",
