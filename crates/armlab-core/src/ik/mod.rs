@@ -28,6 +28,7 @@ mod closed_form;
 mod distinct;
 mod numeric;
 mod seeds;
+mod task_error;
 
 use nalgebra::{IsometryMatrix3, Matrix3, Vector3};
 
@@ -46,8 +47,9 @@ pub use distinct::{
     DistinctSolutions, FoundSolution, MAX_CONTINUUM_SAMPLES, MAX_DISTINCT, SAME_SOLUTION,
     configuration_signs, distinct_solutions,
 };
-use numeric::{TaskTarget, Workspace, evaluate};
+use numeric::Workspace;
 pub use seeds::{MAX_SEED_TABLE, SeedTable};
+use task_error::{TaskTarget, evaluate};
 
 /// The largest change of any joint per [`drag_step`] call when the settings give none
 /// (radians; see [`IkSettings::max_joint_change`] for prismatic joints).
