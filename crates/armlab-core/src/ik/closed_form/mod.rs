@@ -29,8 +29,8 @@ use std::f64::consts::FRAC_PI_2;
 use crate::angles::atan2;
 use nalgebra::{IsometryMatrix3, Rotation3};
 
-use super::IkError;
 use super::branch::Branch;
+use super::error::IkError;
 use crate::jacobian::Task;
 use crate::robot::{JointKind, Robot};
 use canonical::{Canonical, angle_is, canonical, parallel, quarter_turn};
