@@ -4,9 +4,8 @@
 
 use super::linear::pinv_times;
 use super::{Ctx, Workspace};
-use crate::ik::IkMethod;
-use crate::ik::IkStep;
 use crate::ik::task_error::{Eval, evaluate};
+use crate::ik::{IkMethod, IkStep};
 
 /// How an attempt ended.
 #[derive(Debug, Clone, Copy, Default)]
