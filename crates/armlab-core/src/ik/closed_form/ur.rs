@@ -1,7 +1,6 @@
 //! The UR-family closed form (docs/kinematics.md §9.3), apart from the other families
 //! for its size: the wrist's singular case alone takes a third of it.
 //!
-//!
 //! UR-family derivation (σ_i = sign sin α_i, z_1 = σ_1(sin θ_1, −cos θ_1, 0) the common
 //! direction of axes 2–4, D = d_2 + d_3 + d_4): the wrist point `o_5 = p − d_6·z_6` has
 //! `o_5·z_1 = D`, so `θ_1 = φ + asin(σ_1·D/ρ)` or `φ + π − asin(σ_1·D/ρ)` with
