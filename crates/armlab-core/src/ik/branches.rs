@@ -5,7 +5,8 @@ use nalgebra::IsometryMatrix3;
 
 pub use super::branch::{Branch, Elbow, Shoulder, Wrist};
 use super::closed_form::{ClosedFormSet, closed_form_solutions, closed_form_solutions_for_task};
-use super::{IkError, closed_form_family, joint_distance};
+use super::error::{IkError, check_target};
+use super::{closed_form_family, joint_distance};
 use crate::fk::tool_pose;
 use crate::jacobian::Task;
 use crate::robot::Robot;
@@ -118,7 +119,7 @@ pub fn branch_step(
     task: Task,
 ) -> Result<BranchStep, IkError> {
     robot.check_q(q_current)?;
-    super::check_target(target)?;
+    check_target(target)?;
     let set = closed_form_solutions_for_task(robot, target, task, q_current)?;
     let choice = follow_branch(robot, &set, previous, q_current)
         .ok_or_else(|| IkError::NoClosedForm(robot.name.clone()))?;

@@ -5,7 +5,9 @@
 
 use nalgebra::IsometryMatrix3;
 
-use super::{IkError, IkMethod, IkSettings, IkSolver, within_limits};
+use super::error::IkError;
+use super::solver::IkSolver;
+use super::{IkMethod, IkSettings, within_limits};
 use crate::jacobian::Task;
 use crate::rng::SplitMix64;
 use crate::robot::{JointKind, Robot};

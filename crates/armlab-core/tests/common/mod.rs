@@ -7,7 +7,8 @@
 #![allow(dead_code)]
 
 use armlab_core::{
-    Convention, JointKind, Robot, SplitMix64, Task, ToolAxis, preset, preset_ids, tool_pose,
+    Convention, IkSettings, JointKind, Robot, SplitMix64, Task, ToolAxis, preset, preset_ids,
+    tool_pose,
 };
 use nalgebra::{IsometryMatrix3, Matrix3, Matrix4, Rotation3, Translation3, Vector3};
 
@@ -211,4 +212,30 @@ pub fn assert_within_limits(what: &str, robot: &Robot, q: &[f64]) {
             joint.limits.max
         );
     }
+}
+
+/// Every task: position, the three 5D tasks, the full pose.
+pub const TASKS: [Task; 5] = [
+    Task::Position,
+    Task::PositionAndAxis(ToolAxis::X),
+    Task::PositionAndAxis(ToolAxis::Y),
+    Task::PositionAndAxis(ToolAxis::Z),
+    Task::FullPose,
+];
+
+/// The largest entry difference of two poses, translation divided by `length`.
+pub fn pose_diff(a: &IsometryMatrix3<f64>, b: &IsometryMatrix3<f64>, length: f64) -> f64 {
+    let dt = (a.translation.vector - b.translation.vector).abs().max() / length;
+    let dr = (a.rotation.matrix() - b.rotation.matrix()).abs().max();
+    dt.max(dr)
+}
+
+/// The position tolerance of `settings` in the robot's length unit.
+pub fn tolerance_in_units(robot: &Robot, settings: &IkSettings) -> f64 {
+    settings.position_tolerance / robot.length_unit.in_metres()
+}
+
+/// Every value finite (no NaN, no infinity).
+pub fn all_finite(q: &[f64]) -> bool {
+    q.iter().all(|v| v.is_finite())
 }

@@ -15,10 +15,10 @@
 use crate::angles::{atan2, sin_cos};
 use nalgebra::{IsometryMatrix3, Matrix3, Vector3};
 
-use super::{
-    Branch, Canonical, Merged, Planar, Raw, Row, Wrist, elbow_of, front_sign, parallel, planar_2r,
-    quarter_turn, shoulder, shoulder_of,
-};
+use super::canonical::{Canonical, Row, parallel, quarter_turn};
+use super::planar::{Planar, elbow_of, front_sign, planar_2r, shoulder, shoulder_of};
+use super::raw::{Merged, Raw};
+use crate::ik::branch::{Branch, Wrist};
 use crate::robot::{Joint, Robot};
 
 /// The first three joints' structure.
@@ -60,7 +60,7 @@ struct Arm {
     /// Joint 3's DH variable (θ3, or the stroke d3).
     v3: f64,
     /// The elbow (none for a boom).
-    elbow: Option<super::Elbow>,
+    elbow: Option<crate::ik::branch::Elbow>,
     /// The wrist centre is reached.
     exact: bool,
     /// Elbow stretched or folded (or the boom through the wrist centre).

@@ -4,7 +4,10 @@
 use crate::angles::atan2;
 use nalgebra::IsometryMatrix3;
 
-use super::{Branch, Canonical, Planar, Raw, elbow_of, planar_2r};
+use super::canonical::Canonical;
+use super::planar::{Planar, elbow_of, planar_2r};
+use super::raw::Raw;
+use crate::ik::branch::Branch;
 
 /// Solves position and yaw. With `c_i = cos α_i` (±1) the frame-4 origin (the last
 /// row's a and α moved into the tool transform) is
