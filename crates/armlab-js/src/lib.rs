@@ -21,6 +21,7 @@ use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
 use armlab_api as api;
+#[cfg(feature = "urdf")]
 use armlab_text::Sentence;
 use armlab_text::echo::{self, Number};
 use armlab_text::{Key, Lang, fill, text};
