@@ -90,6 +90,15 @@ for dir in . crates/*; do
     fi
     fail "$f is in no test binary (add 'mod $name;' to its crate's test binary, or a [[test]] to its Cargo.toml)"
   done
+  # A folder with a main.rs is a test binary of its own; each file beside it is a module.
+  for main in "$dir"/tests/*/main.rs; do
+    [ -f "$main" ] || continue
+    for f in "$(dirname "$main")"/*.rs; do
+      name="$(basename "$f" .rs)"
+      [ "$name" = main ] || grep -qx "mod $name;" "$main" \
+        || fail "$f is in no test binary (add 'mod $name;' to $main)"
+    done
+  done
 done
 # The JS suites are folders, not lists of names, so a new test file runs without an edit
 # here: web/tests/*.test.mjs drive the built page in Chromium; web/tests/api/*.test.mjs

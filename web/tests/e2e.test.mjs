@@ -17,7 +17,7 @@ const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : p
 const shots = path.resolve(here, 'screenshots');
 const snapshot = path.resolve(here, '..', '..', 'tests', 'snapshots', 'ur10.png');
 const VIEW = { width: 1400, height: 860 };
-// The UI tests' snapshot shows this state at this size (tests/ui.rs).
+// The UI tests' snapshot shows this state at this size (tests/ui/basics.rs).
 const SNAPSHOT_HASH = '#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2';
 const measurements = {};
 
@@ -816,7 +816,7 @@ test('the workspace cloud fills a few milliseconds per frame; its benchmark runs
   assert.equal(s.workspace_samples, 20000, 'the cloud filled');
   // Each frame fills until its few milliseconds are spent. Since the sampler runs over
   // plain arrays the 20 000 samples can fit in one frame's budget; the slicing itself is
-  // checked with a controlled clock in tests/ui.rs (the workspace cloud test).
+  // checked with a controlled clock in tests/ui/overlays.rs (the workspace cloud test).
   const filling = frames.filter((f) => f.workspace > 0);
   assert.ok(filling.length >= 1, 'a frame filled the cloud');
   measurements.cloud_fill_frames_filling = filling.length;

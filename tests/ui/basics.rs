@@ -1,0 +1,343 @@
+//! Loading, dragging, bad input, the native session and file dialog, and the snapshots of the whole app.
+
+use super::*;
+
+#[test]
+fn moving_a_slider_changes_q_and_the_tool_pose_numbers() {
+    let mut h = harness("#robot=ur10&q=0,-1,1,-0.5,0.8,0.3");
+    let before_q = h.state().model().q().to_vec();
+    let before_x = tool_x(&h);
+    let shown = format!("{:.3}", before_x);
+    assert!(
+        h.query_all_by_label_contains(&shown).count() >= 1,
+        "T_0n shows x = {shown}"
+    );
+    // Focus the θ1 slider and press the right arrow a few times.
+    h.get_by_role_and_label(Role::Slider, "θ1").focus();
+    h.run_steps(1);
+    for _ in 0..5 {
+        h.key_press(egui::Key::ArrowRight);
+        h.run_steps(1);
+    }
+    let after_q = h.state().model().q().to_vec();
+    assert!(
+        after_q[0] > before_q[0] + 1e-3,
+        "θ1 grew: {} → {}",
+        before_q[0],
+        after_q[0]
+    );
+    assert_eq!(&after_q[1..], &before_q[1..], "only θ1 moved");
+    let after_x = tool_x(&h);
+    assert!((after_x - before_x).abs() > 1e-3);
+    let shown_after = format!("{:.3}", after_x);
+    assert!(
+        h.query_all_by_label_contains(&shown_after).count() >= 1,
+        "T_0n now shows x = {shown_after}"
+    );
+}
+
+#[test]
+fn choosing_a_preset_swaps_the_robot() {
+    let mut h = harness("");
+    assert_eq!(h.state().model().robot().name, "UR10");
+    h.get_by_label("Preset").click();
+    h.run_steps(2);
+    h.get_by_label("Puma 560").click();
+    h.run_steps(2);
+    let model = h.state().model();
+    assert_eq!(model.robot().name, "Puma 560");
+    // It opens at its own home pose and default task, the target on the new gripper.
+    assert_eq!(model.q(), model.robot().home().as_slice());
+    assert_eq!(model.task(), armlab_core::Task::FullPose);
+    assert_eq!(model.ik().reach, Reach::Reached);
+    // The matrices are the Puma's: at q = 0 (the Zero button) its T_06 has
+    // p = (0.4521, −0.15005, 1.10363) m with R = I.
+    h.get_by_label("Zero").click();
+    h.run_steps(2);
+    let model = h.state().model();
+    assert_eq!(model.q(), &[0.0; 6]);
+    let p = model.fk().tool_position();
+    assert!((p - nalgebra::Vector3::new(0.4521, -0.15005, 1.10363)).norm() < 1e-5);
+    let spec: [[f64; 4]; 3] = [
+        [1.0, 0.0, 0.0, 0.4521],
+        [0.0, 1.0, 0.0, -0.15005],
+        [0.0, 0.0, 1.0, 1.10363],
+    ];
+    // The matrix's text: each entry right-aligned in 10 characters, 3 decimals.
+    let rows = spec.map(|row| row.map(|v| format!("{v:>10.3}")).join(" "));
+    assert!(
+        h.query_all_by_label_contains(&rows[0]).any(|node| {
+            let label = node.accesskit_node().value().unwrap_or_default();
+            rows.iter().all(|row| label.contains(row))
+        }),
+        "T_06 shows the Puma's pose, row by row"
+    );
+}
+
+#[test]
+fn a_bad_dh_cell_shows_the_message_and_keeps_the_robot() {
+    let mut h = harness("#robot=rrr");
+    h.get_by_label("DH table (editable)").click();
+    h.run_steps(2);
+    let robot_before = h.state().model().robot().clone();
+    let q_before = h.state().model().q().to_vec();
+    // The cells are text inputs in table order: θ, d, a, α, min, max per joint.
+    let cells: Vec<_> = h.query_all_by_role(Role::TextInput).collect();
+    assert!(
+        cells.len() >= 18,
+        "three joints × six cells, found {}",
+        cells.len()
+    );
+    // Joint 2's "a" cell (222.1).
+    cells[6 + 2].focus();
+    drop(cells);
+    h.run_steps(1);
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.event(egui::Event::Text("12x".into()));
+    h.run_steps(3);
+    assert!(
+        h.query_by_label("Joint 2, a: \"12x\" is not a number.")
+            .is_some(),
+        "the message sits beside the cell"
+    );
+    assert_eq!(
+        h.state().model().robot(),
+        &robot_before,
+        "the last valid robot stays"
+    );
+    assert_eq!(h.state().model().q(), q_before.as_slice());
+
+    // A number the core rejects (reversed limits) gives the core's sentence.
+    let cells: Vec<_> = h.query_all_by_role(Role::TextInput).collect();
+    cells[6 + 2].focus();
+    drop(cells);
+    h.run_steps(1);
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.event(egui::Event::Text("300".into()));
+    h.run_steps(3);
+    assert_eq!(
+        h.state().robot_panel().editor().first_error(),
+        None,
+        "a valid cell applies live"
+    );
+    assert!((h.state().model().robot().joints[1].dh.a - 300.0).abs() < 1e-12);
+}
+
+#[test]
+fn dragging_the_target_moves_the_arm_toward_it() {
+    let mut h = harness("#robot=ur10&q=0,-1,1.2,-1.5,-1.2,0.3&task=position");
+    let start = h.state().points().get("target").expect("target on screen");
+    let tool_before = h.state().model().fk().tool_position();
+    let from = egui::pos2(start[0], start[1]);
+    h.event(egui::Event::PointerMoved(from));
+    h.run_steps(1);
+    h.event(egui::Event::PointerButton {
+        pos: from,
+        button: egui::PointerButton::Primary,
+        pressed: true,
+        modifiers: egui::Modifiers::NONE,
+    });
+    h.run_steps(1);
+    // Toward the base by a quarter of the way: a target the arm can reach.
+    let base = h.state().points().get("base").expect("base on screen");
+    let step = (egui::pos2(base[0], base[1]) - from) / 80.0;
+    let mut pos = from;
+    for _ in 0..20 {
+        pos += step;
+        h.event(egui::Event::PointerMoved(pos));
+        h.run_steps(1);
+    }
+    assert!(h.state().viewport().dragging(), "the ball was grabbed");
+    // Hold still: the IK keeps converging while the button is down.
+    h.run_steps(30);
+    h.event(egui::Event::PointerButton {
+        pos,
+        button: egui::PointerButton::Primary,
+        pressed: false,
+        modifiers: egui::Modifiers::NONE,
+    });
+    h.run_steps(2);
+    let model = h.state().model();
+    let target = model.target().translation.vector;
+    let tool = model.fk().tool_position();
+    assert!(
+        (target - tool_before).norm() > 30.0,
+        "the target moved ({:?})",
+        target - tool_before
+    );
+    assert!(
+        (tool - target).norm() < 1e-2,
+        "the tool followed: {:?} vs {:?}",
+        tool,
+        target
+    );
+    assert_eq!(model.ik().reach, Reach::Reached);
+    assert!(!h.state().viewport().dragging());
+}
+
+#[test]
+fn a_garbage_link_gives_a_message_and_the_default_robot() {
+    let h = harness("#robot=ur10&q=1,2,banana");
+    assert_eq!(h.state().model().robot().name, "UR10");
+    let message = h.state().model().message().expect("a message").clone();
+    assert_eq!(message.kind, MessageKind::Warning);
+    let message = message.text;
+    assert!(
+        message.contains("\"banana\", which is not a number"),
+        "{message}"
+    );
+    assert!(
+        h.query_by_label_contains("This link could not be opened")
+            .is_some()
+    );
+}
+
+#[test]
+fn ur10_snapshot_on_the_software_vulkan_adapter() {
+    let mut h = harness("#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2");
+    h.run_steps(2);
+    assert!(
+        h.state().viewport().rendered(),
+        "the wgpu scene renderer drew the viewport"
+    );
+    h.snapshot("ur10");
+}
+
+#[test]
+fn the_view_draws_a_pass_only_when_its_scene_changes_and_never_shows_a_stale_arm() {
+    let mut h = harness("#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2");
+    h.run_steps(2);
+    let first = view_pixels(&mut h);
+    let passes = h.state().viewport().scene_passes();
+    assert!(passes >= 1, "the scene was drawn");
+    // Frames with nothing new for the view (egui repaints after every event, and a
+    // pointer over a side panel changes only the panel) reuse the picture.
+    h.event(egui::Event::PointerMoved(egui::pos2(150.0, 300.0)));
+    h.run_steps(5);
+    assert_eq!(
+        h.state().viewport().scene_passes(),
+        passes,
+        "no pass for an unchanged scene"
+    );
+    assert!(
+        view_pixels(&mut h) == first,
+        "the reused picture is the same"
+    );
+    // A new q: the next frame draws the moved arm.
+    h.state_mut()
+        .model_mut()
+        .set_q(vec![0.9, -1.1, 1.3, -1.6, -1.4, 0.2]);
+    h.run_steps(1);
+    assert_eq!(
+        h.state().viewport().scene_passes(),
+        passes + 1,
+        "one pass for the new scene"
+    );
+    let moved = view_pixels(&mut h);
+    let changed = first
+        .chunks(4)
+        .zip(moved.chunks(4))
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(
+        changed > 500,
+        "the arm moved in the picture: {changed} pixels changed"
+    );
+    // Back to the first q: the picture is the first one again, pixel for pixel.
+    h.state_mut()
+        .model_mut()
+        .set_q(vec![0.4, -1.1, 1.3, -1.6, -1.4, 0.2]);
+    h.run_steps(3);
+    assert_eq!(h.state().viewport().scene_passes(), passes + 2);
+    assert!(view_pixels(&mut h) == first, "the first arm is drawn again");
+}
+
+#[test]
+fn metrover_snapshot_with_its_part_sizes() {
+    let mut h = harness("#robot=metrover&q=0.5,0.9,0.6,0.3,0.2&task=position");
+    h.run_steps(2);
+    assert_eq!(
+        h.state().model().robot().parts.base,
+        Some([600.0, 300.0, 340.0])
+    );
+    assert!(h.state().viewport().rendered());
+    h.snapshot("metrover");
+}
+
+#[test]
+fn the_native_file_dialog_saves_and_opens_a_robot_file() {
+    use armlab::app::panels::file_dialog::{FileDialog, Mode};
+    let dir = std::env::temp_dir().join(format!("armlab-ui-files-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp folder");
+    let mut h = harness("#robot=scara");
+    h.state_mut()
+        .robot_panel_mut()
+        .open_file_dialog(FileDialog::new(Mode::Save, "my scara", dir.clone()));
+    h.run_steps(2);
+    h.get_by_label("Save").click();
+    h.run_steps(2);
+    let saved = dir.join("my scara.json");
+    let text = std::fs::read_to_string(&saved).expect("the dialog wrote the file");
+    let robot = armlab_core::robot_from_json(&text).expect("a valid robot file");
+    assert_eq!(
+        &robot,
+        h.state().model().robot(),
+        "the file holds the whole robot"
+    );
+    assert!(
+        h.state().robot_panel().file_dialog().is_none(),
+        "the dialog closed"
+    );
+    let saved_message = h.state().model().message().expect("a message").clone();
+    assert_eq!(
+        saved_message.kind,
+        MessageKind::Info,
+        "{}",
+        saved_message.text
+    );
+
+    // Open it again from another robot: pick the file in the listing, then Open.
+    let mut h = harness("#robot=ur10");
+    h.state_mut()
+        .robot_panel_mut()
+        .open_file_dialog(FileDialog::new(Mode::Open, "", dir.clone()));
+    h.run_steps(2);
+    h.get_by_label("my scara.json").click();
+    h.run_steps(2);
+    h.get_by_label("Open").click();
+    h.run_steps(2);
+    assert_eq!(
+        h.state().model().robot(),
+        &robot,
+        "the reopened robot is the saved one, whole"
+    );
+    assert_eq!(h.state().model().q(), robot.home().as_slice());
+    std::fs::remove_dir_all(&dir).expect("clean up");
+}
+
+#[test]
+fn the_native_app_keeps_its_session_when_it_closes() {
+    let file =
+        std::env::temp_dir().join(format!("armlab-ui-session-{}/session", std::process::id()));
+    let mut h = harness("#robot=puma560&q=0.1,0.2,0.3,0.4,0.5,0.6");
+    h.state_mut().set_session_file(Some(file.clone()));
+    eframe::App::on_exit(h.state_mut());
+    let stored = std::fs::read_to_string(&file).expect("the session was written");
+    let reopened = Session::from_json(&stored).expect("the stored session reads");
+    assert_eq!(reopened.robot.name, "Puma 560");
+    assert_eq!(reopened.q, h.state().model().q());
+    // The next start opens it as it was; a stored session that cannot be read says so.
+    let mut app = ArmLabApp::with_session(Session::default_session());
+    app.open_stored(&stored);
+    assert_eq!(app.model().session(), h.state().model().session());
+    app.open_stored("{\"robot\": 5}");
+    assert_eq!(app.model().robot().name, "UR10");
+    let said = &app.model().message().expect("a message").text;
+    assert!(
+        said.contains("last session could not be reopened"),
+        "{said}"
+    );
+    if let Some(dir) = file.parent() {
+        std::fs::remove_dir_all(dir).expect("clean up");
+    }
+}

@@ -1,0 +1,207 @@
+//! The DH editor that keeps the arm, the DH-table exercise, predict then reveal, and robot files with keep-out boxes.
+
+use super::*;
+
+#[test]
+fn adding_or_removing_a_joint_in_the_dh_editor_keeps_the_other_joints_values() {
+    let mut h = harness("#robot=rrr&q=0.3,-0.4,0.5&panels=robot");
+    h.get_by_label("DH table (editable)").click();
+    h.run_steps(2);
+    h.get_by_label("+ Add joint").click();
+    h.run_steps(3);
+    let model = h.state().model();
+    assert_eq!(model.robot().dof(), 4);
+    assert_eq!(model.q(), &[0.3, -0.4, 0.5, 0.0], "the new joint at 0");
+    // The tool follows the kept pose: the RRR's first three joints where they were.
+    let rrr = armlab_core::preset("rrr").expect("a preset");
+    let before = armlab_core::ForwardKinematics::new(&rrr, &[0.3, -0.4, 0.5])
+        .expect("a pose")
+        .tool_position();
+    assert!((model.fk().tool_position() - before).norm() < 1e-9);
+    // Remove joint 2 (the × on its row): joints 1, 3 and 4 keep their values.
+    h.get_by_label("Remove joint 2").click_accesskit();
+    h.run_steps(3);
+    let model = h.state().model();
+    assert_eq!(model.robot().dof(), 3);
+    assert_eq!(model.q(), &[0.3, 0.5, 0.0]);
+    assert!(
+        (model.robot().joints[1].dh.a - 136.2).abs() < 1e-12,
+        "row 3 moved up"
+    );
+}
+
+#[test]
+fn the_dh_exercise_hides_the_table_and_names_the_joint_of_a_wrong_answer() {
+    let mut h = harness("#exercise=rrr&panels=robot,matrices&q=0.4,0.5,-0.9");
+    let hash = h.state().hash();
+    assert!(hash.starts_with("exercise=rrr&"), "{hash}");
+    assert!(!hash.contains("dh=") && !hash.contains("robot="), "{hash}");
+    assert!(h.state().model().table_hidden());
+    let hidden = "Hidden during the DH-table exercise";
+    assert!(
+        h.query_by_label_contains(hidden).is_some(),
+        "the matrices say why they are empty"
+    );
+    assert!(
+        h.query_by_label_contains("T_03").is_none(),
+        "no A_i or T_0i anywhere"
+    );
+    assert!(
+        h.query_by_label("RRR").is_none(),
+        "the preset's name does not show"
+    );
+    // The answer starts blank: 3 rows of zeros (+ its limits) in standard DH.
+    let answer = h.state().robot_panel().exercise().answer().clone();
+    assert_eq!(answer.rows.len(), 3);
+    // A wrong table: a2 = 222.1 written in row 1.
+    for (cell, text) in [(1, "100.9"), (3, "90"), (2, "222.1"), (12 + 2, "136.2")] {
+        type_into_cell(&mut h, cell, text);
+    }
+    h.get_by_label("Check").click();
+    h.run_steps(2);
+    let wrong = "Joint 2's frame is the first to disagree: the length a in row 1 belongs in column a of row 2.";
+    assert!(
+        h.query_by_label(wrong).is_some(),
+        "the verdict names joint 2"
+    );
+    assert!(h.state().model().table_hidden(), "still hidden");
+    h.snapshot("exercise_rrr_wrong");
+    // Move a2 to row 2: correct, and the table shows everywhere again.
+    type_into_cell(&mut h, 2, "0");
+    type_into_cell(&mut h, 6 + 2, "222.1");
+    h.get_by_label("Check").click();
+    h.run_steps(2);
+    assert!(
+        h.query_by_label_contains("Correct: your table gives the robot's tool pose")
+            .is_some()
+    );
+    assert!(!h.state().model().table_hidden());
+    assert!(h.query_by_label_contains(hidden).is_none());
+    assert!(
+        h.query_all_by_label_contains("T_03").count() > 0,
+        "the matrices are back"
+    );
+    assert!(
+        h.query_by_label("The robot's own table (standard (Spong)):")
+            .is_some()
+    );
+}
+
+#[test]
+fn a_mystery_exercise_draws_its_axes_and_fits_every_screen() {
+    for (size, min_share) in [
+        ([1024.0, 768.0], 0.5),
+        ([1280.0, 720.0], 0.5),
+        ([1366.0, 768.0], 0.5),
+        ([1920.0, 1080.0], 0.5),
+        ([820.0, 1180.0], 0.99),
+        ([390.0, 844.0], 0.99),
+    ] {
+        let h = harness_at("#exercise=mystery-42", size);
+        let share = view_share_and_points(&h, size[0]);
+        assert!(
+            share >= min_share,
+            "{size:?}: the view has {share} of the width"
+        );
+        assert!(h.state().model().table_hidden());
+    }
+    let mut h = harness_at("#exercise=mystery-42&panels=robot", [1366.0, 768.0]);
+    h.run_steps(2);
+    let model = h.state().model();
+    assert!((2..=6).contains(&model.robot().dof()));
+    assert!(model.hash().starts_with("exercise=mystery-42&"));
+    // What the view labels: every joint's axis and at least one length per joint.
+    let dims = armlab::app::view3d::exercise::dimensions(model.robot(), model.fk());
+    let lengths = dims.iter().filter(|d| d.length > 1e-6).count();
+    assert!(lengths >= model.robot().dof(), "{dims:?}");
+    h.snapshot("exercise_mystery_42");
+}
+
+#[test]
+fn predict_then_reveal_hides_entries_until_a_click_and_the_link_keeps_them() {
+    let mut h = harness_at(
+        "#robot=rrr&q=0.4,0.5,-0.9&present=on&ppanels=matrices&decimals=2&hide=Tn.34,J2",
+        [1024.0, 768.0],
+    );
+    h.run_steps(2);
+    let tool = h.state().model().fk().tool_position();
+    let z = format!("{:.2}", tool.z);
+    // T_0n's z and J's column 2 (six entries) are "?".
+    assert_eq!(h.query_all_by_label("?").count(), 7);
+    assert_eq!(h.query_all_by_label(&z).count(), 0, "z = {z} is hidden");
+    h.snapshot("predict_reveal_1024x768");
+    // A click reveals z (drawn first); "Hide again" puts it back.
+    h.get_all_by_label("?").next().expect("z's ?").click();
+    h.run_steps(2);
+    assert_eq!(h.query_all_by_label(&z).count(), 1, "z = {z} revealed");
+    assert_eq!(
+        h.query_all_by_label("?").count(),
+        6,
+        "the column stays hidden"
+    );
+    h.get_by_label("Hide again").click();
+    h.run_steps(2);
+    assert_eq!(h.query_all_by_label("?").count(), 7);
+    // Choosing: every number shows; a click on T_0n's y hides it too, and the link
+    // carries it.
+    h.get_by_label("Choose what to hide").click();
+    h.run_steps(2);
+    assert_eq!(
+        h.query_all_by_label(&z).count(),
+        1,
+        "z shows while choosing"
+    );
+    assert!(
+        h.state().points().get("hide-Tn").is_some(),
+        "T_0n's whole-matrix ?"
+    );
+    let y = format!("{:.2}", tool.y);
+    h.get_all_by_label(&y).next().expect("T_0n's y").click();
+    h.run_steps(2);
+    let hash = h.state().hash();
+    assert!(hash.contains("hide=Tn.24,Tn.34,J2"), "{hash}");
+    assert!(h.state().points().get("cell-Tn-2-4").is_some());
+    h.get_by_label("Choose what to hide").click();
+    h.run_steps(2);
+    assert_eq!(h.query_all_by_label("?").count(), 8);
+}
+
+/// A robot file with keep-out boxes sets the motion lab's boxes; a file with a bad box
+/// gets the file's sentence naming the box, and the last good robot and boxes stay.
+#[test]
+fn a_robot_file_brings_its_keep_out_boxes_and_a_bad_box_leaves_the_last_good_robot() {
+    use armlab::app::panels::robot::RobotPanel;
+    let mut model = Model::new(Session::for_preset("ur10").expect("a preset"));
+    let mut panel = RobotPanel::new(model.robot());
+    let ur10 = armlab_core::preset("ur10").expect("the UR10");
+    let mut file: serde_json::Value =
+        serde_json::from_str(&armlab_core::robot_to_json(&ur10)).expect("JSON");
+    file["name"] = "UR10 in a cell".into();
+    file["keep_out"] = serde_json::json!([{ "centre": [900, 0, 400], "size": [200, 400, 800] }]);
+    assert!(panel.load_robot_text(&mut model, &file.to_string()));
+    assert_eq!(model.robot().name, "UR10 in a cell");
+    let boxes = model.motion().keep_outs().to_vec();
+    assert_eq!(boxes.len(), 1);
+    assert_eq!(boxes[0].size, nalgebra::Vector3::new(200.0, 400.0, 800.0));
+    model.set_collisions_on(true);
+    assert_eq!(
+        model.motion().contact(),
+        Some("Contact: link 4 touches keep-out box 1."),
+        "the file's box is checked: the UR10's arm at home reaches into it"
+    );
+
+    file["name"] = "bad".into();
+    file["keep_out"][0]["size"] = serde_json::json!([200, -5, 800]);
+    assert!(!panel.load_robot_text(&mut model, &file.to_string()));
+    let message = model.message().expect("a message");
+    assert_eq!(message.kind, MessageKind::Error);
+    assert!(
+        message.text.ends_with(
+            "In keep-out box 1, the field \"size\" holds -5: a size cannot be negative."
+        ),
+        "{}",
+        message.text
+    );
+    assert_eq!(model.robot().name, "UR10 in a cell");
+    assert_eq!(model.motion().keep_outs(), &boxes[..]);
+}

@@ -1,0 +1,103 @@
+//! Each panel alone: it changes only what it asks the model for.
+
+use super::*;
+
+#[test]
+fn the_joints_panel_alone_changes_only_the_models_q() {
+    let mut h = alone("rrr", JointsPanel::default());
+    let before = h.state().model.q().to_vec();
+    let tool_before = h.state().model.fk().tool_position();
+    h.get_by_role_and_label(Role::Slider, "θ2").focus();
+    h.run_steps(1);
+    for _ in 0..4 {
+        h.key_press(egui::Key::ArrowRight);
+        h.run_steps(1);
+    }
+    let model = &h.state().model;
+    assert!(model.q()[1] > before[1] + 1e-3, "θ2 grew");
+    assert_eq!(model.q()[0], before[0]);
+    assert_eq!(model.q()[2], before[2]);
+    let fresh = armlab_core::tool_pose(model.robot(), model.q());
+    assert_eq!(
+        model.fk().base_from_tool,
+        fresh,
+        "the model recomputed FK at the new q"
+    );
+    assert!((model.fk().tool_position() - tool_before).norm() > 1e-3);
+    assert!(
+        h.state().points.get("slider-2-min").is_some(),
+        "the rail's ends are in the registry"
+    );
+    h.get_by_label("Home").click();
+    h.run_steps(2);
+    assert_eq!(
+        h.state().model.q(),
+        h.state().model.robot().home().as_slice()
+    );
+}
+
+#[test]
+fn the_ik_panel_alone_solves_and_replays_its_run() {
+    let mut h = alone("ur10", IkPanel::default());
+    let start = h.state().model.q().to_vec();
+    let mut target = *h.state().model.target();
+    target.translation.vector += nalgebra::Vector3::new(-120.0, 80.0, 60.0);
+    h.state_mut().model.set_target(target);
+    h.run_steps(1);
+    assert_eq!(h.state().model.ik().reach, Reach::Pending);
+    h.get_by_label("Solve").click();
+    h.run_steps(2);
+    let model = &h.state().model;
+    assert_eq!(model.ik().reach, Reach::Reached);
+    let tool = armlab_core::tool_pose(model.robot(), model.q());
+    assert!((tool.translation.vector - target.translation.vector).norm() < 1e-3);
+    let run = h
+        .state()
+        .panel
+        .replay()
+        .run
+        .clone()
+        .expect("the run is kept for replay");
+    assert!(
+        run.trace.len() > 2,
+        "{} iterations recorded",
+        run.trace.len()
+    );
+    // Back to the first iteration: the arm shows the q of that step.
+    h.get_by_role_and_label(Role::Slider, "iteration").focus();
+    h.run_steps(1);
+    for _ in 0..run.trace.len() {
+        h.key_press(egui::Key::ArrowLeft);
+        h.run_steps(1);
+    }
+    h.run_steps(1);
+    let q = h.state().model.q().to_vec();
+    assert_eq!(h.state().panel.replay().step, 0);
+    let first: Vec<f64> = run.trace[0].q.clone();
+    for (a, b) in q.iter().zip(&first) {
+        assert!((a - b).abs() < 1e-12, "{q:?} vs {first:?}");
+    }
+    let last = run.trace.last().expect("a trace").q.clone();
+    assert_ne!(q, last, "the replay moved the arm away from the answer");
+    assert_eq!(start.len(), q.len());
+}
+
+#[test]
+fn a_link_naming_only_the_robot_opens_its_default_task() {
+    let h = harness("#robot=metrover");
+    let model = h.state().model();
+    assert_eq!(
+        model.task(),
+        armlab_core::Task::Position,
+        "five joints: position only"
+    );
+    assert_eq!(model.q(), model.robot().home().as_slice());
+    let h = harness("#robot=panda");
+    assert_eq!(h.state().model().task(), armlab_core::Task::FullPose);
+    let h = harness("#robot=planar-2r&task=full");
+    assert_eq!(
+        h.state().model().task(),
+        armlab_core::Task::FullPose,
+        "a task the link names wins"
+    );
+}
