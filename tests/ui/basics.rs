@@ -326,10 +326,14 @@ fn the_native_app_keeps_its_session_when_it_closes() {
     let reopened = Session::from_json(&stored).expect("the stored session reads");
     assert_eq!(reopened.robot.name, "Puma 560");
     assert_eq!(reopened.q, h.state().model().q());
-    // The next start opens it as it was; a stored session that cannot be read says so.
+    // The next start opens it as it was (the target as a link keeps it: to 10⁻⁶); a stored
+    // session that cannot be read says so.
     let mut app = ArmLabApp::with_session(Session::default_session());
     app.open_stored(&stored);
-    assert_eq!(app.model().session(), h.state().model().session());
+    assert_eq!(app.stored_session(), stored);
+    let moved =
+        app.model().target().translation.vector - h.state().model().target().translation.vector;
+    assert!(moved.norm() < 1e-6, "the target moved by {moved:?}");
     app.open_stored("{\"robot\": 5}");
     assert_eq!(app.model().robot().name, "UR10");
     let said = &app.model().message().expect("a message").text;
