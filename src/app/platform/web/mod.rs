@@ -1,5 +1,9 @@
 //! The browser side: starting eframe on the canvas, the loading and error messages, the
-//! URL hash and localStorage, downloads and uploads, and the `window.armlab` test hook.
+//! URL hash and localStorage, and the `window.armlab` test hook; downloads and uploads are
+//! in [`files`], the lazily loaded modules in [`modules`].
+
+pub mod files;
+pub mod modules;
 
 use std::cell::{Cell, RefCell};
 
@@ -32,15 +36,6 @@ thread_local! {
     static STATE_WANTED: Cell<bool> = const { Cell::new(false) };
     /// Recent frame times for `window.armlab.frameTimes()`.
     static FRAMES: RefCell<Vec<crate::app::platform::clock::FrameTime>> = const { RefCell::new(Vec::new()) };
-    /// What picked or dropped files and URDF downloads gave, waiting for the next frame.
-    static FILE_EVENTS: RefCell<Vec<FileEvent>> = const { RefCell::new(Vec::new()) };
-    /// The URDF module's import: started by the first URDF file or download, kept for the
-    /// visit, forgotten when it failed (a later try fetches it again).
-    static URDF_MODULE: RefCell<Option<js_sys::Promise>> = const { RefCell::new(None) };
-    /// How many imports of the URDF module failed in this visit.
-    static MODULE_FAILURES: Cell<u32> = const { Cell::new(0) };
-    /// The collision check's side of the module: its `collide_parts` once loaded.
-    static COLLIDE: RefCell<CollideModule> = const { RefCell::new(CollideModule::Idle) };
     /// A hash the page asked the app to open (back/forward, `window.armlab.open`).
     static PENDING_HASH: RefCell<Option<String>> = const { RefCell::new(None) };
     /// The page's canvas, looked up once.
@@ -68,6 +63,11 @@ fn warn_on_failure<T>(result: Result<T, JsValue>, what: &str) {
     if let Err(e) = result {
         log::warn!("{what} failed: {e:?}");
     }
+}
+
+/// The interface language at the last frame.
+fn lang() -> armlab_text::Lang {
+    LANG.with(Cell::get)
 }
 
 fn wake() {
@@ -107,7 +107,7 @@ fn install_crash_screen() {
     let previous = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
         previous(info);
-        let lang = LANG.with(Cell::get);
+        let lang = lang();
         let what: String = info
             .payload()
             .downcast_ref::<&str>()
@@ -570,7 +570,7 @@ fn install_collision_benchmark(obj: &js_sys::Object) {
         let (mut colliding, start) = (0usize, crate::app::platform::clock::now_ms());
         for q in &qs {
             fk.update(&robot, q);
-            match checker.check_with(&robot, &fk, collide_parts) {
+            match checker.check_with(&robot, &fk, modules::collide_parts) {
                 Some(report) => colliding += usize::from(!report.is_free()),
                 None => return JsValue::NULL,
             }
@@ -622,339 +622,10 @@ fn install_hashchange(window: &web_sys::Window) {
     on_leave.forget();
 }
 
-/// Offers `text` as a download named `name` (a robot file: JSON).
-pub fn download(name: &str, text: &str) -> Result<(), String> {
-    download_typed(name, text, "application/json")
-}
-
-/// Offers `text` as a download named `name`, of the MIME type `mime`.
-fn download_typed(name: &str, text: &str, mime: &str) -> Result<(), String> {
-    let fail = |e: JsValue| format!("{e:?}");
-    let window = web_sys::window().ok_or("no window")?;
-    let document = window.document().ok_or("no document")?;
-    let parts = js_sys::Array::of1(&JsValue::from_str(text));
-    let bag = web_sys::BlobPropertyBag::new();
-    bag.set_type(mime);
-    let blob = web_sys::Blob::new_with_str_sequence_and_options(&parts, &bag).map_err(fail)?;
-    let url = web_sys::Url::create_object_url_with_blob(&blob).map_err(fail)?;
-    let a: web_sys::HtmlAnchorElement = document
-        .create_element("a")
-        .map_err(fail)?
-        .dyn_into()
-        .map_err(|_| "no anchor")?;
-    a.set_href(&url);
-    a.set_download(name);
-    a.click();
-    warn_on_failure(
-        web_sys::Url::revoke_object_url(&url),
-        "releasing the download's address",
-    );
-    Ok(())
-}
-
-/// What a picked or dropped file, or a URDF download, gave: the robot panel takes these
-/// with [`take_file_events`] on the next frame.
-#[derive(Debug, Clone, PartialEq)]
-pub enum FileEvent {
-    /// A robot file's text (JSON).
-    Robot(String),
-    /// The URDF module is being fetched (the visit's first URDF file or download).
-    UrdfLoading,
-    /// A URDF file made into a robot file by the URDF module.
-    Urdf {
-        /// The robot file (JSON).
-        robot: String,
-        /// How many mesh visuals the URDF file has (ArmLab draws its own parts).
-        meshes: usize,
-    },
-    /// A URDF file that gives no robot: the core's sentence naming the element.
-    UrdfRejected(String),
-    /// The URDF module could not be loaded: the browser's words.
-    UrdfUnavailable(String),
-    /// The robot was offered as a URDF download under this name.
-    UrdfSaved(String),
-    /// The URDF download failed: why.
-    UrdfSaveFailed(String),
-}
-
-fn push_file_event(event: FileEvent) {
-    FILE_EVENTS.with(|f| f.borrow_mut().push(event));
-    wake();
-}
-
-/// What files and URDF downloads gave since the last call, in order.
-pub fn take_file_events() -> Vec<FileEvent> {
-    FILE_EVENTS.with(|f| std::mem::take(&mut *f.borrow_mut()))
-}
-
 /// A thrown JS value's words: an `Error`'s message, or the value as text.
 fn js_error_text(e: &JsValue) -> String {
     e.dyn_ref::<js_sys::Error>()
         .map(|e| String::from(e.message()))
         .or_else(|| e.as_string())
         .unwrap_or_else(|| format!("{e:?}"))
-}
-
-/// The URDF module's glue, beside the page (tools/setup.sh, `build_urdf_module`).
-const URDF_MODULE_PATH: &str = "urdf/armlab_urdf.js";
-
-/// Starts importing the URDF module: its namespace once its wasm is instantiated.
-fn import_urdf_module() -> Result<js_sys::Promise, String> {
-    let base = web_sys::window()
-        .and_then(|w| w.document())
-        .and_then(|d| d.base_uri().ok().flatten())
-        .ok_or("no document")?;
-    let url =
-        web_sys::Url::new_with_base(URDF_MODULE_PATH, &base).map_err(|e| js_error_text(&e))?;
-    // A browser may keep a failed import of an address for the visit: a later try asks
-    // for another one.
-    let failed = MODULE_FAILURES.with(Cell::get);
-    if failed > 0 {
-        url.set_search(&format!("try={failed}"));
-    }
-    let url = url.href();
-    // A dynamic import, which a function body may hold; the absolute address leaves
-    // nothing to resolve against the caller.
-    let import = js_sys::Function::new_with_args(
-        "url",
-        "return import(url).then(function (m) { return m.default().then(function () { return m; }); });",
-    );
-    import
-        .call1(&JsValue::NULL, &url.into())
-        .map_err(|e| js_error_text(&e))?
-        .dyn_into::<js_sys::Promise>()
-        .map_err(|_| "the import gave no promise".to_string())
-}
-
-/// The URDF module, imported on the first call of the visit (`announce`: the robot panel
-/// says that it loads).
-async fn urdf_module(announce: bool) -> Result<JsValue, String> {
-    let started = URDF_MODULE.with(|m| m.borrow().clone());
-    let promise = match started {
-        Some(promise) => promise,
-        None => {
-            if announce {
-                push_file_event(FileEvent::UrdfLoading);
-            }
-            let promise = import_urdf_module()?;
-            URDF_MODULE.with(|m| *m.borrow_mut() = Some(promise.clone()));
-            promise
-        }
-    };
-    let loaded = wasm_bindgen_futures::JsFuture::from(promise).await;
-    loaded.map_err(|e| {
-        URDF_MODULE.with(|m| *m.borrow_mut() = None);
-        MODULE_FAILURES.with(|f| f.set(f.get() + 1));
-        js_error_text(&e)
-    })
-}
-
-/// Calls the URDF module's function `name` with text arguments; its text answer, or what
-/// it threw.
-fn call_urdf_module(module: &JsValue, name: &str, args: &[&str]) -> Result<String, String> {
-    let function: js_sys::Function = js_sys::Reflect::get(module, &name.into())
-        .map_err(|e| js_error_text(&e))?
-        .dyn_into()
-        .map_err(|_| format!("the URDF module has no {name}"))?;
-    let args: js_sys::Array = args.iter().map(|a| JsValue::from_str(a)).collect();
-    let answer = function
-        .apply(&JsValue::NULL, &args)
-        .map_err(|e| js_error_text(&e))?;
-    answer
-        .as_string()
-        .ok_or_else(|| format!("{name} gave no text"))
-}
-
-/// A URDF text through the URDF module, in the interface's language.
-async fn import_urdf(text: String) {
-    let lang = LANG.with(Cell::get).id();
-    let event = match urdf_module(true).await {
-        Err(e) => FileEvent::UrdfUnavailable(e),
-        Ok(module) => match call_urdf_module(&module, "urdf_import", &[&text, lang]) {
-            Err(sentence) => FileEvent::UrdfRejected(sentence),
-            Ok(answer) => {
-                let value: serde_json::Value =
-                    serde_json::from_str(&answer).unwrap_or(serde_json::Value::Null);
-                match (
-                    value.get("robot"),
-                    value.get("meshes").and_then(|m| m.as_u64()),
-                ) {
-                    (Some(robot), Some(meshes)) => FileEvent::Urdf {
-                        robot: robot.to_string(),
-                        meshes: usize::try_from(meshes).unwrap_or(usize::MAX),
-                    },
-                    _ => FileEvent::UrdfUnavailable(format!(
-                        "urdf_import answered {}",
-                        armlab_text::echo::text_within(&answer, 40)
-                    )),
-                }
-            }
-        },
-    };
-    push_file_event(event);
-}
-
-/// Offers the robot (its robot file, JSON) as a URDF download named `name` once the URDF
-/// module is there; the outcome arrives as a [`FileEvent`].
-pub fn download_urdf(name: String, robot: String) {
-    wasm_bindgen_futures::spawn_local(async move {
-        let event = match urdf_module(true).await {
-            Err(e) => FileEvent::UrdfUnavailable(e),
-            Ok(module) => match call_urdf_module(&module, "robot_to_urdf", &[&robot])
-                .and_then(|text| download_typed(&name, &text, "application/xml"))
-            {
-                Ok(()) => FileEvent::UrdfSaved(name),
-                Err(e) => FileEvent::UrdfSaveFailed(e),
-            },
-        };
-        push_file_event(event);
-    });
-}
-
-/// Whether a file is URDF: named `.urdf`, or XML (a robot file is JSON and starts with
-/// `{`).
-fn is_urdf(name: &str, text: &str) -> bool {
-    let named = std::path::Path::new(name)
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("urdf"));
-    named
-        || text
-            .trim_start_matches('\u{feff}')
-            .trim_start()
-            .starts_with('<')
-}
-
-/// A picked or dropped file's text: a URDF file goes through the URDF module first.
-fn receive_file(name: &str, text: String) {
-    if is_urdf(name, &text) {
-        wasm_bindgen_futures::spawn_local(import_urdf(text));
-    } else {
-        push_file_event(FileEvent::Robot(text));
-    }
-}
-
-/// Opens the browser's file chooser for a robot file (`.json`) or a URDF file (`.urdf`);
-/// what the chosen file gives arrives through [`take_file_events`] on a later frame.
-pub fn open_file_chooser() {
-    let Some(document) = web_sys::window().and_then(|w| w.document()) else {
-        return;
-    };
-    let Ok(input) = document.create_element("input") else {
-        return;
-    };
-    let Ok(input) = input.dyn_into::<web_sys::HtmlInputElement>() else {
-        return;
-    };
-    input.set_type("file");
-    input.set_accept(".json,.urdf,application/json");
-    let reader_input = input.clone();
-    let on_change = Closure::<dyn Fn()>::new(move || {
-        let Some(file) = reader_input.files().and_then(|f| f.get(0)) else {
-            return;
-        };
-        let name = file.name();
-        let promise = file.text();
-        wasm_bindgen_futures::spawn_local(async move {
-            if let Ok(text) = wasm_bindgen_futures::JsFuture::from(promise).await
-                && let Some(text) = text.as_string()
-            {
-                receive_file(&name, text);
-            }
-        });
-    });
-    input.set_onchange(Some(on_change.as_ref().unchecked_ref()));
-    on_change.forget();
-    input.click();
-}
-
-/// Reads a file dropped on the page; what it gives arrives through [`take_file_events`].
-pub fn read_dropped_file(file: egui::DroppedFileHandle) {
-    wasm_bindgen_futures::spawn_local(async move {
-        if let Ok(bytes) = file.bytes_async().await {
-            let name = file.path().to_string_lossy().into_owned();
-            receive_file(&name, String::from_utf8_lossy(&bytes).into_owned());
-        }
-    });
-}
-
-/// The collision check's use of the module (dist/urdf/, which holds the collision
-/// library; the page's own wasm does not).
-enum CollideModule {
-    /// Not asked for yet (or failed, and the checks went on again).
-    Idle,
-    /// Being fetched.
-    Loading,
-    /// Loaded: its `collide_parts`.
-    Ready(js_sys::Function),
-    /// Could not be loaded, or its check threw: the words.
-    Failed(String),
-}
-
-/// Starts loading the module for the collision check.
-fn load_collision_module() {
-    COLLIDE.with(|c| *c.borrow_mut() = CollideModule::Loading);
-    wasm_bindgen_futures::spawn_local(async {
-        let state = match urdf_module(false).await.and_then(|m| {
-            js_sys::Reflect::get(&m, &"collide_parts".into())
-                .ok()
-                .and_then(|f| f.dyn_into::<js_sys::Function>().ok())
-                .ok_or_else(|| "the module has no collide_parts".to_string())
-        }) {
-            Ok(f) => CollideModule::Ready(f),
-            Err(e) => CollideModule::Failed(e),
-        };
-        COLLIDE.with(|c| *c.borrow_mut() = state);
-        wake();
-    });
-}
-
-/// Checks `parts` in the module (synchronously once it is loaded; the first call of the
-/// visit starts loading it and answers `None`, as every call does until it is there).
-pub fn collide_parts(
-    checker: &armlab_core::collision::CollisionChecker,
-    parts: &[armlab_core::parts::Part],
-    tolerance: f64,
-) -> Option<armlab_core::collision::CollisionReport> {
-    use armlab_core::collision_wire::{decode_report, encode_request};
-    let function = COLLIDE.with(|c| match &*c.borrow() {
-        CollideModule::Ready(f) => Some(f.clone()),
-        _ => None,
-    });
-    let Some(function) = function else {
-        if COLLIDE.with(|c| matches!(*c.borrow(), CollideModule::Idle)) {
-            load_collision_module();
-        }
-        return None;
-    };
-    let request = encode_request(parts, tolerance, checker.floor, checker.keep_outs());
-    let answer = function
-        .call1(&JsValue::NULL, &js_sys::Float64Array::from(&request[..]))
-        .map_err(|e| js_error_text(&e))
-        .and_then(|a| {
-            let numbers = js_sys::Float64Array::new(&a).to_vec();
-            decode_report(&numbers, parts.len()).map_err(|e| e.to_string())
-        });
-    answer
-        .map_err(|e| COLLIDE.with(|c| *c.borrow_mut() = CollideModule::Failed(e)))
-        .ok()
-}
-
-/// The collision module's state for the Motion panel.
-pub fn collision_module_state() -> crate::app::platform::checker::CheckerState {
-    use crate::app::platform::checker::CheckerState;
-    COLLIDE.with(|c| match &*c.borrow() {
-        CollideModule::Ready(_) => CheckerState::Ready,
-        CollideModule::Idle | CollideModule::Loading => CheckerState::Loading,
-        CollideModule::Failed(e) => CheckerState::Failed(e.clone()),
-    })
-}
-
-/// After a failure: the next check fetches the module again.
-pub fn retry_collision_module() {
-    COLLIDE.with(|c| {
-        let mut c = c.borrow_mut();
-        if matches!(*c, CollideModule::Failed(_)) {
-            *c = CollideModule::Idle;
-        }
-    });
 }
