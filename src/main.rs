@@ -34,5 +34,5 @@ fn main() -> eframe::Result {
 
 #[cfg(target_arch = "wasm32")]
 fn main() {
-    armlab::app::platform::web::start();
+    armlab::app::page::start();
 }

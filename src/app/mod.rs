@@ -19,6 +19,8 @@
 #![deny(clippy::too_many_lines)]
 
 pub mod hook;
+#[cfg(target_arch = "wasm32")]
+pub mod page;
 pub mod panels;
 pub mod platform;
 pub mod screen_points;
@@ -329,11 +331,11 @@ impl ArmLabApp {
         // Last, once every text of the frame has its glyphs in the font atlas.
         matrices::finish_numbers(&ctx);
         #[cfg(target_arch = "wasm32")]
-        platform::web::store_hash(self, &ctx);
+        page::store_hash(self, &ctx);
         self.record_frame_time(clock::now_ms() - start);
         // The browser tests' hook, outside the frame's own time (`FrameTime::hook_ms`).
         #[cfg(target_arch = "wasm32")]
-        platform::web::publish(self, &ctx);
+        page::publish(self, &ctx);
     }
 
     /// The keyboard shortcuts (none while a text field has the keyboard): F frames the

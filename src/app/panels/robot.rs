@@ -99,8 +99,12 @@ impl RobotPanel {
     /// in; a bad one gets the robot file's message with the core's sentence, and the
     /// robot stays.
     #[cfg(target_arch = "wasm32")]
-    fn file_event(&mut self, model: &mut Model, event: crate::app::platform::web::FileEvent) {
-        use crate::app::platform::web::FileEvent;
+    fn file_event(
+        &mut self,
+        model: &mut Model,
+        event: crate::app::platform::web::files::FileEvent,
+    ) {
+        use crate::app::platform::web::files::FileEvent;
         let message = match event {
             FileEvent::Robot(text) => {
                 self.load_robot_text(model, &text);
@@ -180,7 +184,7 @@ impl RobotPanel {
                 if save.clicked() {
                     let text = robot_to_json(model.robot());
                     let name = robot_file_name(model.robot());
-                    let message = match crate::app::platform::web::download(&name, &text) {
+                    let message = match crate::app::platform::web::files::download(&name, &text) {
                         Ok(()) => Message::info(trf(model, Key::SavedDownload, &[&name])),
                         Err(e) => Message::error(trf(model, Key::DownloadFailed, &[&e])),
                     };
@@ -193,12 +197,15 @@ impl RobotPanel {
                 points.insert("robot-urdf", urdf.rect.center());
                 if urdf.clicked() {
                     let name = robot_file_name(model.robot()).replace(".json", ".urdf");
-                    crate::app::platform::web::download_urdf(name, robot_to_json(model.robot()));
+                    crate::app::platform::web::files::download_urdf(
+                        name,
+                        robot_to_json(model.robot()),
+                    );
                 }
                 let load = ui.button(tr(model, Key::LoadRobotFile));
                 points.insert("robot-load", load.rect.center());
                 if load.clicked() {
-                    crate::app::platform::web::open_file_chooser();
+                    crate::app::platform::web::files::open_file_chooser();
                 }
             }
             #[cfg(not(target_arch = "wasm32"))]
@@ -238,10 +245,10 @@ impl RobotPanel {
                 }
             }
             #[cfg(target_arch = "wasm32")]
-            crate::app::platform::web::read_dropped_file(file);
+            crate::app::platform::web::files::read_dropped_file(file);
         }
         #[cfg(target_arch = "wasm32")]
-        for event in crate::app::platform::web::take_file_events() {
+        for event in crate::app::platform::web::files::take_file_events() {
             self.file_event(model, event);
         }
     }

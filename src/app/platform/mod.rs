@@ -1,6 +1,6 @@
 //! The web and the native side of the app: its clock, whether the collision checker has
-//! loaded, the page's start-up, storage, downloads and lazily
-//! loaded module.
+//! loaded, and in the page its message box, storage, the test hook, files and the lazily
+//! loaded modules. Nothing here imports the app above it.
 
 pub mod checker;
 pub mod clock;

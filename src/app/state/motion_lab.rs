@@ -250,7 +250,7 @@ impl MotionLab {
         #[cfg(target_arch = "wasm32")]
         if on && !self.collisions.on {
             // A module that failed to load is fetched again when the checks go on again.
-            crate::app::platform::web::retry_collision_module();
+            crate::app::platform::web::modules::retry_collision_module();
         }
         self.collisions.on = on;
         self.collisions.checked_q.clear();
@@ -370,7 +370,7 @@ fn check_parts(
 ) -> Option<CollisionReport> {
     #[cfg(target_arch = "wasm32")]
     {
-        crate::app::platform::web::collide_parts(checker, parts, tolerance)
+        crate::app::platform::web::modules::collide_parts(checker, parts, tolerance)
     }
     #[cfg(not(target_arch = "wasm32"))]
     {
@@ -382,7 +382,7 @@ fn check_parts(
 pub fn checker_state() -> CheckerState {
     #[cfg(target_arch = "wasm32")]
     {
-        crate::app::platform::web::collision_module_state()
+        crate::app::platform::web::modules::collision_module_state()
     }
     #[cfg(not(target_arch = "wasm32"))]
     {

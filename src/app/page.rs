@@ -1,0 +1,123 @@
+//! The app in the page: starting [`ArmLabApp`] on the canvas with the browser's
+//! preferences, and each frame keeping its link and session (the address bar,
+//! localStorage) and publishing it for `window.armlab`. The page's side of each lives in
+//! [`crate::app::platform::web`], which knows no app.
+
+use wasm_bindgen::JsCast;
+
+use crate::app::platform::clock::now_ms;
+use crate::app::platform::web::{self, hook, storage};
+use crate::app::{ArmLabApp, Preferences};
+
+/// Starts the app on `#armlab_canvas`; replaces the loading text by the app, or by a
+/// sentence when the browser has no WebGL2 (the page draws through wgpu's WebGL2 backend).
+pub fn start() {
+    eframe::WebLogger::init(log::LevelFilter::Warn).ok();
+    wasm_bindgen_futures::spawn_local(async {
+        let Some(window) = web_sys::window() else {
+            return;
+        };
+        let Some(canvas) = window
+            .document()
+            .and_then(|d| d.get_element_by_id("armlab_canvas"))
+            .and_then(|e| e.dyn_into::<web_sys::HtmlCanvasElement>().ok())
+        else {
+            web::set_message("ArmLab could not find its canvas on this page.", true);
+            return;
+        };
+        let hash = window.location().hash().unwrap_or_default();
+        let stored = storage::stored_session(&window);
+        // A link wins; without one, the last session returns.
+        let opening = if hash.trim_start_matches('#').is_empty() {
+            stored
+        } else {
+            hash
+        };
+        let options = eframe::WebOptions {
+            // eframe listens to touchmove on the document, where browsers make listeners
+            // passive: preventing a pointer move's default there only logs "Unable to
+            // preventDefault inside passive event listener". The canvas's CSS
+            // `touch-action: none` already keeps the page from scrolling or zooming.
+            should_prevent_default: Box::new(|e| !matches!(e, egui::Event::PointerMoved(_))),
+            ..eframe::WebOptions::default()
+        };
+        let preferences = browser_preferences(&window);
+        // WebRunner::new installs eframe's panic hook; ours runs after it.
+        let runner = eframe::WebRunner::new();
+        web::install_crash_screen();
+        let result = runner
+            .start(
+                canvas,
+                options,
+                Box::new(move |cc| Ok(Box::new(ArmLabApp::new_with(cc, &opening, preferences)))),
+            )
+            .await;
+        match result {
+            Ok(()) => {
+                web::set_message("", false);
+                hook::install(&window);
+                storage::install_hashchange(&window);
+            }
+            Err(e) => {
+                let detail = e.as_string().unwrap_or_else(|| format!("{e:?}"));
+                web::set_message(
+                    &format!(
+                        "ArmLab needs WebGL2 to draw the robot, and this browser does not offer it \
+                         (or has it switched off). Try a current Chrome, Edge, Firefox or Safari, or enable \
+                         hardware acceleration. Details: {detail}"
+                    ),
+                    true,
+                );
+            }
+        }
+    });
+}
+
+/// The browser's languages (`navigator.languages`) and whether its main pointer is a
+/// finger (`(pointer: coarse)`).
+fn browser_preferences(window: &web_sys::Window) -> Preferences {
+    let navigator = window.navigator();
+    let tags: Vec<String> = navigator
+        .languages()
+        .iter()
+        .filter_map(|v| v.as_string())
+        .chain(navigator.language())
+        .collect();
+    let touch = window
+        .match_media("(pointer: coarse)")
+        .ok()
+        .flatten()
+        .is_some_and(|m| m.matches());
+    Preferences {
+        lang: armlab_text::Lang::from_tags(tags.iter().map(String::as_str)),
+        touch,
+    }
+}
+
+/// Keeps the app's link in the address bar and its session in localStorage, at the pace
+/// [`storage::store`] describes (the hash is built only when it may be written).
+pub fn store_hash(app: &ArmLabApp, ctx: &egui::Context) {
+    storage::store(|| app.hash(), app.model().robot_changes(), ctx);
+}
+
+/// Publishes the state and screen points for `window.armlab`, and opens a hash the page
+/// asked for; its own time goes into the frame's
+/// [`crate::app::platform::clock::FrameTime::hook_ms`].
+pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
+    let start = now_ms();
+    web::remember_frame(ctx, app.model().settings().lang);
+    hook::panic_if_asked();
+    if let Some(hash) = storage::take_pending_hash() {
+        app.open_hash(&hash);
+    }
+    let app = &*app;
+    hook::publish(
+        ctx,
+        || app.state_json(),
+        app.points().all(),
+        app.viewport().rect(),
+        app.viewport().rendered(),
+        app.frame_times().back().copied(),
+        start,
+    );
+}

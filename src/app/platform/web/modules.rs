@@ -1,0 +1,174 @@
+//! The lazily loaded modules: the URDF module (fetched by the visit's first URDF file or
+//! download) and the collision check's use of it (dist/urdf/ holds the collision library;
+//! the page's own wasm does not), with its state and retry.
+
+use std::cell::{Cell, RefCell};
+
+use wasm_bindgen::JsCast;
+use wasm_bindgen::prelude::*;
+
+use super::{js_error_text, wake};
+
+thread_local! {
+    /// The URDF module's import: started by the first URDF file or download, kept for the
+    /// visit, forgotten when it failed (a later try fetches it again).
+    static URDF_MODULE: RefCell<Option<js_sys::Promise>> = const { RefCell::new(None) };
+    /// How many imports of the URDF module failed in this visit.
+    static MODULE_FAILURES: Cell<u32> = const { Cell::new(0) };
+    /// The collision check's side of the module: its `collide_parts` once loaded.
+    static COLLIDE: RefCell<CollideModule> = const { RefCell::new(CollideModule::Idle) };
+}
+
+/// The URDF module's glue, beside the page (tools/setup.sh, `build_urdf_module`).
+const URDF_MODULE_PATH: &str = "urdf/armlab_urdf.js";
+
+/// Starts importing the URDF module: its namespace once its wasm is instantiated.
+fn import_urdf_module() -> Result<js_sys::Promise, String> {
+    let base = web_sys::window()
+        .and_then(|w| w.document())
+        .and_then(|d| d.base_uri().ok().flatten())
+        .ok_or("no document")?;
+    let url =
+        web_sys::Url::new_with_base(URDF_MODULE_PATH, &base).map_err(|e| js_error_text(&e))?;
+    // A browser may keep a failed import of an address for the visit: a later try asks
+    // for another one.
+    let failed = MODULE_FAILURES.with(Cell::get);
+    if failed > 0 {
+        url.set_search(&format!("try={failed}"));
+    }
+    let url = url.href();
+    // A dynamic import, which a function body may hold; the absolute address leaves
+    // nothing to resolve against the caller.
+    let import = js_sys::Function::new_with_args(
+        "url",
+        "return import(url).then(function (m) { return m.default().then(function () { return m; }); });",
+    );
+    import
+        .call1(&JsValue::NULL, &url.into())
+        .map_err(|e| js_error_text(&e))?
+        .dyn_into::<js_sys::Promise>()
+        .map_err(|_| "the import gave no promise".to_string())
+}
+
+/// The URDF module, imported on the first call of the visit (`on_import` runs when this
+/// call starts the import: the robot panel says that it loads).
+pub(super) async fn urdf_module(on_import: impl FnOnce()) -> Result<JsValue, String> {
+    let started = URDF_MODULE.with(|m| m.borrow().clone());
+    let promise = match started {
+        Some(promise) => promise,
+        None => {
+            on_import();
+            let promise = import_urdf_module()?;
+            URDF_MODULE.with(|m| *m.borrow_mut() = Some(promise.clone()));
+            promise
+        }
+    };
+    let loaded = wasm_bindgen_futures::JsFuture::from(promise).await;
+    loaded.map_err(|e| {
+        URDF_MODULE.with(|m| *m.borrow_mut() = None);
+        MODULE_FAILURES.with(|f| f.set(f.get() + 1));
+        js_error_text(&e)
+    })
+}
+
+/// Calls the URDF module's function `name` with text arguments; its text answer, or what
+/// it threw.
+pub(super) fn call_urdf_module(
+    module: &JsValue,
+    name: &str,
+    args: &[&str],
+) -> Result<String, String> {
+    let function: js_sys::Function = js_sys::Reflect::get(module, &name.into())
+        .map_err(|e| js_error_text(&e))?
+        .dyn_into()
+        .map_err(|_| format!("the URDF module has no {name}"))?;
+    let args: js_sys::Array = args.iter().map(|a| JsValue::from_str(a)).collect();
+    let answer = function
+        .apply(&JsValue::NULL, &args)
+        .map_err(|e| js_error_text(&e))?;
+    answer
+        .as_string()
+        .ok_or_else(|| format!("{name} gave no text"))
+}
+
+/// The collision check's use of the module (dist/urdf/, which holds the collision
+/// library; the page's own wasm does not).
+enum CollideModule {
+    /// Not asked for yet (or failed, and the checks went on again).
+    Idle,
+    /// Being fetched.
+    Loading,
+    /// Loaded: its `collide_parts`.
+    Ready(js_sys::Function),
+    /// Could not be loaded, or its check threw: the words.
+    Failed(String),
+}
+
+/// Starts loading the module for the collision check.
+fn load_collision_module() {
+    COLLIDE.with(|c| *c.borrow_mut() = CollideModule::Loading);
+    wasm_bindgen_futures::spawn_local(async {
+        let state = match urdf_module(|| ()).await.and_then(|m| {
+            js_sys::Reflect::get(&m, &"collide_parts".into())
+                .ok()
+                .and_then(|f| f.dyn_into::<js_sys::Function>().ok())
+                .ok_or_else(|| "the module has no collide_parts".to_string())
+        }) {
+            Ok(f) => CollideModule::Ready(f),
+            Err(e) => CollideModule::Failed(e),
+        };
+        COLLIDE.with(|c| *c.borrow_mut() = state);
+        wake();
+    });
+}
+
+/// Checks `parts` in the module (synchronously once it is loaded; the first call of the
+/// visit starts loading it and answers `None`, as every call does until it is there).
+pub fn collide_parts(
+    checker: &armlab_core::collision::CollisionChecker,
+    parts: &[armlab_core::parts::Part],
+    tolerance: f64,
+) -> Option<armlab_core::collision::CollisionReport> {
+    use armlab_core::collision_wire::{decode_report, encode_request};
+    let function = COLLIDE.with(|c| match &*c.borrow() {
+        CollideModule::Ready(f) => Some(f.clone()),
+        _ => None,
+    });
+    let Some(function) = function else {
+        if COLLIDE.with(|c| matches!(*c.borrow(), CollideModule::Idle)) {
+            load_collision_module();
+        }
+        return None;
+    };
+    let request = encode_request(parts, tolerance, checker.floor, checker.keep_outs());
+    let answer = function
+        .call1(&JsValue::NULL, &js_sys::Float64Array::from(&request[..]))
+        .map_err(|e| js_error_text(&e))
+        .and_then(|a| {
+            let numbers = js_sys::Float64Array::new(&a).to_vec();
+            decode_report(&numbers, parts.len()).map_err(|e| e.to_string())
+        });
+    answer
+        .map_err(|e| COLLIDE.with(|c| *c.borrow_mut() = CollideModule::Failed(e)))
+        .ok()
+}
+
+/// The collision module's state for the Motion panel.
+pub fn collision_module_state() -> crate::app::platform::checker::CheckerState {
+    use crate::app::platform::checker::CheckerState;
+    COLLIDE.with(|c| match &*c.borrow() {
+        CollideModule::Ready(_) => CheckerState::Ready,
+        CollideModule::Idle | CollideModule::Loading => CheckerState::Loading,
+        CollideModule::Failed(e) => CheckerState::Failed(e.clone()),
+    })
+}
+
+/// After a failure: the next check fetches the module again.
+pub fn retry_collision_module() {
+    COLLIDE.with(|c| {
+        let mut c = c.borrow_mut();
+        if matches!(*c, CollideModule::Failed(_)) {
+            *c = CollideModule::Idle;
+        }
+    });
+}
