@@ -25,14 +25,9 @@ pub fn start() {
             web::set_message("ArmLab could not find its canvas on this page.", true);
             return;
         };
-        let hash = window.location().hash().unwrap_or_default();
-        let stored = storage::stored_session(&window);
         // A link wins; without one, the last session returns.
-        let opening = if hash.trim_start_matches('#').is_empty() {
-            stored
-        } else {
-            hash
-        };
+        let link = window.location().hash().unwrap_or_default();
+        let stored = storage::stored_session(&window);
         let options = eframe::WebOptions {
             // eframe listens to touchmove on the document, where browsers make listeners
             // passive: preventing a pointer move's default there only logs "Unable to
@@ -49,7 +44,10 @@ pub fn start() {
             .start(
                 canvas,
                 options,
-                Box::new(move |cc| Ok(Box::new(ArmLabApp::new_with(cc, &opening, preferences)))),
+                Box::new(move |cc| {
+                    let app = ArmLabApp::new_with(cc, &link, Some(&stored), preferences);
+                    Ok(Box::new(app))
+                }),
             )
             .await;
         match result {
@@ -97,7 +95,12 @@ fn browser_preferences(window: &web_sys::Window) -> Preferences {
 /// Keeps the app's link in the address bar and its session in localStorage, at the pace
 /// [`storage::store`] describes (the hash is built only when it may be written).
 pub fn store_hash(app: &ArmLabApp, ctx: &egui::Context) {
-    storage::store(|| app.hash(), app.model().robot_changes(), ctx);
+    storage::store(
+        || app.hash(),
+        || app.stored_session(),
+        app.model().robot_changes(),
+        ctx,
+    );
 }
 
 /// Publishes the state and screen points for `window.armlab`, and opens a hash the page

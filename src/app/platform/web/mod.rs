@@ -18,8 +18,6 @@ use std::cell::{Cell, RefCell};
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
-use storage::STORAGE_KEY;
-
 thread_local! {
     /// The page's canvas, looked up once.
     static CANVAS: RefCell<Option<Option<web_sys::HtmlCanvasElement>>> = const { RefCell::new(None) };
@@ -123,10 +121,11 @@ fn show_crash(sentence: &str, reload: &str) {
     };
     button.set_id("armlab_reload");
     button.set_text_content(Some(reload));
-    let restore = js_sys::Function::new_no_args(&format!(
-        "var s = null; try {{ s = localStorage.getItem('{STORAGE_KEY}'); }} catch (e) {{}} \
-         if (s) history.replaceState(null, '', '#' + s); location.reload();"
-    ));
+    // Without a link the page opens the session in localStorage, which is newer than the
+    // address bar (written at most four times a second, and not while a pointer is held).
+    let restore = js_sys::Function::new_no_args(
+        "history.replaceState(null, '', location.pathname + location.search); location.reload();",
+    );
     if let Some(button) = button.dyn_ref::<web_sys::HtmlElement>() {
         button.set_onclick(Some(&restore));
     }

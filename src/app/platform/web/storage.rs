@@ -1,7 +1,8 @@
 //! The address bar and localStorage: the link written as the state changes (at a pace a
-//! drag can afford), the session kept for a reload, and the links the page navigates to.
+//! drag can afford), the session kept for a reload as its JSON, and the links the page
+//! navigates to.
 
-use std::cell::{Cell, RefCell};
+use std::cell::{Cell, OnceCell, RefCell};
 
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
@@ -9,16 +10,16 @@ use wasm_bindgen::prelude::*;
 use super::{wake, warn_on_failure};
 use crate::app::platform::clock::now_ms;
 
-/// The localStorage key of the last session (the crash screen's Reload reads it too).
-pub(super) const STORAGE_KEY: &str = "armlab.session";
+/// The localStorage key of the last session (its JSON).
+const STORAGE_KEY: &str = "armlab.session";
 
 thread_local! {
     /// A hash the page asked the app to open (back/forward, `window.armlab.open`).
     static PENDING_HASH: RefCell<Option<String>> = const { RefCell::new(None) };
     /// The hash last written to the address bar and localStorage, and when.
     static STORED: RefCell<(String, f64)> = const { RefCell::new((String::new(), f64::NEG_INFINITY)) };
-    /// A changed hash waiting for its turn to be written.
-    static PENDING_STORE: RefCell<Option<String>> = const { RefCell::new(None) };
+    /// A changed hash waiting for its turn to be written, with its session's JSON.
+    static PENDING_STORE: RefCell<Option<(String, String)>> = const { RefCell::new(None) };
     /// The hash last written to localStorage, and when.
     static SAVED: RefCell<(String, f64)> = const { RefCell::new((String::new(), f64::NEG_INFINITY)) };
     /// The model's robot-change count at the last frame.
@@ -53,18 +54,27 @@ pub(super) fn open_later(hash: String) {
 /// every robot or DH-table change, and at most once a second during a drag.
 ///
 /// `hash` builds the state's link hash, only when this needs it (at most once a call;
-/// while a pointer is held, only when localStorage is due). `robot_changes` is the model's
-/// count of robot changes so far.
+/// while a pointer is held, only when localStorage is due), and `make_json` the session's JSON
+/// that localStorage keeps, only when it is written or waits to be. `robot_changes` is the
+/// model's count of robot changes so far. The hash tells whether the state changed: the
+/// JSON carries the same session.
 ///
 /// A drag changes the hash every frame, and `history.replaceState` and localStorage are
 /// synchronous calls that take 5–20 ms each in Chromium; writing them in every frame of a
 /// drag would be most of the frame time. The release writes the final state; a change made
 /// within the quarter second waits for a frame requested for then, and leaving the page
 /// (`pagehide`) writes whatever is still waiting.
-pub fn store(hash: impl FnOnce() -> String, robot_changes: u64, ctx: &egui::Context) {
+pub fn store(
+    hash: impl FnOnce() -> String,
+    make_json: impl Fn() -> String,
+    robot_changes: u64,
+    ctx: &egui::Context,
+) {
     const INTERVAL_MS: f64 = 250.0;
     const HELD_INTERVAL_MS: f64 = 1000.0;
     let now = now_ms();
+    let made = OnceCell::new();
+    let json = || made.get_or_init(&make_json).clone();
     let held = ctx.input(|i| i.pointer.any_down());
     let robot_changed = ROBOT_CHANGES.with(|c| c.replace(robot_changes) != robot_changes);
     if held {
@@ -72,14 +82,14 @@ pub fn store(hash: impl FnOnce() -> String, robot_changes: u64, ctx: &egui::Cont
         if robot_changed || now - saved_at >= HELD_INTERVAL_MS {
             let hash = hash();
             if SAVED.with(|s| s.borrow().0 != hash) {
-                write_storage(&hash, now);
+                write_storage(&hash, &json(), now);
             }
         }
         return;
     }
     let hash = hash();
     if robot_changed && SAVED.with(|s| s.borrow().0 != hash) {
-        write_storage(&hash, now);
+        write_storage(&hash, &json(), now);
     }
     let wait = STORED.with(|s| {
         let s = s.borrow();
@@ -88,11 +98,11 @@ pub fn store(hash: impl FnOnce() -> String, robot_changes: u64, ctx: &egui::Cont
     match wait {
         None => PENDING_STORE.with(|p| *p.borrow_mut() = None),
         Some(ms) if ms > 0.0 => {
-            PENDING_STORE.with(|p| *p.borrow_mut() = Some(hash));
+            PENDING_STORE.with(|p| *p.borrow_mut() = Some((hash, json())));
             ctx.request_repaint_after(std::time::Duration::from_secs_f64(ms / 1e3));
         }
         Some(_) => {
-            write_hash(&hash);
+            write_hash(&hash, json);
             PENDING_STORE.with(|p| *p.borrow_mut() = None);
             STORED.with(|s| {
                 let mut s = s.borrow_mut();
@@ -109,7 +119,9 @@ pub fn store(hash: impl FnOnce() -> String, robot_changes: u64, ctx: &egui::Cont
     }
 }
 
-fn write_hash(hash: &str) {
+/// Writes the hash into the address bar, and the session's JSON (made by `json`) into
+/// localStorage unless it already holds this state.
+fn write_hash(hash: &str, json: impl FnOnce() -> String) {
     let Some(window) = web_sys::window() else {
         return;
     };
@@ -121,19 +133,20 @@ fn write_hash(hash: &str) {
         Err(e) => warn_on_failure::<()>(Err(e), "reaching the browser history"),
     }
     if SAVED.with(|s| s.borrow().0 != hash) {
-        write_storage(hash, now_ms());
+        write_storage(hash, &json(), now_ms());
     }
 }
 
-/// Keeps the session in localStorage (what the page opens without a link).
-fn write_storage(hash: &str, now: f64) {
+/// Keeps the session's JSON in localStorage (what the page opens without a link), noting
+/// the hash of the state it holds.
+fn write_storage(hash: &str, json: &str, now: f64) {
     let Some(window) = web_sys::window() else {
         return;
     };
     SAVED.with(|s| *s.borrow_mut() = (hash.to_string(), now));
     match window.local_storage() {
         Ok(Some(storage)) => warn_on_failure(
-            storage.set_item(STORAGE_KEY, hash),
+            storage.set_item(STORAGE_KEY, json),
             "keeping the session in localStorage",
         ),
         Ok(None) => log::warn!("keeping the session failed: this browser has no localStorage"),
@@ -155,8 +168,8 @@ pub fn install_hashchange(window: &web_sys::Window) {
     );
     on_change.forget();
     let on_leave = Closure::<dyn Fn()>::new(|| {
-        if let Some(hash) = PENDING_STORE.with(|p| p.borrow_mut().take()) {
-            write_hash(&hash);
+        if let Some((hash, json)) = PENDING_STORE.with(|p| p.borrow_mut().take()) {
+            write_hash(&hash, || json);
         }
     });
     warn_on_failure(
