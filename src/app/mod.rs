@@ -9,8 +9,10 @@
 //!   fields' drafts, plots, colours and text sizes).
 //! - [`view3d`]: the 3D view: camera and input, the target marker, overlays, and the
 //!   scene built from the model's frames.
-//! - [`platform`]: the web and the native side: the clock, start-up, storage, files,
-//!   downloads, the lazily loaded module.
+//! - [`platform`]: the web and the native side: the clock, the address bar and storage,
+//!   downloads and uploads, the lazily loaded modules. It knows no app.
+//! - `page` (in the page only): the app started on the canvas, its link and session kept
+//!   each frame, and its state published for `window.armlab`.
 //! - [`hook`] and [`screen_points`]: what the browser and UI tests read.
 //!
 //! Data flow per frame: panels ask the model for changes → the model recomputes FK, the
