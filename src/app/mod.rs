@@ -331,7 +331,7 @@ impl ArmLabApp {
         #[cfg(not(target_arch = "wasm32"))]
         self.panels.robot.show_file_dialog(&mut self.model, &ctx);
         // Last, once every text of the frame has its glyphs in the font atlas.
-        matrices::finish_numbers(&ctx);
+        widgets::numbers::finish_numbers(&ctx);
         #[cfg(target_arch = "wasm32")]
         page::store_hash(self, &ctx);
         self.record_frame_time(clock::now_ms() - start);

@@ -15,7 +15,6 @@ pub mod paths;
 pub mod robot;
 pub mod shell;
 pub mod solutions;
-pub mod symbolic;
 pub mod top_bar;
 pub mod workspace;
 

@@ -1,8 +1,10 @@
 //! The controls and the style the panels share: the DH table editor, a number field's
-//! draft, the hand-drawn plot, colours and text sizes.
+//! draft, a matrix's numbers drawn as one mesh, the hand-drawn plot, colours and text
+//! sizes.
 
 pub mod dh_table;
 pub mod draft;
+pub mod numbers;
 pub mod plot;
 pub mod style;
 pub mod toggles;

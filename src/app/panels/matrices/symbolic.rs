@@ -1,7 +1,8 @@
 //! The symbolic A_i and T_0i in the matrices panel (docs/kinematics.md §13): each entry as
 //! the robot's constants and the sines and cosines of joint sums (c1, s23, 222.1), the
 //! entries that depend on the joint under the pointer (its slider, its link in 3D or its
-//! matrix) highlighted, each matrix copyable as LaTeX.
+//! matrix) highlighted, each matrix copyable as LaTeX. A fold of the panel apart from the
+//! numbers: its entries are text, built once per robot.
 
 use armlab_core::symbolic::{EntryText, SymbolicChain, SymbolicMatrix, symbolic_chain};
 use armlab_text::{Key, Lang, fill, text};

@@ -1,0 +1,125 @@
+//! The Jacobian's fold in the matrices panel: J with its central-difference check, its
+//! measures, the switches of its drawings in the 3D view and their colour legend. Apart
+//! from the panel as the one fold that writes the 3D view's overlays and hover.
+
+use nalgebra::DMatrix;
+
+use armlab_core::JacobianAnalysis;
+use armlab_text::Key;
+
+use super::block::matrix_block;
+use super::measures::measures_grid;
+use super::predict::{Hiding, Target};
+use crate::app::state::model::{HoverSource, Model};
+use crate::app::state::tr;
+use crate::app::state::trf;
+use crate::app::view3d::jacobian::{self, LinearSvd};
+use crate::app::widgets::style;
+use crate::app::widgets::toggles::overlay_checkbox;
+use armlab_session::format::{fixed, number};
+use armlab_session::settings::Overlay;
+
+pub(super) fn jacobian_block(
+    model: &mut Model,
+    analysis: &JacobianAnalysis,
+    ui: &mut egui::Ui,
+    decimals: usize,
+    hiding: &mut Hiding,
+) {
+    let j = &analysis.geometric;
+    let jm = DMatrix::from_fn(6, j.ncols(), |r, c| j[(r, c)]);
+    matrix_block(
+        ui,
+        model.settings().lang,
+        tr(model, Key::JacobianTitle),
+        tr(model, Key::JacobianHint),
+        &jm,
+        decimals,
+        false,
+        (Target::Jacobian, hiding),
+    );
+    let text = trf(
+        model,
+        Key::CentralDifferences,
+        &[&number(analysis.max_difference, 1)],
+    );
+    if analysis.agrees {
+        ui.label(text);
+    } else {
+        let tolerance = number(analysis.tolerance, 1);
+        ui.colored_label(
+            style::ERROR,
+            trf(model, Key::AboveTolerance, &[&text, &tolerance]),
+        );
+    }
+    measures_grid(model, &analysis.measures, ui);
+    overlay_switches(model, ui);
+    if model.settings().overlays.contains(Overlay::JacobianColumns)
+        || model.settings().overlays.contains(Overlay::AngularColumns)
+    {
+        column_legend(model, ui);
+    } else {
+        model.set_hovered_column(None, HoverSource::Matrices);
+    }
+    if let Some(lost) = LinearSvd::of(model.jacobian()).and_then(|s| s.lost_direction()) {
+        let d = [lost.x, lost.y, lost.z].map(|v| fixed(v, 2)).join(", ");
+        ui.colored_label(style::UNREACHABLE, trf(model, Key::LostDirection, &[&d]));
+    }
+}
+
+/// The switches of the Jacobian's drawings in the 3D view.
+fn overlay_switches(model: &mut Model, ui: &mut egui::Ui) {
+    crate::app::widgets::style::wrapped(ui, |ui| {
+        ui.label(tr(model, Key::DrawIn3d));
+        let switches = [
+            (
+                Overlay::JacobianColumns,
+                Key::DrawColumns,
+                Key::DrawColumnsHint,
+            ),
+            (
+                Overlay::AngularColumns,
+                Key::DrawAngular,
+                Key::DrawAngularHint,
+            ),
+            (
+                Overlay::VelocityEllipsoid,
+                Key::DrawVelocityEllipsoid,
+                Key::DrawVelocityEllipsoidHint,
+            ),
+            (
+                Overlay::ForceEllipsoid,
+                Key::DrawForceEllipsoid,
+                Key::DrawForceEllipsoidHint,
+            ),
+        ];
+        for (overlay, label, hint) in switches {
+            overlay_checkbox(model, ui, overlay, label, hint);
+        }
+    });
+}
+
+/// The columns' colours and numbers, as the arrows have them; hovering one highlights its
+/// arrow (and hovering an arrow highlights its entry).
+fn column_legend(model: &mut Model, ui: &mut egui::Ui) {
+    let mut hovered = None;
+    crate::app::widgets::style::wrapped(ui, |ui| {
+        ui.label(tr(model, Key::ColumnLegend));
+        for i in 0..model.robot().dof() {
+            let [r, g, b] = jacobian::column_color(i);
+            let mut text =
+                egui::RichText::new(format!("■ {}", i + 1)).color(egui::Color32::from_rgb(r, g, b));
+            if model.hovered_column() == Some(i) {
+                text = text.strong().underline();
+            }
+            let name = &model.robot().joints[i].name;
+            let response = ui
+                .add(egui::Label::new(text).sense(egui::Sense::hover()))
+                .on_hover_text(trf(model, Key::ColumnHint, &[&(i + 1), name]));
+            if response.hovered() {
+                hovered = Some(i);
+            }
+        }
+    });
+    model.set_hovered_column(hovered, HoverSource::Matrices);
+}
