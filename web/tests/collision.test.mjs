@@ -13,52 +13,24 @@
 // the first load (urdf/ too), and those fetches are not the page's.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import path from 'node:path';
-import { fileURLToPath } from 'node:url';
 import { browserSuite } from './browser-suite.mjs';
+import { dist, state, until as waitFor, click as clickAndWait, moduleRequests, pageOpener } from './page.mjs';
 
-const here = path.dirname(fileURLToPath(import.meta.url));
-const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', '..', 'dist');
 const VIEW = { width: 1024, height: 768 }; // the lecture-hall projector
 const measurements = {};
 
 const suite = browserSuite(dist, { label: 'ARMLAB_COLLISION_MEASUREMENTS', measurements });
-
-const state = async (page) => JSON.parse(await page.evaluate(() => window.armlab.state()));
-const moduleRequests = (requests) => requests.filter((p) => p.includes('/urdf/'));
-
-async function open(hash, setup = async () => {}) {
-  const ctx = await suite.browser.newContext({ viewport: VIEW, deviceScaleFactor: 1, serviceWorkers: 'block' });
-  await setup(ctx);
-  const requests = [];
-  ctx.on('request', (r) => requests.push(new URL(r.url()).pathname));
-  const page = await ctx.newPage();
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(String(e)));
-  await page.goto(suite.base + hash, { waitUntil: 'load' });
-  await page.waitForFunction(() => {
-    const text = window.armlab?.state();
-    return Boolean(text) && JSON.parse(text).rendered;
-  }, null, { timeout: 120000 });
-  return { page, ctx, requests, errors };
-}
+// Uncaught exceptions count as errors here, not what the page logs to the console; no
+// service worker; the tests wait for what they need once the first frame is drawn.
+const { open } = pageOpener(suite, {
+  view: VIEW, contextOptions: { serviceWorkers: 'block' }, consoleErrors: false, waitUntil: 'load', settled: false,
+});
 
 /** Waits until `check(state)` holds, nudging the mouse so that egui draws frames. */
-async function until(page, check, what, tries = 600) {
-  for (let i = 0; i < tries; i++) {
-    const s = await state(page);
-    if (check(s)) return s;
-    await page.mouse.move(700 + (i % 2), 40);
-    await page.waitForTimeout(20);
-  }
-  throw new Error(`waited for ${what}: ${JSON.stringify((await state(page)).motion)}`);
-}
+const until = (page, check, what, tries = 600) => waitFor(page, check, what, { tries, x: 700, detail: (s) => s.motion });
 
-async function click(page, name) {
-  const p = await page.evaluate((n) => window.armlab.screenPoint(n), name);
-  assert.ok(p, `screenPoint("${name}") is on screen`);
-  await page.mouse.click(p.x, p.y);
-}
+/** A click alone: the tests wait with until() for what it does. */
+const click = (page, name) => clickAndWait(page, name, 0);
 
 // The UR10 (mm) at home (standing straight up, collision-free), its tool 500 mm from the
 // target; the keep-out box (250 mm cube) around the target, so the hand must enter it on
@@ -187,9 +159,9 @@ test('stepped 10 ms at a time, the UR10 rests at the last pose it stepped to bef
 
 test('a module that cannot be loaded (offline, no cache): the checks say so; on again, it loads', async () => {
   let offline = true;
-  const { page, ctx, requests, errors } = await open('#robot=ur10&panels=motion&collide=on', async (c) => {
+  const { page, ctx, requests, errors } = await open('#robot=ur10&panels=motion&collide=on', { setup: async (c) => {
     await c.route('**/urdf/**', (route) => (offline ? route.abort('internetdisconnected') : route.continue()));
-  });
+  } });
   let s = await until(page, (st) => st.motion.checker === 'failed', 'the failed import');
   assert.equal(s.motion.collisions, true, 'collide=on in the link turned the checks on');
   assert.equal(s.motion.contact, null);

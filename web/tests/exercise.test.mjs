@@ -2,51 +2,22 @@
 // lecturer's link opens the RRR as an exercise with its table hidden; a student types a
 // table with the keyboard, presses Check, and reads the verdict (window.armlab.state()).
 // Run as tools/test.sh runs web/tests/e2e.test.mjs (after build_web).
-import { test, before } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import fs from 'node:fs';
 import path from 'node:path';
-import { fileURLToPath } from 'node:url';
 import { browserSuite } from './browser-suite.mjs';
+import { dist, shots, state, settle, click, pageOpener } from './page.mjs';
 
-const here = path.dirname(fileURLToPath(import.meta.url));
-const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', '..', 'dist');
-const shots = path.resolve(here, 'screenshots');
 const VIEW = { width: 1280, height: 720 }; // a lecture-hall projector
 
 const suite = browserSuite(dist);
-
-before(() => fs.mkdirSync(shots, { recursive: true }));
-
-const state = async (page) => JSON.parse(await page.evaluate(() => window.armlab.state()));
-
-/** Waits until the app has drawn a few more frames (egui draws on input: nudge it). */
-async function settle(page, frames = 3) {
-  const start = (await state(page)).frame;
-  for (let i = 0; i < 400; i++) {
-    await page.mouse.move(VIEW.width / 2 - (i % 2), 40);
-    if ((await state(page)).frame >= start + frames) return;
-    await page.waitForTimeout(20);
-  }
-  throw new Error('the app stopped drawing frames');
-}
-
-async function point(page, name) {
-  const p = await page.evaluate((n) => window.armlab.screenPoint(n), name);
-  assert.ok(p, `screenPoint("${name}") is on screen`);
-  return p;
-}
-
-async function click(page, name) {
-  const p = await point(page, name);
-  await page.mouse.click(p.x, p.y);
-  await settle(page);
-}
+// Uncaught exceptions count as errors here, not what the page logs to the console.
+const { open } = pageOpener(suite, { view: VIEW, consoleErrors: false });
 
 /** Clicks an answer cell, selects its text and replaces it. The text arrives as one input
  * event (as a paste or an on-screen keyboard's word does), not a key press per character:
  * each frame costs the software renderer a few hundred milliseconds. The keys themselves
- * are tested in web/tests/e2e.test.mjs (a bad DH cell typed with the keyboard). */
+ * are tested in web/tests/interaction.test.mjs (a bad DH cell typed with the keyboard). */
 async function type(page, cell, text) {
   await click(page, cell);
   await page.keyboard.press('Control+A');
@@ -55,16 +26,7 @@ async function type(page, cell, text) {
 }
 
 test('an exercise link hides the table; a wrong table is named by joint, a right one is correct', async () => {
-  const ctx = await suite.browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
-  const page = await ctx.newPage();
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(String(e)));
-  await page.goto(`${suite.base}#exercise=rrr&panels=robot,matrices`, { waitUntil: 'domcontentloaded' });
-  await page.waitForFunction(() => {
-    const text = window.armlab?.state();
-    return Boolean(text) && JSON.parse(text).rendered;
-  }, null, { timeout: 120000 });
-  await settle(page);
+  const { page, ctx, errors } = await open('#exercise=rrr&panels=robot,matrices');
   let s = await state(page);
   assert.deepEqual(s.exercise, { id: 'rrr', solved: false, verdict: null });
   assert.equal(s.robot, '', 'the preset is not named');
@@ -98,14 +60,7 @@ test('an exercise link hides the table; a wrong table is named by joint, a right
 });
 
 test('a broken exercise link says why and opens the default robot', async () => {
-  const ctx = await suite.browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
-  const page = await ctx.newPage();
-  await page.goto(`${suite.base}#exercise=mystery-x`, { waitUntil: 'domcontentloaded' });
-  await page.waitForFunction(() => {
-    const text = window.armlab?.state();
-    return Boolean(text) && JSON.parse(text).rendered;
-  }, null, { timeout: 120000 });
-  await settle(page);
+  const { page, ctx } = await open('#exercise=mystery-x');
   const s = await state(page);
   assert.equal(s.exercise, null);
   assert.equal(s.robot, 'UR10');

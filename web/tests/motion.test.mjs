@@ -5,31 +5,16 @@
 // checks) and the frame's p95 while driving with collision checks on.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import path from 'node:path';
-import { fileURLToPath } from 'node:url';
 import { browserSuite } from './browser-suite.mjs';
+import { dist, state, pageOpener } from './page.mjs';
 
-const here = path.dirname(fileURLToPath(import.meta.url));
-const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', '..', 'dist');
 const VIEW = { width: 1024, height: 768 }; // the lecture-hall projector
 const measurements = {};
 
 const suite = browserSuite(dist, { label: 'ARMLAB_MOTION_MEASUREMENTS', measurements });
-
-const state = async (page) => JSON.parse(await page.evaluate(() => window.armlab.state()));
-
-async function openPage(hash) {
-  const ctx = await suite.browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
-  const page = await ctx.newPage();
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(String(e)));
-  await page.goto(suite.base + hash, { waitUntil: 'domcontentloaded' });
-  await page.waitForFunction(() => {
-    const text = window.armlab?.state();
-    return Boolean(text) && JSON.parse(text).rendered;
-  }, null, { timeout: 120000 });
-  return { page, ctx, errors };
-}
+// Uncaught exceptions count as errors here, not what the page logs to the console; the
+// tests drive the frames themselves once the first is drawn.
+const { open: openPage } = pageOpener(suite, { view: VIEW, consoleErrors: false, settled: false });
 
 /** Opens `hash` in the running page and waits for two more frames. */
 async function openHash(page, hash) {

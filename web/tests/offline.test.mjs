@@ -17,10 +17,9 @@ import crypto from 'node:crypto';
 import { execFileSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 import { launchChromium } from './static-server.mjs';
+import { dist, state, rendered as drawn, newPage } from './page.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
-const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', '..', 'dist');
-const VIEW = { width: 1400, height: 860 };
 // The target ball sits on the tool when a link opens: green (reached) where the tool is.
 const HASH = '#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2';
 const WORKER = 'service-worker.js';
@@ -72,24 +71,9 @@ after(async () => {
   await browser?.close();
 });
 
-/** A page in a fresh context (its own storage and service workers), console errors collected. */
-async function newPage() {
-  const context = await browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
-  const page = await context.newPage();
-  const errors = [];
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
-  page.on('pageerror', (e) => errors.push(String(e)));
-  return { context, page, errors };
-}
-
-const state = async (page) => JSON.parse(await page.evaluate(() => window.armlab.state()));
-
 /** Waits for the first drawn frame; returns its time in ms since navigation started. */
 async function rendered(page) {
-  await page.waitForFunction(() => {
-    const text = window.armlab?.state();
-    return Boolean(text) && JSON.parse(text).rendered;
-  }, null, { timeout: 120000 });
+  await drawn(page);
   return Math.round(await page.evaluate(() => window.armlab.firstFrameAt()));
 }
 
@@ -177,7 +161,7 @@ test('the worker lists exactly the build\'s files, under a version hashed from t
 
 test('after one visit the page opens and draws the arm with the server gone', async () => {
   const server = await serve(dist);
-  const { context, page, errors } = await newPage();
+  const { ctx: context, page, errors } = await newPage(browser);
   try {
     await page.goto(server.url + HASH, { waitUntil: 'domcontentloaded' });
     measurements.cold_first_frame_ms = await rendered(page);
@@ -205,7 +189,7 @@ test('a new build\'s worker replaces the cache on the next load', async () => {
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armlab-offline-'));
   fs.cpSync(dist, dir, { recursive: true });
   const server = await serve(dir);
-  const { context, page, errors } = await newPage();
+  const { ctx: context, page, errors } = await newPage(browser);
   try {
     await page.goto(server.url + HASH, { waitUntil: 'domcontentloaded' });
     await rendered(page);

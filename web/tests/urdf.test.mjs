@@ -12,12 +12,8 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { fileURLToPath } from 'node:url';
 import { browserSuite } from './browser-suite.mjs';
-
-const here = path.dirname(fileURLToPath(import.meta.url));
-const dist = process.env.ARMLAB_DIST ? path.resolve(process.env.ARMLAB_DIST) : path.resolve(here, '..', '..', 'dist');
-const VIEW = { width: 1400, height: 860 };
+import { dist, state, point, until as waitFor, moduleRequests as urdfRequests, pageOpener } from './page.mjs';
 
 // The Franka Emika Panda as franka_description's panda_arm.urdf.xacro publishes its joint
 // origins and limits (metres, radians; the same data as tests/urdf.rs), the flange a fixed
@@ -101,45 +97,15 @@ const READY_FLANGE = [0.3069, 0, 0.5903];
 
 const suite = browserSuite(dist);
 
-const state = async (page) => JSON.parse(await page.evaluate(() => window.armlab.state()));
-const point = async (page, name) => {
-  const p = await page.evaluate((n) => window.armlab.screenPoint(n), name);
-  assert.ok(p, `screenPoint("${name}") is on screen`);
-  return p;
-};
-
-/** Waits until the app has drawn a few more frames (egui draws on input: nudge it). */
-async function settle(page, frames = 3) {
-  const start = (await state(page)).frame;
-  for (let i = 0; i < 400; i++) {
-    await page.mouse.move(VIEW.width / 2 - (i % 2), 40);
-    if ((await state(page)).frame >= start + frames) return;
-    await page.waitForTimeout(20);
-  }
-  throw new Error('the app stopped drawing frames');
-}
-
 /** A fresh page on `hash` (own storage, no service worker), every request's URL and the
  * console errors recorded. */
-async function open(hash) {
-  const ctx = await suite.browser.newContext({ viewport: VIEW, deviceScaleFactor: 1, serviceWorkers: 'block' });
-  const requests = [];
-  ctx.on('request', (r) => requests.push(new URL(r.url()).pathname));
-  const page = await ctx.newPage();
-  const errors = [];
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
-  page.on('pageerror', (e) => errors.push(String(e)));
+const { open } = pageOpener(suite, {
+  contextOptions: { serviceWorkers: 'block' },
+  waitUntil: 'load',
   // Playwright intercepts file choosers once the page has a listener, and turning that on
   // takes a round trip: a listener added just before the click can miss the chooser.
-  page.on('filechooser', () => {});
-  await page.goto(suite.base + hash, { waitUntil: 'load' });
-  await page.waitForFunction(() => {
-    const text = window.armlab?.state();
-    return Boolean(text) && JSON.parse(text).rendered;
-  }, null, { timeout: 120000 });
-  await settle(page);
-  return { page, ctx, requests, errors };
-}
+  setup: (ctx, page) => page.on('filechooser', () => {}),
+});
 
 /** Opens a file through the robot panel's "Load robot file…" button and the browser's
  * file chooser (the page's `<input type="file">`). Clicks again when no chooser came within
@@ -160,17 +126,7 @@ async function chooseFile(page, name, text) {
 }
 
 /** Waits until `check(state)` holds (the URDF module loads and converts asynchronously). */
-async function until(page, check, what) {
-  for (let i = 0; i < 600; i++) {
-    const s = await state(page);
-    if (check(s)) return s;
-    await page.mouse.move(VIEW.width / 2 - (i % 2), 40);
-    await page.waitForTimeout(50);
-  }
-  throw new Error(`waited 30 s for ${what}: ${JSON.stringify((await state(page)).message)}`);
-}
-
-const urdfRequests = (requests) => requests.filter((p) => p.includes('/urdf/'));
+const until = (page, check, what) => waitFor(page, check, what, { pause: 50, detail: (s) => s.message });
 
 test('the URDF module is built beside the page and outside its first load', async () => {
   const files = fs.readdirSync(path.join(dist, 'urdf'));
