@@ -245,6 +245,21 @@ test('a reload restores the last session', async () => {
   const fresh = await state(page);
   assert.equal(fresh.robot, before.robot);
   assert.deepEqual(fresh.q.map((v) => +v.toFixed(5)), before.q.map((v) => +v.toFixed(5)));
+  // It is kept as the session's JSON; a session kept as a link still opens, and one that
+  // cannot be read says so and shows the default robot.
+  const kept = JSON.parse(await page.evaluate(() => localStorage.getItem('armlab.session')));
+  assert.equal(kept.source, 'scara');
+  for (const [stored, robot, message] of [
+    ['robot=rrr&q=0.1,0.2,0.3', /RRR/, null],
+    ['{"robot": 5}', /UR10/, /last session could not be reopened \(the stored session could not be read\)/],
+  ]) {
+    await page.evaluate((s) => localStorage.setItem('armlab.session', s), stored);
+    await page.goto(suite.base, { waitUntil: 'domcontentloaded' });
+    await ready(page);
+    const s = await state(page);
+    assert.match(s.robot, robot, stored);
+    if (message) assert.match(s.message ?? '', message, stored);
+  }
   await context.close();
 });
 
@@ -263,7 +278,9 @@ test('a crash shows a sentence and Reload, and the reload restores the robot cha
   }
   assert.match((await state(page)).robot, /SCARA/);
   const saved = await page.evaluate(() => ({ stored: localStorage.getItem('armlab.session'), hash: location.hash }));
-  assert.match(saved.stored, /robot=scara/, 'the robot change is in localStorage at once, during a drag');
+  const kept = JSON.parse(saved.stored);
+  assert.equal(kept.source, 'scara', 'the robot change is in localStorage at once, during a drag, as the session\'s JSON');
+  assert.deepEqual(kept.q, [0.3, -0.6, 0.1, 0.2]);
   assert.doesNotMatch(saved.hash, /scara/, 'the address bar still shows the UR10 (it is written on release)');
   await page.evaluate(() => window.armlab.panicForTest());
   await page.mouse.move(view.x + 10, view.y + 10);

@@ -259,14 +259,19 @@ impl Session {
     /// The session as compact JSON, for storage ([`Session::from_json`] reads it back to
     /// an equal session).
     pub fn to_json(&self) -> String {
-        // The stored form holds only text, finite numbers and lists: writing cannot fail.
-        serde_json::to_string(&StoredSession::of(self)).unwrap_or_default()
+        // Through a JSON value, as robot files are read and written: the page's wasm then
+        // holds one writer and one reader of each stored form, not one per JSON text and
+        // one per value. The stored form holds only text, finite numbers and lists:
+        // writing cannot fail.
+        serde_json::to_value(StoredSession::of(self))
+            .map_or_else(|_| String::new(), |v| v.to_string())
     }
 
     /// Reads a session that [`Session::to_json`] wrote, checking every value as a link's
     /// is checked; JSON that is not a session's is [`LinkError::UnreadableSession`].
     pub fn from_json(text: &str) -> Result<Session, LinkError> {
-        serde_json::from_str::<StoredSession>(text)
+        let value: Value = serde_json::from_str(text).map_err(|_| LinkError::UnreadableSession)?;
+        StoredSession::deserialize(&value)
             .map_err(|_| LinkError::UnreadableSession)?
             .into_session()
     }
