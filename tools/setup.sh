@@ -114,14 +114,17 @@ ensure_apt() {
 #
 # A panic in the page aborts into the crash screen, which says what to do in words: the
 # file, line and column of every place that can panic (a bounds check, an `expect`) are
-# bytes no visitor reads. `-Zlocation-detail=none` leaves them out (stable rustc takes
-# this one -Z flag with RUSTC_BOOTSTRAP, set for the page's build alone), and the crates'
-# paths that remain are written without the folder cargo unpacks them into. These flags
-# replace .cargo/config.toml's for wasm32, so they repeat its SIMD flag.
+# bytes no visitor reads. `-Zlocation-detail=none` leaves them out, `-Zfmt-debug=shallow`
+# makes a derived `Debug` print its type's or variant's name without the fields (the page
+# writes no `{:?}` a person reads: its sentences come from the catalogue, and its logs are
+# compiled out), and the crates' paths that remain are written without the folder cargo
+# unpacks them into. Stable rustc takes these -Z flags with RUSTC_BOOTSTRAP, set for the
+# page's build alone. They replace .cargo/config.toml's for wasm32, so they repeat its SIMD
+# flag.
 build_web() {
   say "building the page (trunk build --release)"
   (cd "$ROOT" && cargo fetch --target wasm32-unknown-unknown -q) || return 1
-  local flags="-Ctarget-feature=+simd128 -Zlocation-detail=none" registry
+  local flags="-Ctarget-feature=+simd128 -Zlocation-detail=none -Zfmt-debug=shallow" registry
   for registry in "${CARGO_HOME:-$HOME/.cargo}"/registry/src/*/; do
     flags="$flags --remap-path-prefix=$registry="
   done

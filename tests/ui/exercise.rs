@@ -89,14 +89,7 @@ fn the_dh_exercise_hides_the_table_and_names_the_joint_of_a_wrong_answer() {
 
 #[test]
 fn a_mystery_exercise_draws_its_axes_and_fits_every_screen() {
-    for (size, min_share) in [
-        ([1024.0, 768.0], 0.5),
-        ([1280.0, 720.0], 0.5),
-        ([1366.0, 768.0], 0.5),
-        ([1920.0, 1080.0], 0.5),
-        ([820.0, 1180.0], 0.99),
-        ([390.0, 844.0], 0.99),
-    ] {
+    for (size, min_share) in SCREENS {
         let h = harness_at("#exercise=mystery-42", size);
         let share = view_share_and_points(&h, size[0]);
         assert!(

@@ -19,6 +19,17 @@ use armlab_session::session::Session;
 
 const SIZE: [f32; 2] = [1400.0, 860.0];
 
+/// The screens people use (projectors, laptops, a portrait tablet, a phone), each with the
+/// least share of the width the 3D view keeps there (the narrow layout gives it all).
+const SCREENS: [([f32; 2], f32); 6] = [
+    ([1024.0, 768.0], 0.5),
+    ([1280.0, 720.0], 0.5),
+    ([1366.0, 768.0], 0.5),
+    ([1920.0, 1080.0], 0.5),
+    ([820.0, 1180.0], 0.99),
+    ([390.0, 844.0], 0.99),
+];
+
 #[path = "../app_harness/mod.rs"]
 mod app_harness;
 mod basics;

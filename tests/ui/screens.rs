@@ -4,14 +4,7 @@ use super::*;
 
 #[test]
 fn at_every_screen_size_the_view_keeps_its_share_and_shows_the_arm() {
-    for (size, min_share) in [
-        ([1024.0, 768.0], 0.5),
-        ([1280.0, 720.0], 0.5),
-        ([1366.0, 768.0], 0.5),
-        ([1920.0, 1080.0], 0.5),
-        ([820.0, 1180.0], 0.99),
-        ([390.0, 844.0], 0.99),
-    ] {
+    for (size, min_share) in SCREENS {
         let h = harness_at("#robot=ur10", size);
         let share = view_share_and_points(&h, size[0]);
         assert!(

@@ -476,12 +476,7 @@ impl Model {
         self.q.resize(self.robot.dof(), 0.0);
         self.task = session.task;
         self.method = session.method;
-        self.keep_method_available();
-        self.loads += 1;
-        self.robot_changes += 1;
-        self.reframes += 1;
-        self.hover = None;
-        self.recompute_kinematics();
+        self.start_anew();
         self.target = session.target.unwrap_or(self.fk.base_from_tool);
         self.ik = IkStatus::default();
         self.recompute_reach();
@@ -502,12 +497,7 @@ impl Model {
         self.robot = robot;
         self.source = source;
         self.exercise = None;
-        self.keep_method_available();
-        self.loads += 1;
-        self.robot_changes += 1;
-        self.reframes += 1;
-        self.hover = None;
-        self.recompute_kinematics();
+        self.start_anew();
         self.snap_target();
     }
 
@@ -621,6 +611,18 @@ impl Model {
     /// Removes the message.
     pub fn dismiss_message(&mut self) {
         self.message = None;
+    }
+
+    /// After a new robot, q, task and method are in place (a link, a preset, a file): the
+    /// method kept available, the load counted (the view frames the arm anew), no highlight,
+    /// and the kinematics recomputed.
+    fn start_anew(&mut self) {
+        self.keep_method_available();
+        self.loads += 1;
+        self.robot_changes += 1;
+        self.reframes += 1;
+        self.hover = None;
+        self.recompute_kinematics();
     }
 
     fn keep_method_available(&mut self) {
