@@ -7,7 +7,8 @@
 
 use std::time::Instant;
 
-use armlab::app::{ArmLabApp, style};
+use armlab::app::ArmLabApp;
+use armlab::app::widgets::style;
 use armlab_bench::stats::Summary;
 use armlab_session::session::Session;
 
