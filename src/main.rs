@@ -14,8 +14,8 @@ fn main() -> eframe::Result {
     let session_file = armlab_session::session::native_session_file();
     let link = std::env::args().nth(1).unwrap_or_default();
     let stored = session_file
-        .as_ref()
-        .and_then(|path| std::fs::read_to_string(path).ok());
+        .as_deref()
+        .and_then(armlab::app::platform::native::stored_session);
     eframe::run_native(
         "ArmLab",
         options,

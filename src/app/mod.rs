@@ -399,13 +399,7 @@ impl eframe::App for ArmLabApp {
     fn on_exit(&mut self) {
         // The native app's session persistence (the page uses localStorage).
         if let Some(path) = &self.session_file {
-            let written = path
-                .parent()
-                .map_or(Ok(()), std::fs::create_dir_all)
-                .and_then(|()| std::fs::write(path, self.stored_session()));
-            if let Err(e) = written {
-                log::warn!("could not keep the session in {}: {e}", path.display());
-            }
+            platform::native::keep_session(path, &self.stored_session());
         }
     }
 

@@ -1,9 +1,12 @@
 //! The web and the native side of the app: its clock, whether the collision checker has
-//! loaded, and in the page its message box, storage, the test hook, files and the lazily
-//! loaded modules. Nothing here imports the app above it.
+//! loaded, the last session's storage (`native`: a file; `web`: localStorage), and in the
+//! page its message box, the test hook, files and the lazily loaded modules. Nothing here
+//! imports the app above it.
 
 pub mod checker;
 pub mod clock;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod native;
 #[cfg(target_arch = "wasm32")]
 pub mod web;
 
