@@ -58,6 +58,34 @@ fn the_jacobian_columns_and_the_velocity_ellipsoid_are_drawn_at_the_tool() {
 }
 
 #[test]
+fn the_planar_2r_names_the_direction_it_loses_within_its_plane() {
+    // A straight elbow: the tool cannot move along the arm, (cos 0.3, sin 0.3, 0). The z
+    // axis was never the planar arm's to move along, so it is never named; bent, the arm
+    // loses nothing.
+    let lost_sentence = |hash: &str| {
+        // Wide and tall enough that the Jacobian's fold shows whole, its sentence included.
+        let mut h = harness_at(hash, [2560.0, 1600.0]);
+        h.run_steps(2);
+        h.query_all(egui_kittest::kittest::by().include_labels())
+            .map(|n| {
+                let ak = n.accesskit_node();
+                ak.label().or(ak.value()).unwrap_or_default()
+            })
+            .find(|text| text.contains("The tool cannot move along"))
+    };
+    let sentence = lost_sentence("#robot=planar-2r&q=0.3,0&panels=matrices&show=vel")
+        .expect("the lost direction is named at the straight elbow");
+    assert!(
+        sentence.contains("(0.96, 0.30, 0.00)") || sentence.contains("(-0.96, -0.30, 0.00)"),
+        "{sentence}"
+    );
+    assert_eq!(
+        lost_sentence("#robot=planar-2r&q=0.3,1&panels=matrices&show=vel"),
+        None
+    );
+}
+
+#[test]
 fn ghosts_from_a_link_show_without_the_ik_panel() {
     // A lecturer's link opened on a phone (no sheet open) or with the IK panel closed: the
     // ghosts must not wait for the IK panel's list, which finds the solutions only when shown.

@@ -1,7 +1,7 @@
 //! The geometric Jacobian, its central-difference check, the task rows and the
 //! unit-free measures (singular values, manipulability, det J, condition number).
 
-use nalgebra::{DMatrix, DVector, Matrix6xX, Vector3, Vector6};
+use nalgebra::{DMatrix, DVector, Matrix3, Matrix3xX, Matrix6xX, Vector3, Vector6};
 
 use super::fk::{ForwardKinematics, tool_pose};
 use super::orientation::rotation_log;
@@ -128,6 +128,62 @@ pub fn geometric_jacobian_into(fk: &ForwardKinematics, j: &mut Matrix6xX<f64>) {
         col.fixed_rows_mut::<3>(0).copy_from(&v);
         col.fixed_rows_mut::<3>(3).copy_from(&w);
     }
+}
+
+/// Random poses [`linear_motion_space`] samples.
+const MOTION_SPACE_SAMPLES: usize = 16;
+
+/// The directions the tool point can move in at some pose of the arm: an orthonormal basis
+/// (columns) of the span of the Jacobian's linear rows over [`MOTION_SPACE_SAMPLES`]
+/// seeded random joint vectors within the limits (docs/kinematics.md §6.2). A planar arm's
+/// is its plane (two columns): the direction out of the plane is never the arm's, so it is
+/// never a direction the arm loses at a singularity. Most arms have all three.
+pub fn linear_motion_space(robot: &Robot) -> Matrix3xX<f64> {
+    let mut rng = super::rng::SplitMix64::new(0x5_1A6E);
+    let mut gram = Matrix3::zeros();
+    let mut fk = ForwardKinematics::default();
+    for _ in 0..MOTION_SPACE_SAMPLES {
+        fk.update(robot, &rng.joint_vector(robot));
+        let j = geometric_jacobian(&fk);
+        let jv = j.fixed_rows::<3>(0);
+        gram += jv * jv.transpose();
+    }
+    let eigen = gram.symmetric_eigen();
+    let largest = eigen.eigenvalues.iter().copied().fold(0.0, f64::max);
+    let kept: Vec<Vector3<f64>> = (0..3)
+        .filter(|&k| largest > 0.0 && eigen.eigenvalues[k] > 1e-12 * largest)
+        .map(|k| eigen.eigenvectors.column(k).into_owned())
+        .collect();
+    Matrix3xX::from_columns(&kept)
+}
+
+/// The direction the tool point cannot move in at this pose, among the directions of
+/// `space` ([`linear_motion_space`]): the weakest principal direction of the linear rows
+/// of `j` within that space, when its singular value is below `ratio` times the strongest
+/// (docs/kinematics.md §6.2). `None` away from a singularity.
+pub fn lost_direction(
+    j: &Matrix6xX<f64>,
+    space: &Matrix3xX<f64>,
+    ratio: f64,
+) -> Option<Vector3<f64>> {
+    let jv = j.fixed_rows::<3>(0);
+    let gram: Matrix3<f64> = jv * jv.transpose();
+    let strongest = gram.symmetric_eigenvalues().max();
+    // A still arm (or a Jacobian with NaN) loses nothing it could name.
+    if strongest.is_nan() || strongest <= 0.0 {
+        return None;
+    }
+    // J_v's range lies in the space, so J_v·J_vᵀ is zero across it; weighing the directions
+    // across it above the strongest makes the weakest direction the space's own.
+    let across = Matrix3::identity() - space * space.transpose();
+    let eigen = (gram + across * (2.0 * strongest)).symmetric_eigen();
+    let (weakest, low) = eigen
+        .eigenvalues
+        .iter()
+        .enumerate()
+        .min_by(|a, b| a.1.total_cmp(b.1))?;
+    (low.max(0.0).sqrt() < ratio * strongest.sqrt())
+        .then(|| eigen.eigenvectors.column(weakest).into_owned())
 }
 
 /// The Jacobian by central differences with step `eps` (docs/kinematics.md §4.2): linear rows

@@ -45,7 +45,7 @@ pub use ik::{
 pub use jacobian::{
     JACOBIAN_AGREEMENT, JacobianAnalysis, JacobianMeasures, NUMERIC_EPSILON, SINGULARITY_THRESHOLD,
     Task, ToolAxis, geometric_jacobian, geometric_jacobian_into, jacobian_measures,
-    numerical_jacobian, task_jacobian, tool_velocity,
+    linear_motion_space, lost_direction, numerical_jacobian, task_jacobian, tool_velocity,
 };
 pub use motion::{
     Controller, JointMeasures, MotionError, MotionSettings, MotionSim, PidGains, Plant, Record,

@@ -13,7 +13,8 @@ use crate::common;
 
 use armlab_core::{
     ForwardKinematics, NUMERIC_EPSILON, SINGULARITY_THRESHOLD, Task, ToolAxis, geometric_jacobian,
-    jacobian_measures, numerical_jacobian, preset, rotation_log, tool_pose, tool_velocity,
+    jacobian_measures, linear_motion_space, lost_direction, numerical_jacobian, preset, preset_ids,
+    rotation_log, tool_pose, tool_velocity,
 };
 
 /// Largest central-difference error of a linear entry, relative to the arm's reach: the
@@ -385,4 +386,76 @@ fn measures_equal_an_svd_of_the_scaled_task_rows() {
             }
         }
     }
+}
+
+#[test]
+fn the_planar_2r_moves_its_tool_in_its_plane_and_every_other_preset_in_all_three_directions() {
+    for id in preset_ids() {
+        let robot = preset(id).expect("a preset");
+        let space = linear_motion_space(&robot);
+        // Orthonormal columns.
+        let gram = space.transpose() * &space;
+        let identity = nalgebra::DMatrix::<f64>::identity(space.ncols(), space.ncols());
+        assert!((gram - identity).norm() < 1e-9, "{id}");
+        if id == "planar-2r" {
+            // Both joint axes are the base's z: the tool moves in the xy plane only.
+            assert_eq!(space.ncols(), 2, "{id}");
+            assert!(space.row(2).norm() < 1e-12, "{id}: {space}");
+        } else {
+            assert_eq!(space.ncols(), 3, "{id}");
+        }
+    }
+}
+
+#[test]
+fn the_planar_2r_loses_the_radial_direction_at_a_straight_elbow_and_nothing_elsewhere() {
+    let robot = preset("planar-2r").expect("a preset");
+    let space = linear_motion_space(&robot);
+    let lost_at = |q: &[f64]| {
+        let fk = ForwardKinematics::new(&robot, q).expect("a pose");
+        lost_direction(&geometric_jacobian(&fk), &space, 0.02)
+    };
+    // Straight elbow: the tool can only move across the arm, never along it.
+    let q1: f64 = 0.3;
+    let lost = lost_at(&[q1, 0.0]).expect("a lost direction at the straight elbow");
+    let radial = nalgebra::Vector3::new(q1.cos(), q1.sin(), 0.0);
+    assert!(
+        lost.cross(&radial).norm() < 1e-9,
+        "lost {lost}, radial {radial}"
+    );
+    assert!((lost.norm() - 1.0).abs() < 1e-12);
+    // Bent: both directions of the plane are the arm's, and z was never its to lose.
+    for q2 in [1.0, -0.7, 2.5] {
+        assert_eq!(lost_at(&[q1, q2]), None, "q2 = {q2}");
+    }
+}
+
+#[test]
+fn a_spatial_arm_loses_a_direction_only_at_its_singular_poses() {
+    // The RRR's position rows are 3×3: singular with the elbow straight, not bent.
+    let robot = preset("rrr").expect("a preset");
+    let space = linear_motion_space(&robot);
+    let rows_at = |q: &[f64]| {
+        let fk = ForwardKinematics::new(&robot, q).expect("a pose");
+        geometric_jacobian(&fk)
+    };
+    assert_eq!(
+        lost_direction(&rows_at(&[0.2, 0.5, 1.0]), &space, 0.02),
+        None
+    );
+    // Straight: no joint speed moves the tool along the lost direction (J_vᵀ·u ≈ 0), which
+    // is the arm's own direction from the shoulder, (cos θ1 cos θ2, sin θ1 cos θ2, sin θ2).
+    let straight = rows_at(&[0.2, 0.5, 0.0]);
+    let lost = lost_direction(&straight, &space, 0.02).expect("a lost direction");
+    let jv = straight.fixed_rows::<3>(0);
+    assert!((jv.transpose() * lost).norm() < 1e-9 * jv.norm());
+    let along = nalgebra::Vector3::new(
+        0.2f64.cos() * 0.5f64.cos(),
+        0.2f64.sin() * 0.5f64.cos(),
+        0.5f64.sin(),
+    );
+    assert!(
+        lost.cross(&along).norm() < 1e-9,
+        "lost {lost}, along the arm {along}"
+    );
 }

@@ -29,9 +29,6 @@ pub fn column_color(i: usize) -> [u8; 3] {
     COLUMN_COLORS[i % COLUMN_COLORS.len()]
 }
 
-/// σ_min/σ_max of the linear rows below which a direction counts as lost.
-pub const LOST_RATIO: f64 = 0.02;
-
 /// The linear rows' principal directions (columns, a right-handed rotation) and their
 /// singular values (same order), largest first.
 #[derive(Debug, Clone, PartialEq)]
@@ -64,12 +61,6 @@ impl LinearSvd {
         let sigma = order.map(|k| eigen.eigenvalues[k].max(0.0).sqrt());
         Some(LinearSvd { axes, sigma })
     }
-
-    /// The direction the tool cannot move in (unit), when σ_min/σ_max < [`LOST_RATIO`].
-    pub fn lost_direction(&self) -> Option<Vector3<f64>> {
-        (self.sigma[0] > 0.0 && self.sigma[2] / self.sigma[0] < LOST_RATIO)
-            .then(|| self.axes.column(2).into_owned())
-    }
 }
 
 /// Everything the overlays are drawn from.
@@ -92,6 +83,9 @@ pub struct JacobianScene<'a> {
     pub task: Task,
     /// The joint speeds q̇ (for v and ω).
     pub speeds: Vec<f64>,
+    /// The direction the tool cannot move in at this singular pose, if it is one
+    /// ([`crate::app::state::model::Model::lost_direction`]).
+    pub lost: Option<Vector3<f64>>,
 }
 
 /// Arrow tips of the linear columns, in the base frame: the longest column is 0.3 × the
@@ -222,7 +216,7 @@ fn ellipsoids(scene: &JacobianScene<'_>, out: &mut Vec<Instance>) {
         return;
     };
     let r = scene.reach;
-    if let Some(lost) = svd.lost_direction() {
+    if let Some(lost) = scene.lost {
         let (a, b) = (
             scene.tool - lost * (0.35 * r),
             scene.tool + lost * (0.35 * r),

@@ -564,6 +564,7 @@ fn jacobian_scene(model: &Model) -> JacobianScene<'_> {
         q: model.q(),
         task: model.task(),
         speeds: model.joint_speeds(),
+        lost: model.lost_direction(),
     }
 }
 

@@ -13,7 +13,7 @@ use super::predict::{Hiding, Target};
 use crate::app::state::model::{HoverSource, Model};
 use crate::app::state::tr;
 use crate::app::state::trf;
-use crate::app::view3d::jacobian::{self, LinearSvd};
+use crate::app::view3d::jacobian;
 use crate::app::widgets::style;
 use crate::app::widgets::toggles::overlay_checkbox;
 use armlab_session::format::{fixed, number};
@@ -61,7 +61,7 @@ pub(super) fn jacobian_block(
     } else {
         model.set_hovered_column(None, HoverSource::Matrices);
     }
-    if let Some(lost) = LinearSvd::of(model.jacobian()).and_then(|s| s.lost_direction()) {
+    if let Some(lost) = model.lost_direction() {
         let d = [lost.x, lost.y, lost.z].map(|v| fixed(v, 2)).join(", ");
         ui.colored_label(style::UNREACHABLE, trf(model, Key::LostDirection, &[&d]));
     }

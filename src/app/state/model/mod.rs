@@ -5,14 +5,17 @@
 //! (FK and the Jacobian when q or the robot changes; the IK status when q, the robot, the
 //! target or the task changes). No egui here: the model is tested without a window.
 
-use nalgebra::{IsometryMatrix3, Matrix6xX};
+use nalgebra::{IsometryMatrix3, Matrix3xX, Matrix6xX, Vector3};
 
 use armlab_core::ik::{
     Branch, IkSolver, REACHED_ORIENTATION_TOLERANCE, REACHED_POSITION_TOLERANCE_M, Reach,
     closed_form_family, pose_error,
 };
 use armlab_core::workspace::WorkspaceCloud;
-use armlab_core::{ForwardKinematics, IkMethod, Robot, Task, geometric_jacobian_into};
+use armlab_core::{
+    ForwardKinematics, IkMethod, Robot, Task, geometric_jacobian_into, linear_motion_space,
+    lost_direction,
+};
 
 use crate::app::state::motion_lab::MotionLab;
 use crate::app::state::path_lab::PathLab;
@@ -138,6 +141,10 @@ pub struct Branches {
     pub continuum: bool,
 }
 
+/// σ_min/σ_max of the linear rows, within the arm's motion space, below which a direction
+/// counts as lost (docs/kinematics.md §6.1).
+pub const LOST_RATIO: f64 = 0.02;
+
 /// The session, the settings and everything derived from them.
 #[derive(Debug, Clone)]
 pub struct Model {
@@ -150,6 +157,9 @@ pub struct Model {
     settings: Settings,
     fk: ForwardKinematics,
     jacobian: Matrix6xX<f64>,
+    /// The directions the tool can move in at some pose (a planar arm's plane), and the
+    /// robot change it was found for.
+    motion_space: (u64, Matrix3xX<f64>),
     ik: IkStatus,
     solver: IkSolver,
     hover: Option<(usize, HoverSource)>,
@@ -190,6 +200,7 @@ impl Model {
             settings: Settings::default(),
             fk: ForwardKinematics::default(),
             jacobian: Matrix6xX::zeros(0),
+            motion_space: (u64::MAX, Matrix3xX::zeros(0)),
             ik: IkStatus::default(),
             solver: IkSolver::new(),
             hover: None,
@@ -260,6 +271,18 @@ impl Model {
     /// The geometric Jacobian at q (6 × n, base frame).
     pub fn jacobian(&self) -> &Matrix6xX<f64> {
         &self.jacobian
+    }
+
+    /// The directions the tool can move in at some pose of this robot (docs/kinematics.md
+    /// §6.2): a planar arm's plane, most arms' all three.
+    pub fn motion_space(&self) -> &Matrix3xX<f64> {
+        &self.motion_space.1
+    }
+
+    /// The direction the tool cannot move in at this pose, within [`Model::motion_space`],
+    /// when the pose is singular (σ_min/σ_max below [`LOST_RATIO`]).
+    pub fn lost_direction(&self) -> Option<Vector3<f64>> {
+        lost_direction(&self.jacobian, &self.motion_space.1, LOST_RATIO)
     }
 
     /// The IK status.
@@ -637,6 +660,9 @@ impl Model {
             self.jacobian = Matrix6xX::zeros(self.robot.dof());
         }
         geometric_jacobian_into(&self.fk, &mut self.jacobian);
+        if self.motion_space.0 != self.robot_changes {
+            self.motion_space = (self.robot_changes, linear_motion_space(&self.robot));
+        }
     }
 
     /// The errors against the target and whether they are within the "reached"

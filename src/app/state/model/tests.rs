@@ -64,6 +64,11 @@ fn assert_derived_values_fresh(model: &Model, context: &str) {
         "{context}"
     );
     assert_eq!(*model.jacobian(), geometric_jacobian(&fresh), "{context}");
+    assert_eq!(
+        *model.motion_space(),
+        armlab_core::linear_motion_space(robot),
+        "{context}"
+    );
     let (position, orientation) = pose_error(robot, model.q(), model.target(), model.task());
     assert_eq!(model.ik().position_error, position, "{context}");
     assert_eq!(model.ik().orientation_error, orientation, "{context}");
