@@ -134,8 +134,8 @@ pub fn geometric_jacobian_into(fk: &ForwardKinematics, j: &mut Matrix6xX<f64>) {
 const MOTION_SPACE_SAMPLES: usize = 16;
 
 /// The directions the tool point can move in at some pose of the arm: an orthonormal basis
-/// (columns) of the span of the Jacobian's linear rows over [`MOTION_SPACE_SAMPLES`]
-/// seeded random joint vectors within the limits (docs/kinematics.md §6.2). A planar arm's
+/// (columns) of the span of the Jacobian's linear rows over 16 seeded random joint vectors
+/// within the limits (docs/kinematics.md §6.2). A planar arm's
 /// is its plane (two columns): the direction out of the plane is never the arm's, so it is
 /// never a direction the arm loses at a singularity. Most arms have all three.
 pub fn linear_motion_space(robot: &Robot) -> Matrix3xX<f64> {
