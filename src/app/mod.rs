@@ -52,6 +52,9 @@ pub struct Preferences {
     pub touch: bool,
 }
 
+/// The first character of a session stored as JSON (an object), written as an escape.
+const JSON_OBJECT: char = '\u{7b}';
+
 /// How many recent frames' times are kept.
 const RECENT_FRAMES: usize = 600;
 
@@ -161,7 +164,7 @@ impl ArmLabApp {
     /// empty store changes nothing.
     pub fn open_stored(&mut self, text: &str) {
         let text = text.trim();
-        if !text.starts_with('{') {
+        if !text.starts_with(JSON_OBJECT) {
             return self.open_hash(text);
         }
         match Session::from_json(text) {

@@ -250,50 +250,8 @@ impl JointsPanel {
         .default_open(false)
         .show(ui, |ui| {
             ui.label(egui::RichText::new(tr(model, Key::JointSpeedsHint)).small());
-            // The units once, above the sliders: beside each value they did not
-            // fit a projector's column.
-            let robot = model.robot();
-            let units = if robot.joints.iter().any(|j| j.kind == JointKind::Prismatic) {
-                let unit = robot.length_unit.symbol();
-                trf(model, Key::JointSpeedsUnitsPrismatic, &[&unit])
-            } else {
-                tr(model, Key::JointSpeedsUnits).to_string()
-            };
-            ui.label(egui::RichText::new(units).small());
-            let mut speeds = model.joint_speeds();
-            let mut changed = false;
-            speed_rail(ui, model);
-            egui::Grid::new("joint_speed_rows")
-                .num_columns(2)
-                .min_col_width(0.0)
-                .show(ui, |ui| {
-                    for (i, joint) in model.robot().joints.iter().enumerate() {
-                        let range = speed_range(model, joint);
-                        ui.label(format!("q̇{}", i + 1));
-                        changed |= ui
-                            .add(egui::Slider::new(&mut speeds[i], -range..=range))
-                            .changed();
-                        ui.end_row();
-                    }
-                });
-            if changed {
-                model.set_joint_speeds(&speeds);
-            }
-            let twist = tool_velocity(model.jacobian(), &speeds);
-            let v = format!(
-                "{}, {}, {}",
-                number(twist[0], 2),
-                number(twist[1], 2),
-                number(twist[2], 2)
-            );
-            let w = format!(
-                "{}, {}, {}",
-                number(twist[3], 3),
-                number(twist[4], 3),
-                number(twist[5], 3)
-            );
-            let unit = model.robot().length_unit.symbol();
-            ui.monospace(trf(model, Key::ToolTwist, &[&v, &unit, &w]));
+            let speeds = speed_rows(model, ui);
+            twist_line(model, ui, &speeds);
             crate::app::widgets::style::wrapped(ui, |ui| {
                 let label = if self.playing { Key::Pause } else { Key::Play };
                 if ui
@@ -392,4 +350,57 @@ fn joint_slider(
         ),
     };
     response.labelled_by(label.id)
+}
+
+/// The q̇ sliders, their units once above them; returns the speeds as set.
+fn speed_rows(model: &mut Model, ui: &mut egui::Ui) -> Vec<f64> {
+    // The units once, above the sliders: beside each value they did not
+    // fit a projector's column.
+    let robot = model.robot();
+    let units = if robot.joints.iter().any(|j| j.kind == JointKind::Prismatic) {
+        let unit = robot.length_unit.symbol();
+        trf(model, Key::JointSpeedsUnitsPrismatic, &[&unit])
+    } else {
+        tr(model, Key::JointSpeedsUnits).to_string()
+    };
+    ui.label(egui::RichText::new(units).small());
+    let mut speeds = model.joint_speeds();
+    let mut changed = false;
+    speed_rail(ui, model);
+    egui::Grid::new("joint_speed_rows")
+        .num_columns(2)
+        .min_col_width(0.0)
+        .show(ui, |ui| {
+            for (i, joint) in model.robot().joints.iter().enumerate() {
+                let range = speed_range(model, joint);
+                ui.label(format!("q̇{}", i + 1));
+                changed |= ui
+                    .add(egui::Slider::new(&mut speeds[i], -range..=range))
+                    .changed();
+                ui.end_row();
+            }
+        });
+    if changed {
+        model.set_joint_speeds(&speeds);
+    }
+    speeds
+}
+
+/// The tool's twist for these joint speeds: v and ω.
+fn twist_line(model: &Model, ui: &mut egui::Ui, speeds: &[f64]) {
+    let twist = tool_velocity(model.jacobian(), speeds);
+    let v = format!(
+        "{}, {}, {}",
+        number(twist[0], 2),
+        number(twist[1], 2),
+        number(twist[2], 2)
+    );
+    let w = format!(
+        "{}, {}, {}",
+        number(twist[3], 3),
+        number(twist[4], 3),
+        number(twist[5], 3)
+    );
+    let unit = model.robot().length_unit.symbol();
+    ui.monospace(trf(model, Key::ToolTwist, &[&v, &unit, &w]));
 }
