@@ -6,7 +6,7 @@
 use armlab_core::collision::CollisionReport;
 use armlab_core::collision::Obstacle;
 use armlab_core::error::{Expected, Place, RobotError};
-use armlab_core::exercise::{Diagnosis, Verdict, Where};
+use armlab_core::exercise::{Diagnosis, LengthField, Verdict, Where};
 use armlab_core::ik::{BadTarget, IkError, IkMethod};
 use armlab_core::jacobian::{Task, ToolAxis};
 use armlab_core::motion::{MotionError, Setting};
@@ -405,6 +405,44 @@ impl Sentence for Verdict {
     }
 }
 
+/// An angle of a table cell as the table shows it: whole degrees in (−180°, 180°].
+fn degrees(radians: f64) -> String {
+    let mut d = radians.to_degrees().round() as i64 % 360;
+    if d > 180 {
+        d -= 360;
+    } else if d <= -180 {
+        d += 360;
+    }
+    format!("{d}°")
+}
+
+/// A length of a table cell to the table's 0.01: a solved length carries rounding noise.
+fn cell_length(v: f64) -> String {
+    crate::echo::number((v * 100.0).round() / 100.0)
+}
+
+/// A sentence of `key` that asks to change the length in `field` of `row` from `from` to
+/// `to`.
+fn length_change(
+    lang: Lang,
+    key: Key,
+    (at, row, field): (Where, usize, LengthField),
+    from: f64,
+    to: f64,
+) -> String {
+    fill(
+        lang,
+        key,
+        &[
+            &at.sentence(lang),
+            &field.symbol(),
+            &row,
+            &cell_length(from),
+            &cell_length(to),
+        ],
+    )
+}
+
 impl Sentence for Diagnosis {
     /// The diagnosis as a sentence in `lang` (from the catalogue).
     fn sentence(&self, lang: Lang) -> String {
@@ -420,17 +458,26 @@ impl Sentence for Diagnosis {
                 fill(lang, Key::ExerciseJointKind, &[&joint, &kind])
             }
             Diagnosis::AxisReversed { joint } => fill(lang, Key::ExerciseAxisReversed, &[&joint]),
-            Diagnosis::TwistSign { at, row } => {
-                fill(lang, Key::ExerciseTwistSign, &[&at.sentence(lang), &row])
-            }
-            Diagnosis::MissingOffset { at, row, offset } => {
-                let degrees = format!("{:+}°", offset.to_degrees().round() as i64);
-                fill(
-                    lang,
-                    Key::ExerciseMissingOffset,
-                    &[&at.sentence(lang), &row, &degrees],
-                )
-            }
+            Diagnosis::TwistSign { at, row, found } => fill(
+                lang,
+                Key::ExerciseTwistSign,
+                &[&at.sentence(lang), &row, &degrees(found), &degrees(-found)],
+            ),
+            Diagnosis::MissingOffset {
+                at,
+                row,
+                offset,
+                found,
+            } => fill(
+                lang,
+                Key::ExerciseMissingOffset,
+                &[
+                    &at.sentence(lang),
+                    &row,
+                    &degrees(found),
+                    &degrees(found + offset),
+                ],
+            ),
             Diagnosis::LengthInWrongRow {
                 at,
                 row,
@@ -448,10 +495,30 @@ impl Sentence for Diagnosis {
                     &to_row,
                 ],
             ),
-            Diagnosis::LengthSign { at, row, field } => fill(
+            Diagnosis::LengthSign {
+                at,
+                row,
+                field,
+                found,
+            } => length_change(
                 lang,
                 Key::ExerciseLengthSign,
-                &[&at.sentence(lang), &field.symbol(), &row],
+                (at, row, field),
+                found,
+                -found,
+            ),
+            Diagnosis::LengthValue {
+                at,
+                row,
+                field,
+                found,
+                expected,
+            } => length_change(
+                lang,
+                Key::ExerciseLengthValue,
+                (at, row, field),
+                found,
+                expected,
             ),
             Diagnosis::FrameDisagrees { joint } => {
                 fill(lang, Key::ExerciseFrameDisagrees, &[&joint])
