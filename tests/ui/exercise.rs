@@ -110,6 +110,69 @@ fn a_mystery_exercise_draws_its_axes_and_fits_every_screen() {
     h.snapshot("exercise_mystery_42");
 }
 
+/// The share of the view's width and height the exercise's labels span, after checking
+/// that no label covers another or leaves the view.
+fn exercise_labels_span(h: &Harness<'_, ArmLabApp>, what: &str) -> (f32, f32) {
+    let view = h.state().viewport().rect().expect("the view was laid out");
+    let labels = h.state().viewport().exercise_labels();
+    let dof = h.state().model().robot().dof();
+    assert!(labels.len() > dof, "{what}: {labels:?}");
+    for (i, a) in labels.iter().enumerate() {
+        assert!(view.contains_rect(a.rect), "{what}: {a:?} leaves {view:?}");
+        assert!(a.rect.height() >= 15.0, "{what}: {a:?} is readable");
+        // Every label names its axis or the pair of axes it measures.
+        assert!(
+            a.text.contains("axis") || a.text.contains("axes"),
+            "{what}: {a:?}"
+        );
+        for b in &labels[i + 1..] {
+            assert!(!a.rect.intersects(b.rect), "{what}: {a:?} covers {b:?}");
+        }
+    }
+    let union = labels
+        .iter()
+        .fold(egui::Rect::NOTHING, |u, l| u.union(l.rect));
+    (union.width() / view.width(), union.height() / view.height())
+}
+
+#[test]
+fn the_exercise_fills_the_view_and_no_label_covers_another() {
+    for (hash, size) in [
+        ("#exercise=mystery-3", [1366.0, 768.0]),
+        ("#exercise=mystery-3", [1024.0, 768.0]),
+        ("#exercise=mystery-3", [390.0, 844.0]),
+        ("#exercise=rrr", [1366.0, 768.0]),
+        ("#exercise=mystery-42", [1366.0, 768.0]),
+    ] {
+        let mut h = harness_at(hash, size);
+        h.run_steps(2);
+        let what = format!("{hash} at {size:?}");
+        let (w, hgt) = exercise_labels_span(&h, &what);
+        // The drawing and its labels fill the view in one direction at least.
+        assert!(
+            w.max(hgt) >= 0.6,
+            "{what}: the labels span {w} × {hgt} of the view"
+        );
+        if hash == "#exercise=mystery-3" && size[0] == 1366.0 {
+            // Zoomed far out, F frames the arm again.
+            let centre = h.state().viewport().rect().expect("a view").center();
+            app_harness::wheel(&mut h, centre, -2000.0);
+            let (zoomed, _) = exercise_labels_span(&h, &what);
+            assert!(
+                zoomed < w * 0.8,
+                "{what}: the wheel zoomed out ({zoomed} of {w})"
+            );
+            h.key_press(egui::Key::F);
+            h.run_steps(3);
+            let (again, _) = exercise_labels_span(&h, &what);
+            assert!(
+                (again - w).abs() < 0.05,
+                "{what}: F framed it ({again}, first {w})"
+            );
+        }
+    }
+}
+
 #[test]
 fn predict_then_reveal_hides_entries_until_a_click_and_the_link_keeps_them() {
     let mut h = harness_at(
