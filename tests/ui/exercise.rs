@@ -261,3 +261,82 @@ fn a_robot_file_brings_its_keep_out_boxes_and_a_bad_box_leaves_the_last_good_rob
     assert_eq!(model.robot().name, "UR10 in a cell");
     assert_eq!(model.motion().keep_outs(), &boxes[..]);
 }
+
+/// Every DH cell's text lies whole inside its cell and, in a tall touch cell, at its
+/// middle; gives what does not.
+fn dh_texts_out_of_place(h: &Harness<'_, ArmLabApp>) -> Vec<String> {
+    let mut out = Vec::new();
+    for cell in h.query_all_by_role(Role::TextInput) {
+        let rect = cell.rect();
+        let value = cell
+            .accesskit_node()
+            .value()
+            .unwrap_or_default()
+            .to_string();
+        for run in cell.children() {
+            let text = run.rect();
+            // The text's margin on the right at least its margin on the left: a narrower
+            // one means the cell's inner edge cuts the text.
+            let left = text.left() - rect.left();
+            if left < 2.0 || rect.right() - text.right() < left - 0.5 {
+                out.push(format!("{value:?} cut: text {text:?} in cell {rect:?}"));
+            } else if (text.center().y - rect.center().y).abs() > 2.0 {
+                out.push(format!(
+                    "{value:?} off centre: text {text:?} in cell {rect:?}"
+                ));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn a_tablets_dh_cells_show_their_numbers_whole_and_centred() {
+    let mut h = harness_at("#robot=ur10&panels=robot", [820.0, 1180.0]);
+    h.state_mut().set_touch(true);
+    h.run_steps(3);
+    h.get_by_label("Robot").click();
+    h.run_steps(3);
+    h.get_by_label("DH table (editable)").click();
+    h.run_steps(3);
+    assert_eq!(h.query_all_by_role(Role::TextInput).count(), 36);
+    let tall = h
+        .query_all_by_role(Role::TextInput)
+        .next()
+        .expect("a cell")
+        .rect();
+    assert!(tall.height() >= 36.0, "touch cells are tall: {tall:?}");
+    let runs: usize = h
+        .query_all_by_role(Role::TextInput)
+        .map(|c| c.children().count())
+        .sum();
+    assert!(runs >= 36, "each cell's text is seen: {runs}");
+    let wrong = dh_texts_out_of_place(&h);
+    assert!(wrong.is_empty(), "{wrong:#?}");
+}
+
+#[test]
+fn modified_dh_columns_read_a_i_minus_1_alpha_i_minus_1_d_i_theta_i() {
+    let mut h = harness_at("#robot=ur10&panels=robot", [1920.0, 1080.0]);
+    h.get_by_label("DH table (editable)").click();
+    h.run_steps(3);
+    let x = |h: &Harness<'_, ArmLabApp>, label: &str| h.get_by_label(label).rect().center().x;
+    let heads = ["ai−1", "αi−1 (°)", "di", "θi (°)"];
+    let xs: Vec<f32> = heads.iter().map(|l| x(&h, l)).collect();
+    assert!(xs.windows(2).all(|w| w[0] < w[1]), "{heads:?} at {xs:?}");
+    // The cells follow their headers: row 1's a, α, d, θ (columns 3, 4, 2, 1).
+    let at = |name: &str| h.state().points().get(name).expect("a cell")[0];
+    let cells = [at("dh-1-3"), at("dh-1-4"), at("dh-1-2"), at("dh-1-1")];
+    assert!(cells.windows(2).all(|w| w[0] < w[1]), "{cells:?}");
+    for (head, cell) in xs.iter().zip(cells) {
+        assert!((head - cell).abs() < 40.0, "header {head} over cell {cell}");
+    }
+    // The standard table keeps θ_i, d_i, a_i, α_i, and the two tables side by side have
+    // headers in the body's size.
+    h.get_by_label("Both conventions side by side").click();
+    h.run_steps(3);
+    for head in ["θi", "ai", "ai−1", "αi−1"] {
+        let r = h.get_all_by_label(head).last().expect("a header").rect();
+        assert!(r.height() >= 14.0, "{head}: {r:?}");
+    }
+}
