@@ -340,3 +340,25 @@ fn modified_dh_columns_read_a_i_minus_1_alpha_i_minus_1_d_i_theta_i() {
         assert!(r.height() >= 14.0, "{head}: {r:?}");
     }
 }
+
+/// The A_i formula is laid out as mathematics: subscripts, not LaTeX's marks as typed.
+#[test]
+fn the_a_i_formula_shows_subscripts_not_latex_marks() {
+    for (preset, formula) in [
+        ("ur10", "modified DH: Ai = Rx(αi−1)·Tx(ai−1)·Rz(θi)·Tz(di)"),
+        ("puma560", "standard DH: Ai = Rz(θi)·Tz(di)·Tx(ai)·Rx(αi)"),
+    ] {
+        let mut h = harness_at(&format!("#robot={preset}&panels=matrices"), [1366.0, 768.0]);
+        h.get_by_label_contains("Link transforms").click();
+        h.run_steps(3);
+        let label = h.get_by_label(formula);
+        let r = label.rect();
+        assert!(r.height() >= 14.0 && r.width() > 150.0, "{formula}: {r:?}");
+        let _ = label;
+        assert!(
+            h.query_by_label_contains("_{").is_none()
+                && h.query_by_label_contains("A_i =").is_none(),
+            "no LaTeX marks as text"
+        );
+    }
+}
