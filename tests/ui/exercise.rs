@@ -362,3 +362,46 @@ fn the_a_i_formula_shows_subscripts_not_latex_marks() {
         );
     }
 }
+
+/// The heights (CSS pixels) of the text rows of the first label containing `text`.
+fn row_heights(h: &Harness<'_, ArmLabApp>, text: &str) -> Vec<f32> {
+    let zoom = h.ctx.zoom_factor();
+    let label = h.get_by_label_contains(text);
+    let rows: Vec<f32> = label.children().map(|r| r.rect().height() * zoom).collect();
+    if rows.is_empty() {
+        vec![label.rect().height() * zoom]
+    } else {
+        rows
+    }
+}
+
+/// On a 1024 × 768 projector in presentation mode the robot's description and the DH
+/// table's units read at 14 pixels, and the DH cells keep a fill apart from the panel.
+#[test]
+fn presentation_notes_are_large_and_dh_cells_keep_their_boxes() {
+    let mut h = harness_at("#robot=ur10&present=on&ppanels=robot", [1024.0, 768.0]);
+    h.get_by_label("DH table (editable)").click();
+    h.run_steps(3);
+    for text in ["Universal Robots UR10 in modified DH", "Lengths in mm"] {
+        let rows = row_heights(&h, text);
+        assert!(rows.iter().all(|&r| r >= 16.0), "{text}: rows {rows:?} px");
+    }
+    // A cell's fill against the panel's: a visible box.
+    let cell = h
+        .query_all_by_role(Role::TextInput)
+        .next()
+        .expect("a cell")
+        .rect();
+    let image = h.render().expect("a frame");
+    let ppp = h.ctx.pixels_per_point();
+    let px = |p: egui::Pos2| image.get_pixel((p.x * ppp) as u32, (p.y * ppp) as u32).0;
+    let inside = px(cell.left_center() + egui::vec2(3.0, 0.0));
+    let outside = px(cell.left_center() - egui::vec2(3.0, 0.0));
+    let diff = (0..3)
+        .map(|i| (inside[i] as i32 - outside[i] as i32).abs())
+        .max();
+    assert!(
+        diff >= Some(20),
+        "cell {inside:?} against panel {outside:?}"
+    );
+}
