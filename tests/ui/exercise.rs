@@ -114,7 +114,7 @@ fn a_mystery_exercise_draws_its_axes_and_fits_every_screen() {
 /// that no label covers another or leaves the view.
 fn exercise_labels_span(h: &Harness<'_, ArmLabApp>, what: &str) -> (f32, f32) {
     let view = h.state().viewport().rect().expect("the view was laid out");
-    let labels = h.state().viewport().exercise_labels();
+    let labels = h.state().viewport().labels();
     let dof = h.state().model().robot().dof();
     assert!(labels.len() > dof, "{what}: {labels:?}");
     for (i, a) in labels.iter().enumerate() {
@@ -404,4 +404,31 @@ fn presentation_notes_are_large_and_dh_cells_keep_their_boxes() {
         diff >= Some(20),
         "cell {inside:?} against panel {outside:?}"
     );
+}
+
+/// Each DH frame's x and z axes are named where the view has room, no name over another.
+#[test]
+fn the_dh_frames_axes_are_named() {
+    for (hash, size, least) in [
+        ("#robot=ur10", [1366.0, 768.0], 8),
+        ("#robot=rrr", [1024.0, 768.0], 6),
+        ("#robot=ur10", [390.0, 844.0], 4),
+    ] {
+        let h = harness_at(hash, size);
+        let view = h.state().viewport().rect().expect("the view was laid out");
+        let labels = h.state().viewport().labels();
+        let names: Vec<&str> = labels.iter().map(|l| l.text.as_str()).collect();
+        assert!(labels.len() >= least, "{hash} at {size:?}: {names:?}");
+        assert!(names.contains(&"z1") && names.contains(&"x1"), "{names:?}");
+        for (i, a) in labels.iter().enumerate() {
+            assert!(view.contains_rect(a.rect), "{a:?}");
+            assert!(
+                a.rect.center().distance(a.anchor) < 40.0,
+                "{a:?} beside its axis"
+            );
+            for b in &labels[i + 1..] {
+                assert!(!a.rect.intersects(b.rect), "{a:?} covers {b:?}");
+            }
+        }
+    }
 }

@@ -92,6 +92,32 @@ impl Placer {
         rect
     }
 
+    /// Places a label of `size` for `anchor` centred on `anchor + shift` or within
+    /// `reach` points of it, only where it covers no placed label and no line kept
+    /// clear; `None` (nothing placed) where the view has no such room.
+    pub fn try_place(
+        &mut self,
+        text: String,
+        size: Vec2,
+        (anchor, shift): (Pos2, Vec2),
+        reach: f32,
+    ) -> Option<Rect> {
+        let home = anchor + shift;
+        let rings = (reach / RING_STEP).floor() as usize;
+        let rect = (0..=rings)
+            .flat_map(|ring| {
+                let count = if ring == 0 { 1 } else { DIRECTIONS };
+                (0..count).map(move |k| {
+                    let angle = k as f32 / DIRECTIONS as f32 * std::f32::consts::TAU;
+                    home + Vec2::angled(angle) * (ring as f32 * RING_STEP)
+                })
+            })
+            .map(|c| Rect::from_center_size(c, size))
+            .find(|&r| self.free(r, true))?;
+        self.placed.push(Placed { text, rect, anchor });
+        Some(rect)
+    }
+
     /// How much of `rect` the placed labels and the view's outside cover (points²).
     fn overlap(&self, rect: Rect) -> f32 {
         let inside = rect.intersect(self.view).area().max(0.0);

@@ -9,6 +9,7 @@
 
 pub mod convention;
 pub mod exercise;
+mod frame_labels;
 mod ghosts;
 pub mod jacobian;
 pub mod labels;
@@ -71,8 +72,8 @@ pub struct Viewport {
     /// Where and when (egui's input time, s) the press of the current drag began: a
     /// release near it soon after is a click (on a ghost arm).
     press: Option<(egui::Pos2, f64)>,
-    /// The exercise's labels as drawn last frame.
-    exercise_labels: Vec<labels::Placed>,
+    /// The labels drawn over the picture last frame.
+    labels: Vec<labels::Placed>,
 }
 
 /// A press released within this distance (points) of where it began is a click.
@@ -95,7 +96,7 @@ impl Viewport {
             grid_step: 0.0,
             rendered: false,
             press: None,
-            exercise_labels: Vec::new(),
+            labels: Vec::new(),
         }
     }
 
@@ -120,10 +121,10 @@ impl Viewport {
         self.rect
     }
 
-    /// The exercise's dimension and axis labels as drawn last frame (none outside the
-    /// exercise).
-    pub fn exercise_labels(&self) -> &[labels::Placed] {
-        &self.exercise_labels
+    /// The labels drawn over the picture last frame: the exercise's axes and dimensions,
+    /// or the DH frames' axis names.
+    pub fn labels(&self) -> &[labels::Placed] {
+        &self.labels
     }
 
     /// The grid spacing last drawn (robot units).
@@ -212,9 +213,11 @@ impl Viewport {
             view.project(p)
                 .map(|s| egui::pos2(s[0] as f32, s[1] as f32))
         };
-        self.exercise_labels = if model.exercise().is_some() {
+        self.labels = if model.exercise().is_some() {
             // The exercise's joint axes and dimensions, over the picture.
             exercise::draw_in_view(model, &ui.painter_at(rect), rect, &project)
+        } else if model.settings().show_frames && !model.table_hidden() {
+            frame_labels::draw_in_view(model, &ui.painter_at(rect), rect, &project)
         } else {
             Vec::new()
         };
