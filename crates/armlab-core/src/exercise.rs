@@ -282,6 +282,38 @@ fn rows_nearest(n: usize, joint: usize) -> Vec<usize> {
     rows
 }
 
+/// The one length cell whose value alone makes `student` right, nearest the first
+/// disagreeing `joint` (from 0); the diagnosis names it at that joint. Offsets along
+/// parallel axes can stand for each other, so the lengths the student wrote are tried
+/// before the empty cells.
+fn one_length_value(
+    reference: &Robot,
+    student: &Robot,
+    samples: &[Vec<f64>],
+    joint: usize,
+) -> Option<Diagnosis> {
+    let length = reference.reach().max(1e-12);
+    let at = if joint < student.dof() {
+        Where::Joint(joint + 1)
+    } else {
+        Where::Tool
+    };
+    for written in [true, false] {
+        for k in rows_nearest(student.dof(), joint) {
+            for field in [LengthField::A, LengthField::D] {
+                if (get(&student.joints[k].dh, field) != 0.0) != written {
+                    continue;
+                }
+                let cell = (k, field);
+                if let Some(d) = length_value(reference, student, samples, length, cell, at) {
+                    return Some(d);
+                }
+            }
+        }
+    }
+    None
+}
+
 /// The value of one length cell (`row` from 0, `field`) that makes `student` give the
 /// reference's tool pose, as [`Diagnosis::LengthValue`] at `at`; `None` when no value
 /// does. The tool position moves linearly with any one length, so a unit step gives the
@@ -489,25 +521,8 @@ pub fn check_table(reference: &Robot, student: &Robot) -> Verdict {
             return Verdict::Wrong(*diagnosis);
         }
     }
-    // One length of a wrong value. Offsets along parallel axes can stand for each other,
-    // so the lengths the student wrote are tried before the empty cells.
-    let at = if joint < student.dof() {
-        Where::Joint(joint + 1)
-    } else {
-        Where::Tool
-    };
-    for written in [true, false] {
-        for k in rows_nearest(student.dof(), joint) {
-            for field in [LengthField::A, LengthField::D] {
-                if (get(&student.joints[k].dh, field) != 0.0) != written {
-                    continue;
-                }
-                let cell = (k, field);
-                if let Some(d) = length_value(reference, student, &samples, length, cell, at) {
-                    return Verdict::Wrong(d);
-                }
-            }
-        }
+    if let Some(d) = one_length_value(reference, student, &samples, joint) {
+        return Verdict::Wrong(d);
     }
     if let Some((i, true)) = first {
         return Verdict::Wrong(Diagnosis::AxisReversed { joint: i + 1 });

@@ -193,6 +193,11 @@ fn verdicts_read_as_sentences_in_both_languages() {
         "{}",
         wrapped.sentence(Lang::En)
     );
+    assert!(Verdict::Correct.sentence(Lang::Fi).starts_with("Oikein"));
+}
+
+#[test]
+fn length_sentences_say_what_to_change_from_what_to_what() {
     let v = Verdict::Wrong(Diagnosis::LengthValue {
         at: Where::Joint(2),
         row: 1,
@@ -219,7 +224,6 @@ fn verdicts_read_as_sentences_in_both_languages() {
         s.sentence(Lang::En)
             .ends_with("change it from -100.9 to 100.9.")
     );
-    assert!(Verdict::Correct.sentence(Lang::Fi).starts_with("Oikein"));
 }
 
 /// The RRR's table with one cell changed.

@@ -421,6 +421,15 @@ fn cell_length(v: f64) -> String {
     crate::echo::number((v * 100.0).round() / 100.0)
 }
 
+/// A sentence of `key` that asks to change an angle of `row` from `from` to `to`.
+fn angle_change(lang: Lang, key: Key, (at, row): (Where, usize), from: f64, to: f64) -> String {
+    fill(
+        lang,
+        key,
+        &[&at.sentence(lang), &row, &degrees(from), &degrees(to)],
+    )
+}
+
 /// A sentence of `key` that asks to change the length in `field` of `row` from `from` to
 /// `to`.
 fn length_change(
@@ -458,74 +467,79 @@ impl Sentence for Diagnosis {
                 fill(lang, Key::ExerciseJointKind, &[&joint, &kind])
             }
             Diagnosis::AxisReversed { joint } => fill(lang, Key::ExerciseAxisReversed, &[&joint]),
-            Diagnosis::TwistSign { at, row, found } => fill(
-                lang,
-                Key::ExerciseTwistSign,
-                &[&at.sentence(lang), &row, &degrees(found), &degrees(-found)],
-            ),
-            Diagnosis::MissingOffset {
-                at,
-                row,
-                offset,
-                found,
-            } => fill(
-                lang,
-                Key::ExerciseMissingOffset,
-                &[
-                    &at.sentence(lang),
-                    &row,
-                    &degrees(found),
-                    &degrees(found + offset),
-                ],
-            ),
-            Diagnosis::LengthInWrongRow {
-                at,
-                row,
-                field,
-                to_row,
-                to_field,
-            } => fill(
-                lang,
-                Key::ExerciseLengthInWrongRow,
-                &[
-                    &at.sentence(lang),
-                    &field.symbol(),
-                    &row,
-                    &to_field.symbol(),
-                    &to_row,
-                ],
-            ),
-            Diagnosis::LengthSign {
-                at,
-                row,
-                field,
-                found,
-            } => length_change(
-                lang,
-                Key::ExerciseLengthSign,
-                (at, row, field),
-                found,
-                -found,
-            ),
-            Diagnosis::LengthValue {
-                at,
-                row,
-                field,
-                found,
-                expected,
-            } => length_change(
-                lang,
-                Key::ExerciseLengthValue,
-                (at, row, field),
-                found,
-                expected,
-            ),
             Diagnosis::FrameDisagrees { joint } => {
                 fill(lang, Key::ExerciseFrameDisagrees, &[&joint])
             }
             Diagnosis::ToolDisagrees => text(lang, Key::ExerciseToolDisagrees).to_string(),
+            // The diagnoses that name a cell of the table.
+            _ => cell_sentence(self, lang).unwrap_or_default(),
         }
     }
+}
+
+/// The sentence of a diagnosis that names a cell of the table and what to change it to;
+/// `None` for the others.
+fn cell_sentence(d: &Diagnosis, lang: Lang) -> Option<String> {
+    Some(match *d {
+        Diagnosis::TwistSign { at, row, found } => {
+            angle_change(lang, Key::ExerciseTwistSign, (at, row), found, -found)
+        }
+        Diagnosis::MissingOffset {
+            at,
+            row,
+            offset,
+            found,
+        } => angle_change(
+            lang,
+            Key::ExerciseMissingOffset,
+            (at, row),
+            found,
+            found + offset,
+        ),
+        Diagnosis::LengthInWrongRow {
+            at,
+            row,
+            field,
+            to_row,
+            to_field,
+        } => fill(
+            lang,
+            Key::ExerciseLengthInWrongRow,
+            &[
+                &at.sentence(lang),
+                &field.symbol(),
+                &row,
+                &to_field.symbol(),
+                &to_row,
+            ],
+        ),
+        Diagnosis::LengthSign {
+            at,
+            row,
+            field,
+            found,
+        } => length_change(
+            lang,
+            Key::ExerciseLengthSign,
+            (at, row, field),
+            found,
+            -found,
+        ),
+        Diagnosis::LengthValue {
+            at,
+            row,
+            field,
+            found,
+            expected,
+        } => length_change(
+            lang,
+            Key::ExerciseLengthValue,
+            (at, row, field),
+            found,
+            expected,
+        ),
+        _ => return None,
+    })
 }
 
 #[cfg(test)]

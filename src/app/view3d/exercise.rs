@@ -186,34 +186,30 @@ fn dimension_text(model: &Model, d: &Dimension) -> String {
     }
 }
 
-/// Draws each joint axis (a line with an arrowhead on its positive end, named) and the
-/// [`dimensions`] as dashed lines labelled with what they measure, over the 3D view in
-/// `view`; `project` maps a world point to the window. No label covers another: the axis
-/// names are placed first, then each dimension's label at its middle or, where that is
-/// taken, nearby with a leader line to it. Gives the labels as placed.
-pub fn draw_in_view(
+/// A label to draw once every label is placed: its place, its anchor, its text, colour,
+/// and whether it gets a leader line.
+type Queued = (
+    egui::Rect,
+    egui::Pos2,
+    std::sync::Arc<egui::Galley>,
+    egui::Color32,
+    bool,
+);
+
+/// Draws each joint axis with its arrowhead and places its name beyond the arrowhead.
+fn draw_axes(
     model: &Model,
     painter: &egui::Painter,
-    view: egui::Rect,
+    (dims, font): (&[Dimension], &egui::FontId),
+    placer: &mut Placer,
     project: &dyn Fn(&Point3<f64>) -> Option<egui::Pos2>,
-) -> Vec<Placed> {
-    let robot = model.robot();
-    let fk = model.fk();
-    let font = egui::FontId::proportional(if model.settings().presentation {
-        16.0
-    } else {
-        13.0
-    });
+) -> Vec<Queued> {
     let axis_color = egui::Color32::from_rgb(110, 165, 255);
-    let dims = dimensions(robot, fk);
-    let mut placer = Placer::new(view);
     let mut queued = Vec::new();
-    for d in &dims {
-        if let (Some(a), Some(b)) = (project(&Point3::from(d.from)), project(&Point3::from(d.to))) {
-            placer.keep_clear(a, b);
-        }
-    }
-    for (i, [back, front]) in axis_ends(robot, fk, &dims).iter().enumerate() {
+    for (i, [back, front]) in axis_ends(model.robot(), model.fk(), dims)
+        .iter()
+        .enumerate()
+    {
         let (Some(a), Some(b)) = (
             project(&Point3::from(*back)),
             project(&Point3::from(*front)),
@@ -242,6 +238,35 @@ pub fn draw_in_view(
             b.distance(rect.center()) > shift.length() + 4.0,
         ));
     }
+    queued
+}
+
+/// Draws each joint axis (a line with an arrowhead on its positive end, named) and the
+/// [`dimensions`] as dashed lines labelled with what they measure, over the 3D view in
+/// `view`; `project` maps a world point to the window. No label covers another: the axis
+/// names are placed first, then each dimension's label at its middle or, where that is
+/// taken, nearby with a leader line to it. Gives the labels as placed.
+pub fn draw_in_view(
+    model: &Model,
+    painter: &egui::Painter,
+    view: egui::Rect,
+    project: &dyn Fn(&Point3<f64>) -> Option<egui::Pos2>,
+) -> Vec<Placed> {
+    let robot = model.robot();
+    let fk = model.fk();
+    let font = egui::FontId::proportional(if model.settings().presentation {
+        16.0
+    } else {
+        13.0
+    });
+    let dims = dimensions(robot, fk);
+    let mut placer = Placer::new(view);
+    for d in &dims {
+        if let (Some(a), Some(b)) = (project(&Point3::from(d.from)), project(&Point3::from(d.to))) {
+            placer.keep_clear(a, b);
+        }
+    }
+    let mut queued = draw_axes(model, painter, (&dims, &font), &mut placer, project);
     for d in &dims {
         let (Some(a), Some(b)) = (project(&Point3::from(d.from)), project(&Point3::from(d.to)))
         else {

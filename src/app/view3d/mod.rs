@@ -213,14 +213,7 @@ impl Viewport {
             view.project(p)
                 .map(|s| egui::pos2(s[0] as f32, s[1] as f32))
         };
-        self.labels = if model.exercise().is_some() {
-            // The exercise's joint axes and dimensions, over the picture.
-            exercise::draw_in_view(model, &ui.painter_at(rect), rect, &project)
-        } else if model.settings().show_frames && !model.table_hidden() {
-            frame_labels::draw_in_view(model, &ui.painter_at(rect), rect, &project)
-        } else {
-            Vec::new()
-        };
+        self.labels = draw_labels(model, &ui.painter_at(rect), rect, &project);
         paths::draw_in_view(model, &ui.painter_at(rect), &project);
         self.publish_points(model, rect, &axes, points);
         if response.hovered() && self.hover.is_some() {
@@ -522,6 +515,23 @@ impl Viewport {
         add("tool".into(), &Point3::from(model.fk().tool_position()));
         let base = model.robot().world_from_base.translation.vector;
         add("base".into(), &Point3::from(base));
+    }
+}
+
+/// The labels over the picture: the exercise's joint axes and dimensions, or the DH
+/// frames' axis names when the frames are drawn.
+fn draw_labels(
+    model: &Model,
+    painter: &egui::Painter,
+    rect: Rect,
+    project: &dyn Fn(&Point3<f64>) -> Option<Pos2>,
+) -> Vec<labels::Placed> {
+    if model.exercise().is_some() {
+        exercise::draw_in_view(model, painter, rect, project)
+    } else if model.settings().show_frames && !model.table_hidden() {
+        frame_labels::draw_in_view(model, painter, rect, project)
+    } else {
+        Vec::new()
     }
 }
 
