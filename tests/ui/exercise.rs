@@ -66,8 +66,17 @@ fn the_dh_exercise_hides_the_table_and_names_the_joint_of_a_wrong_answer() {
     );
     assert!(h.state().model().table_hidden(), "still hidden");
     h.snapshot("exercise_rrr_wrong");
-    // Move a2 to row 2: correct, and the table shows everywhere again.
+    // a2 moved to row 2 but typed as 222.0: the one cell to change, and to what.
     type_into_cell(&mut h, 2, "0");
+    type_into_cell(&mut h, 6 + 2, "222");
+    h.get_by_label("Check").click();
+    h.run_steps(2);
+    let near = "Joint 3's frame is the first to disagree: change a in row 2 from 222 to 222.1.";
+    assert!(
+        h.query_by_label(near).is_some(),
+        "the verdict names a2's value"
+    );
+    // Correct: the table shows everywhere again.
     type_into_cell(&mut h, 6 + 2, "222.1");
     h.get_by_label("Check").click();
     h.run_steps(2);
