@@ -63,29 +63,18 @@ impl Placer {
     /// at the nearest free place on rings around it; where nothing is free (a crowded
     /// phone screen), at the place that overlaps the placed labels least.
     pub fn place(&mut self, text: String, size: Vec2, anchor: Pos2, shift: Vec2) -> Rect {
-        let home = anchor + shift;
         let at = |c: Pos2| Rect::from_center_size(c, size);
-        let candidates = (0..=RINGS).flat_map(|ring| {
-            let r = ring as f32 * RING_STEP;
-            let count = if ring == 0 { 1 } else { DIRECTIONS };
-            (0..count).map(move |k| {
-                let angle = k as f32 / DIRECTIONS as f32 * std::f32::consts::TAU;
-                home + Vec2::angled(angle) * r
-            })
-        });
+        let candidates = around(anchor + shift, RINGS).map(at);
         let rect = candidates
             .clone()
-            .map(at)
             .find(|&r| self.free(r, true))
-            .or_else(|| candidates.clone().map(at).find(|&r| self.free(r, false)))
+            .or_else(|| candidates.clone().find(|&r| self.free(r, false)))
             .unwrap_or_else(|| {
                 candidates
-                    .map(at)
                     .map(|r| (self.overlap(r), r))
-                    .fold(
-                        (f32::INFINITY, at(home)),
-                        |a, b| if b.0 < a.0 { b } else { a },
-                    )
+                    .fold((f32::INFINITY, at(anchor + shift)), |a, b| {
+                        if b.0 < a.0 { b } else { a }
+                    })
                     .1
             });
         self.placed.push(Placed { text, rect, anchor });
@@ -102,16 +91,8 @@ impl Placer {
         (anchor, shift): (Pos2, Vec2),
         reach: f32,
     ) -> Option<Rect> {
-        let home = anchor + shift;
         let rings = (reach / RING_STEP).floor() as usize;
-        let rect = (0..=rings)
-            .flat_map(|ring| {
-                let count = if ring == 0 { 1 } else { DIRECTIONS };
-                (0..count).map(move |k| {
-                    let angle = k as f32 / DIRECTIONS as f32 * std::f32::consts::TAU;
-                    home + Vec2::angled(angle) * (ring as f32 * RING_STEP)
-                })
-            })
+        let rect = around(anchor + shift, rings)
             .map(|c| Rect::from_center_size(c, size))
             .find(|&r| self.free(r, true))?;
         self.placed.push(Placed { text, rect, anchor });
@@ -133,15 +114,22 @@ impl Placer {
         covered + outside
     }
 
-    /// The labels placed so far.
-    pub fn placed(&self) -> &[Placed] {
-        &self.placed
-    }
-
     /// Consumes the placer, giving its labels.
     pub fn into_placed(self) -> Vec<Placed> {
         self.placed
     }
+}
+
+/// Candidate centres: `home`, then [`DIRECTIONS`] points on each of `rings` rings
+/// around it, nearest first.
+fn around(home: Pos2, rings: usize) -> impl Iterator<Item = Pos2> + Clone {
+    (0..=rings).flat_map(move |ring| {
+        let count = if ring == 0 { 1 } else { DIRECTIONS };
+        (0..count).map(move |k| {
+            let angle = k as f32 / DIRECTIONS as f32 * std::f32::consts::TAU;
+            home + Vec2::angled(angle) * (ring as f32 * RING_STEP)
+        })
+    })
 }
 
 /// Whether the segment `a`–`b` passes through `rect` (clipped to it, Liang–Barsky).
