@@ -66,8 +66,17 @@ fn the_dh_exercise_hides_the_table_and_names_the_joint_of_a_wrong_answer() {
     );
     assert!(h.state().model().table_hidden(), "still hidden");
     h.snapshot("exercise_rrr_wrong");
-    // Move a2 to row 2: correct, and the table shows everywhere again.
+    // a2 moved to row 2 but typed as 222.0: the one cell to change, and to what.
     type_into_cell(&mut h, 2, "0");
+    type_into_cell(&mut h, 6 + 2, "222");
+    h.get_by_label("Check").click();
+    h.run_steps(2);
+    let near = "Joint 3's frame is the first to disagree: change a in row 2 from 222 to 222.1.";
+    assert!(
+        h.query_by_label(near).is_some(),
+        "the verdict names a2's value"
+    );
+    // Correct: the table shows everywhere again.
     type_into_cell(&mut h, 6 + 2, "222.1");
     h.get_by_label("Check").click();
     h.run_steps(2);
@@ -108,6 +117,69 @@ fn a_mystery_exercise_draws_its_axes_and_fits_every_screen() {
     let lengths = dims.iter().filter(|d| d.length > 1e-6).count();
     assert!(lengths >= model.robot().dof(), "{dims:?}");
     h.snapshot("exercise_mystery_42");
+}
+
+/// The share of the view's width and height the exercise's labels span, after checking
+/// that no label covers another or leaves the view.
+fn exercise_labels_span(h: &Harness<'_, ArmLabApp>, what: &str) -> (f32, f32) {
+    let view = h.state().viewport().rect().expect("the view was laid out");
+    let labels = h.state().viewport().labels();
+    let dof = h.state().model().robot().dof();
+    assert!(labels.len() > dof, "{what}: {labels:?}");
+    for (i, a) in labels.iter().enumerate() {
+        assert!(view.contains_rect(a.rect), "{what}: {a:?} leaves {view:?}");
+        assert!(a.rect.height() >= 15.0, "{what}: {a:?} is readable");
+        // Every label names its axis or the pair of axes it measures.
+        assert!(
+            a.text.contains("axis") || a.text.contains("axes"),
+            "{what}: {a:?}"
+        );
+        for b in &labels[i + 1..] {
+            assert!(!a.rect.intersects(b.rect), "{what}: {a:?} covers {b:?}");
+        }
+    }
+    let union = labels
+        .iter()
+        .fold(egui::Rect::NOTHING, |u, l| u.union(l.rect));
+    (union.width() / view.width(), union.height() / view.height())
+}
+
+#[test]
+fn the_exercise_fills_the_view_and_no_label_covers_another() {
+    for (hash, size) in [
+        ("#exercise=mystery-3", [1366.0, 768.0]),
+        ("#exercise=mystery-3", [1024.0, 768.0]),
+        ("#exercise=mystery-3", [390.0, 844.0]),
+        ("#exercise=rrr", [1366.0, 768.0]),
+        ("#exercise=mystery-42", [1366.0, 768.0]),
+    ] {
+        let mut h = harness_at(hash, size);
+        h.run_steps(2);
+        let what = format!("{hash} at {size:?}");
+        let (w, hgt) = exercise_labels_span(&h, &what);
+        // The drawing and its labels fill the view in one direction at least.
+        assert!(
+            w.max(hgt) >= 0.6,
+            "{what}: the labels span {w} × {hgt} of the view"
+        );
+        if hash == "#exercise=mystery-3" && size[0] == 1366.0 {
+            // Zoomed far out, F frames the arm again.
+            let centre = h.state().viewport().rect().expect("a view").center();
+            app_harness::wheel(&mut h, centre, -2000.0);
+            let (zoomed, _) = exercise_labels_span(&h, &what);
+            assert!(
+                zoomed < w * 0.8,
+                "{what}: the wheel zoomed out ({zoomed} of {w})"
+            );
+            h.key_press(egui::Key::F);
+            h.run_steps(3);
+            let (again, _) = exercise_labels_span(&h, &what);
+            assert!(
+                (again - w).abs() < 0.05,
+                "{what}: F framed it ({again}, first {w})"
+            );
+        }
+    }
 }
 
 #[test]
@@ -197,4 +269,175 @@ fn a_robot_file_brings_its_keep_out_boxes_and_a_bad_box_leaves_the_last_good_rob
     );
     assert_eq!(model.robot().name, "UR10 in a cell");
     assert_eq!(model.motion().keep_outs(), &boxes[..]);
+}
+
+/// Every DH cell's text lies whole inside its cell and, in a tall touch cell, at its
+/// middle; gives what does not.
+fn dh_texts_out_of_place(h: &Harness<'_, ArmLabApp>) -> Vec<String> {
+    let mut out = Vec::new();
+    for cell in h.query_all_by_role(Role::TextInput) {
+        let rect = cell.rect();
+        let value = cell
+            .accesskit_node()
+            .value()
+            .unwrap_or_default()
+            .to_string();
+        for run in cell.children() {
+            let text = run.rect();
+            // The text's margin on the right at least its margin on the left: a narrower
+            // one means the cell's inner edge cuts the text.
+            let left = text.left() - rect.left();
+            if left < 2.0 || rect.right() - text.right() < left - 0.5 {
+                out.push(format!("{value:?} cut: text {text:?} in cell {rect:?}"));
+            } else if (text.center().y - rect.center().y).abs() > 2.0 {
+                out.push(format!(
+                    "{value:?} off centre: text {text:?} in cell {rect:?}"
+                ));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn a_tablets_dh_cells_show_their_numbers_whole_and_centred() {
+    let mut h = harness_at("#robot=ur10&panels=robot", [820.0, 1180.0]);
+    h.state_mut().set_touch(true);
+    h.run_steps(3);
+    h.get_by_label("Robot").click();
+    h.run_steps(3);
+    h.get_by_label("DH table (editable)").click();
+    h.run_steps(3);
+    assert_eq!(h.query_all_by_role(Role::TextInput).count(), 36);
+    let tall = h
+        .query_all_by_role(Role::TextInput)
+        .next()
+        .expect("a cell")
+        .rect();
+    assert!(tall.height() >= 36.0, "touch cells are tall: {tall:?}");
+    let runs: usize = h
+        .query_all_by_role(Role::TextInput)
+        .map(|c| c.children().count())
+        .sum();
+    assert!(runs >= 36, "each cell's text is seen: {runs}");
+    let wrong = dh_texts_out_of_place(&h);
+    assert!(wrong.is_empty(), "{wrong:#?}");
+}
+
+#[test]
+fn modified_dh_columns_read_a_i_minus_1_alpha_i_minus_1_d_i_theta_i() {
+    let mut h = harness_at("#robot=ur10&panels=robot", [1920.0, 1080.0]);
+    h.get_by_label("DH table (editable)").click();
+    h.run_steps(3);
+    let x = |h: &Harness<'_, ArmLabApp>, label: &str| h.get_by_label(label).rect().center().x;
+    let heads = ["ai−1", "αi−1 (°)", "di", "θi (°)"];
+    let xs: Vec<f32> = heads.iter().map(|l| x(&h, l)).collect();
+    assert!(xs.windows(2).all(|w| w[0] < w[1]), "{heads:?} at {xs:?}");
+    // The cells follow their headers: row 1's a, α, d, θ (columns 3, 4, 2, 1).
+    let at = |name: &str| h.state().points().get(name).expect("a cell")[0];
+    let cells = [at("dh-1-3"), at("dh-1-4"), at("dh-1-2"), at("dh-1-1")];
+    assert!(cells.windows(2).all(|w| w[0] < w[1]), "{cells:?}");
+    for (head, cell) in xs.iter().zip(cells) {
+        assert!((head - cell).abs() < 40.0, "header {head} over cell {cell}");
+    }
+    // The standard table keeps θ_i, d_i, a_i, α_i, and the two tables side by side have
+    // headers in the body's size.
+    h.get_by_label("Both conventions side by side").click();
+    h.run_steps(3);
+    for head in ["θi", "ai", "ai−1", "αi−1"] {
+        let r = h.get_all_by_label(head).last().expect("a header").rect();
+        assert!(r.height() >= 14.0, "{head}: {r:?}");
+    }
+}
+
+/// The A_i formula is laid out as mathematics: subscripts, not LaTeX's marks as typed.
+#[test]
+fn the_a_i_formula_shows_subscripts_not_latex_marks() {
+    for (preset, formula) in [
+        ("ur10", "modified DH: Ai = Rx(αi−1)·Tx(ai−1)·Rz(θi)·Tz(di)"),
+        ("puma560", "standard DH: Ai = Rz(θi)·Tz(di)·Tx(ai)·Rx(αi)"),
+    ] {
+        let mut h = harness_at(&format!("#robot={preset}&panels=matrices"), [1366.0, 768.0]);
+        h.get_by_label_contains("Link transforms").click();
+        h.run_steps(3);
+        let label = h.get_by_label(formula);
+        let r = label.rect();
+        assert!(r.height() >= 14.0 && r.width() > 150.0, "{formula}: {r:?}");
+        let _ = label;
+        assert!(
+            h.query_by_label_contains("_\u{7b}").is_none()
+                && h.query_by_label_contains("A_i =").is_none(),
+            "no LaTeX marks as text"
+        );
+    }
+}
+
+/// The heights (CSS pixels) of the text rows of the first label containing `text`.
+fn row_heights(h: &Harness<'_, ArmLabApp>, text: &str) -> Vec<f32> {
+    let zoom = h.ctx.zoom_factor();
+    let label = h.get_by_label_contains(text);
+    let rows: Vec<f32> = label.children().map(|r| r.rect().height() * zoom).collect();
+    if rows.is_empty() {
+        vec![label.rect().height() * zoom]
+    } else {
+        rows
+    }
+}
+
+/// On a 1024 × 768 projector in presentation mode the robot's description and the DH
+/// table's units read at 14 pixels, and the DH cells keep a fill apart from the panel.
+#[test]
+fn presentation_notes_are_large_and_dh_cells_keep_their_boxes() {
+    let mut h = harness_at("#robot=ur10&present=on&ppanels=robot", [1024.0, 768.0]);
+    h.get_by_label("DH table (editable)").click();
+    h.run_steps(3);
+    for text in ["Universal Robots UR10 in modified DH", "Lengths in mm"] {
+        let rows = row_heights(&h, text);
+        assert!(rows.iter().all(|&r| r >= 16.0), "{text}: rows {rows:?} px");
+    }
+    // A cell's fill against the panel's: a visible box.
+    let cell = h
+        .query_all_by_role(Role::TextInput)
+        .next()
+        .expect("a cell")
+        .rect();
+    let image = h.render().expect("a frame");
+    let ppp = h.ctx.pixels_per_point();
+    let px = |p: egui::Pos2| image.get_pixel((p.x * ppp) as u32, (p.y * ppp) as u32).0;
+    let inside = px(cell.left_center() + egui::vec2(3.0, 0.0));
+    let outside = px(cell.left_center() - egui::vec2(3.0, 0.0));
+    let diff = (0..3)
+        .map(|i| (inside[i] as i32 - outside[i] as i32).abs())
+        .max();
+    assert!(
+        diff >= Some(20),
+        "cell {inside:?} against panel {outside:?}"
+    );
+}
+
+/// Each DH frame's x and z axes are named where the view has room, no name over another.
+#[test]
+fn the_dh_frames_axes_are_named() {
+    for (hash, size, least) in [
+        ("#robot=ur10", [1366.0, 768.0], 8),
+        ("#robot=rrr", [1024.0, 768.0], 6),
+        ("#robot=ur10", [390.0, 844.0], 4),
+    ] {
+        let h = harness_at(hash, size);
+        let view = h.state().viewport().rect().expect("the view was laid out");
+        let labels = h.state().viewport().labels();
+        let names: Vec<&str> = labels.iter().map(|l| l.text.as_str()).collect();
+        assert!(labels.len() >= least, "{hash} at {size:?}: {names:?}");
+        assert!(names.contains(&"z1") && names.contains(&"x1"), "{names:?}");
+        for (i, a) in labels.iter().enumerate() {
+            assert!(view.contains_rect(a.rect), "{a:?}");
+            assert!(
+                a.rect.center().distance(a.anchor) < 40.0,
+                "{a:?} beside its axis"
+            );
+            for b in &labels[i + 1..] {
+                assert!(!a.rect.intersects(b.rect), "{a:?} covers {b:?}");
+            }
+        }
+    }
 }

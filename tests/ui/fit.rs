@@ -37,7 +37,8 @@ fn the_dh_table_shows_every_cell_whole_at_every_screen_size() {
         let hidden = hidden_dh_cells(&h, column);
         assert!(hidden.is_empty(), "{size:?}: {hidden:#?}");
         // A wrong cell's sentence goes under the table: it widens no column.
-        type_into_cell(&mut h, 8, "abc");
+        // Row 2's a_{i−1}, the first of the modified table's columns.
+        type_into_cell(&mut h, 6, "abc");
         h.run_steps(2);
         assert!(
             h.query_by_label_contains("\"abc\" is not a number")
@@ -51,7 +52,7 @@ fn the_dh_table_shows_every_cell_whole_at_every_screen_size() {
         );
         // A valid edit: the menu says "UR10 (edited)", cut to the column if need be, and
         // its label stays on one line.
-        type_into_cell(&mut h, 8, "-612.5");
+        type_into_cell(&mut h, 6, "-612.5");
         h.run_steps(2);
         assert_eq!(h.state().model().robot().joints[1].dh.a, -612.5);
         let preset = h.get_by_label("Preset").rect();

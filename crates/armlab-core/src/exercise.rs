@@ -89,6 +89,8 @@ pub enum Diagnosis {
         at: Where,
         /// The row whose α should have the other sign.
         row: usize,
+        /// The student's α in radians (the right one is its negative).
+        found: f64,
     },
     /// A θ offset is missing (or wrong) by `offset` radians.
     MissingOffset {
@@ -98,6 +100,8 @@ pub enum Diagnosis {
         row: usize,
         /// The missing offset (±π/2 or π).
         offset: f64,
+        /// The student's θ in radians (the right one is `found + offset`).
+        found: f64,
     },
     /// A length is written in the wrong row (or the wrong column of its row).
     LengthInWrongRow {
@@ -120,6 +124,21 @@ pub enum Diagnosis {
         row: usize,
         /// The column.
         field: LengthField,
+        /// The student's length (the right one is its negative).
+        found: f64,
+    },
+    /// One length has a wrong value, and `expected` in its place makes the table right.
+    LengthValue {
+        /// Where the first disagreement is.
+        at: Where,
+        /// The row.
+        row: usize,
+        /// The column.
+        field: LengthField,
+        /// The student's length.
+        found: f64,
+        /// The length that makes the whole table right.
+        expected: f64,
     },
     /// Joint `joint`'s axis differs and no single edit explains it.
     FrameDisagrees {
@@ -248,15 +267,90 @@ fn single_edits(student: &Robot, joint: usize) -> Vec<(Robot, Diagnosis)> {
         },
         out: Vec::new(),
     };
-    // Rows nearest the disagreeing joint first.
-    let mut rows: Vec<usize> = (0..n).collect();
-    rows.sort_by_key(|&k| (k as i64 - joint as i64).abs());
-    for k in rows {
+    for k in rows_nearest(n, joint) {
         edits.angles(k);
         edits.lengths_moved(k);
         edits.length_signs(k);
     }
     edits.out
+}
+
+/// The rows of an `n`-row table, those nearest the disagreeing `joint` first.
+fn rows_nearest(n: usize, joint: usize) -> Vec<usize> {
+    let mut rows: Vec<usize> = (0..n).collect();
+    rows.sort_by_key(|&k| (k as i64 - joint as i64).abs());
+    rows
+}
+
+/// The one length cell whose value alone makes `student` right, nearest the first
+/// disagreeing `joint` (from 0); the diagnosis names it at that joint. Offsets along
+/// parallel axes can stand for each other, so the lengths the student wrote are tried
+/// before the empty cells.
+fn one_length_value(
+    reference: &Robot,
+    student: &Robot,
+    samples: &[Vec<f64>],
+    joint: usize,
+) -> Option<Diagnosis> {
+    let length = reference.reach().max(1e-12);
+    let at = if joint < student.dof() {
+        Where::Joint(joint + 1)
+    } else {
+        Where::Tool
+    };
+    for written in [true, false] {
+        for k in rows_nearest(student.dof(), joint) {
+            for field in [LengthField::A, LengthField::D] {
+                if (get(&student.joints[k].dh, field) != 0.0) != written {
+                    continue;
+                }
+                let cell = (k, field);
+                if let Some(d) = length_value(reference, student, samples, length, cell, at) {
+                    return Some(d);
+                }
+            }
+        }
+    }
+    None
+}
+
+/// The value of one length cell (`row` from 0, `field`) that makes `student` give the
+/// reference's tool pose, as [`Diagnosis::LengthValue`] at `at`; `None` when no value
+/// does. The tool position moves linearly with any one length, so a unit step gives the
+/// direction and the best value follows from one division.
+fn length_value(
+    reference: &Robot,
+    student: &Robot,
+    samples: &[Vec<f64>],
+    length: f64,
+    (row, field): (usize, LengthField),
+    at: Where,
+) -> Option<Diagnosis> {
+    let found = get(&student.joints.get(row)?.dh, field);
+    let mut stepped = student.clone();
+    set(&mut stepped.joints[row].dh, field, found + 1.0);
+    let (mut along, mut squared) = (0.0, 0.0);
+    for q in samples {
+        let p0 = tool_pose(student, q).translation.vector;
+        let g = tool_pose(&stepped, q).translation.vector - p0;
+        along += g.dot(&(tool_pose(reference, q).translation.vector - p0));
+        squared += g.norm_squared();
+    }
+    if squared <= 1e-12 {
+        return None;
+    }
+    let expected = found + along / squared;
+    let mut edited = student.clone();
+    set(&mut edited.joints[row].dh, field, expected);
+    (tool_disagreement(reference, &edited, samples, length) <= CHECK_TOLERANCE).then_some(
+        Diagnosis::LengthValue {
+            at,
+            row: row + 1,
+            field,
+            found,
+            expected,
+        },
+    )
 }
 
 /// The single edits of [`single_edits`] as they are made: each a copy of the student's
@@ -283,7 +377,11 @@ impl Edits<'_> {
         if row.alpha.abs() > 1e-12 && (row.alpha.abs() - PI).abs() > 1e-12 {
             self.edit(
                 &|js| js[k].dh.alpha = -js[k].dh.alpha,
-                Diagnosis::TwistSign { at, row: k + 1 },
+                Diagnosis::TwistSign {
+                    at,
+                    row: k + 1,
+                    found: row.alpha,
+                },
             );
         }
         for offset in [FRAC_PI_2, -FRAC_PI_2, PI] {
@@ -293,6 +391,7 @@ impl Edits<'_> {
                     at,
                     row: k + 1,
                     offset,
+                    found: row.theta,
                 },
             );
         }
@@ -366,6 +465,7 @@ impl Edits<'_> {
                         at,
                         row: k + 1,
                         field,
+                        found: get(&row, field),
                     },
                 );
             }
@@ -420,6 +520,9 @@ pub fn check_table(reference: &Robot, student: &Robot) -> Verdict {
         if tool_disagreement(reference, edited, &samples, length) <= CHECK_TOLERANCE {
             return Verdict::Wrong(*diagnosis);
         }
+    }
+    if let Some(d) = one_length_value(reference, student, &samples, joint) {
+        return Verdict::Wrong(d);
     }
     if let Some((i, true)) = first {
         return Verdict::Wrong(Diagnosis::AxisReversed { joint: i + 1 });

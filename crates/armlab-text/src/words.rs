@@ -6,7 +6,7 @@
 use armlab_core::collision::CollisionReport;
 use armlab_core::collision::Obstacle;
 use armlab_core::error::{Expected, Place, RobotError};
-use armlab_core::exercise::{Diagnosis, Verdict, Where};
+use armlab_core::exercise::{Diagnosis, LengthField, Verdict, Where};
 use armlab_core::ik::{BadTarget, IkError, IkMethod};
 use armlab_core::jacobian::{Task, ToolAxis};
 use armlab_core::motion::{MotionError, Setting};
@@ -405,6 +405,53 @@ impl Sentence for Verdict {
     }
 }
 
+/// An angle of a table cell as the table shows it: whole degrees in (−180°, 180°].
+fn degrees(radians: f64) -> String {
+    let mut d = radians.to_degrees().round() as i64 % 360;
+    if d > 180 {
+        d -= 360;
+    } else if d <= -180 {
+        d += 360;
+    }
+    format!("{d}°")
+}
+
+/// A length of a table cell to the table's 0.01: a solved length carries rounding noise.
+fn cell_length(v: f64) -> String {
+    crate::echo::number((v * 100.0).round() / 100.0)
+}
+
+/// A sentence of `key` that asks to change an angle of `row` from `from` to `to`.
+fn angle_change(lang: Lang, key: Key, (at, row): (Where, usize), from: f64, to: f64) -> String {
+    fill(
+        lang,
+        key,
+        &[&at.sentence(lang), &row, &degrees(from), &degrees(to)],
+    )
+}
+
+/// A sentence of `key` that asks to change the length in `field` of `row` from `from` to
+/// `to`.
+fn length_change(
+    lang: Lang,
+    key: Key,
+    (at, row, field): (Where, usize, LengthField),
+    from: f64,
+    to: f64,
+) -> String {
+    fill(
+        lang,
+        key,
+        &[
+            &at.sentence(lang),
+            &field.symbol(),
+            &row,
+            &cell_length(from),
+            &cell_length(to),
+        ],
+    )
+}
+
 impl Sentence for Diagnosis {
     /// The diagnosis as a sentence in `lang` (from the catalogue).
     fn sentence(&self, lang: Lang) -> String {
@@ -420,45 +467,79 @@ impl Sentence for Diagnosis {
                 fill(lang, Key::ExerciseJointKind, &[&joint, &kind])
             }
             Diagnosis::AxisReversed { joint } => fill(lang, Key::ExerciseAxisReversed, &[&joint]),
-            Diagnosis::TwistSign { at, row } => {
-                fill(lang, Key::ExerciseTwistSign, &[&at.sentence(lang), &row])
-            }
-            Diagnosis::MissingOffset { at, row, offset } => {
-                let degrees = format!("{:+}°", offset.to_degrees().round() as i64);
-                fill(
-                    lang,
-                    Key::ExerciseMissingOffset,
-                    &[&at.sentence(lang), &row, &degrees],
-                )
-            }
-            Diagnosis::LengthInWrongRow {
-                at,
-                row,
-                field,
-                to_row,
-                to_field,
-            } => fill(
-                lang,
-                Key::ExerciseLengthInWrongRow,
-                &[
-                    &at.sentence(lang),
-                    &field.symbol(),
-                    &row,
-                    &to_field.symbol(),
-                    &to_row,
-                ],
-            ),
-            Diagnosis::LengthSign { at, row, field } => fill(
-                lang,
-                Key::ExerciseLengthSign,
-                &[&at.sentence(lang), &field.symbol(), &row],
-            ),
             Diagnosis::FrameDisagrees { joint } => {
                 fill(lang, Key::ExerciseFrameDisagrees, &[&joint])
             }
             Diagnosis::ToolDisagrees => text(lang, Key::ExerciseToolDisagrees).to_string(),
+            // The diagnoses that name a cell of the table.
+            _ => cell_sentence(self, lang).unwrap_or_default(),
         }
     }
+}
+
+/// The sentence of a diagnosis that names a cell of the table and what to change it to;
+/// `None` for the others.
+fn cell_sentence(d: &Diagnosis, lang: Lang) -> Option<String> {
+    Some(match *d {
+        Diagnosis::TwistSign { at, row, found } => {
+            angle_change(lang, Key::ExerciseTwistSign, (at, row), found, -found)
+        }
+        Diagnosis::MissingOffset {
+            at,
+            row,
+            offset,
+            found,
+        } => angle_change(
+            lang,
+            Key::ExerciseMissingOffset,
+            (at, row),
+            found,
+            found + offset,
+        ),
+        Diagnosis::LengthInWrongRow {
+            at,
+            row,
+            field,
+            to_row,
+            to_field,
+        } => fill(
+            lang,
+            Key::ExerciseLengthInWrongRow,
+            &[
+                &at.sentence(lang),
+                &field.symbol(),
+                &row,
+                &to_field.symbol(),
+                &to_row,
+            ],
+        ),
+        Diagnosis::LengthSign {
+            at,
+            row,
+            field,
+            found,
+        } => length_change(
+            lang,
+            Key::ExerciseLengthSign,
+            (at, row, field),
+            found,
+            -found,
+        ),
+        Diagnosis::LengthValue {
+            at,
+            row,
+            field,
+            found,
+            expected,
+        } => length_change(
+            lang,
+            Key::ExerciseLengthValue,
+            (at, row, field),
+            found,
+            expected,
+        ),
+        _ => return None,
+    })
 }
 
 #[cfg(test)]

@@ -9,6 +9,8 @@ use armlab_text::Key;
 use crate::app::state::model::Model;
 use crate::app::state::tr;
 use crate::app::state::trf;
+use crate::app::widgets::dh_table::{column_order, header};
+use crate::app::widgets::math;
 use crate::app::widgets::toggles::overlay_checkbox;
 use armlab_session::format::{error_value, number};
 use armlab_session::settings::Overlay;
@@ -55,7 +57,7 @@ pub fn both_conventions_ui(model: &mut Model, ui: &mut egui::Ui) {
     });
 }
 
-/// A read-only DH table: θ offset, d, a, α per row.
+/// A read-only DH table: θ offset, d, a, α per row (a, α, d, θ in modified DH).
 fn table(ui: &mut egui::Ui, robot: &Robot, degrees: bool) {
     let angle = |v: f64| {
         if degrees {
@@ -71,19 +73,24 @@ fn table(ui: &mut egui::Ui, robot: &Robot, degrees: bool) {
         .min_col_width(0.0)
         .spacing([8.0, 2.0])
         .show(ui, |ui| {
-            for head in ["", "θ", "d", "a", "α"] {
-                ui.label(egui::RichText::new(head).small());
+            // Headers in the body font (a formula's subscripts are smaller still), in the
+            // convention's order: a_{i−1}, α_{i−1}, d_i, θ_i for modified DH.
+            ui.label("");
+            let order = column_order(robot.convention);
+            for &c in order.iter().take(4) {
+                math::label(ui, header(robot.convention, c, false));
             }
             ui.end_row();
             for (i, j) in robot.joints.iter().enumerate() {
                 ui.label(format!("{}", i + 1));
-                for cell in [
+                let cells = [
                     angle(j.dh.theta),
                     number(j.dh.d, 1),
                     number(j.dh.a, 1),
                     angle(j.dh.alpha),
-                ] {
-                    ui.monospace(cell);
+                ];
+                for &c in order.iter().take(4) {
+                    ui.monospace(&cells[c]);
                 }
                 ui.end_row();
             }

@@ -18,7 +18,10 @@ use crate::app::screen_points::ScreenPoints;
 use crate::app::state::model::{Message, Model};
 use crate::app::state::tr;
 use crate::app::state::trf;
-use crate::app::widgets::dh_table::{COLUMNS, DhEditor, RowText, convention_row, dh_rows};
+use crate::app::widgets::dh_table::{
+    DhEditor, RowText, column_order, convention_row, dh_rows, header,
+};
+use crate::app::widgets::math;
 use crate::app::widgets::style;
 use armlab_session::format::number;
 
@@ -109,10 +112,11 @@ impl ExercisePanel {
         let answer = &mut self.answer;
         convention_row(answer, model, ui);
         let error = answer.error.clone();
+        let convention = answer.convention.unwrap_or(Convention::Standard);
         let edit = dh_rows(
             ui,
             model,
-            "exercise_grid",
+            ("exercise_grid", convention),
             &mut answer.rows,
             error.as_ref(),
             points,
@@ -146,15 +150,17 @@ fn own_table(model: &Model, ui: &mut egui::Ui) {
         .spacing([8.0, 2.0])
         .show(ui, |ui| {
             ui.label("#");
-            for c in &COLUMNS[..4] {
-                ui.label(*c);
+            let order = column_order(robot.convention);
+            for &c in order.iter().take(4) {
+                math::label(ui, header(robot.convention, c, true));
             }
             ui.end_row();
             for (i, joint) in robot.joints.iter().enumerate() {
                 ui.label(format!("{}", i + 1));
                 let dh = joint.dh;
-                for v in [dh.theta.to_degrees(), dh.d, dh.a, dh.alpha.to_degrees()] {
-                    ui.monospace(number(v, 3));
+                let values = [dh.theta.to_degrees(), dh.d, dh.a, dh.alpha.to_degrees()];
+                for &c in order.iter().take(4) {
+                    ui.monospace(number(values[c], 3));
                 }
                 ui.end_row();
             }

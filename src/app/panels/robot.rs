@@ -347,7 +347,10 @@ fn dh_table(
     } = dh_rows(
         ui,
         model,
-        "dh_grid",
+        (
+            "dh_grid",
+            edited.convention.unwrap_or(model.robot().convention),
+        ),
         &mut edited.rows,
         editor.error.as_ref(),
         points,

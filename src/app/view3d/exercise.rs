@@ -6,6 +6,7 @@ use nalgebra::{Point3, Vector3};
 use armlab_core::{ForwardKinematics, Robot};
 use armlab_text::Key;
 
+use super::labels::{self, Placed, Placer};
 use crate::app::state::model::Model;
 use crate::app::state::trf;
 use crate::app::widgets::style;
@@ -14,9 +15,24 @@ use armlab_session::format::number;
 /// Angles between axes below this (radians) are drawn as parallel.
 const ANGLE_TINY: f64 = 1e-9;
 
+/// What a dimension measures; axes count from 1.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Measures {
+    /// From the base's origin to the nearest point of this axis.
+    BaseTo(usize),
+    /// Along this axis, between the two normals that meet it (a d of any table).
+    Along(usize),
+    /// The common normal of this axis and the next (an a and α of any table).
+    Normal(usize),
+    /// From this axis to the tool point.
+    ToTool(usize),
+}
+
 /// A measured distance or angle of the drawing.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Dimension {
+    /// What it measures.
+    pub measures: Measures,
     /// One end (world).
     pub from: Vector3<f64>,
     /// The other end (world).
@@ -59,10 +75,11 @@ pub fn dimensions(robot: &Robot, fk: &ForwardKinematics) -> Vec<Dimension> {
     let base = robot.world_from_base.translation.vector;
     let tool = fk.base_from_tool.translation.vector;
     let mut out = Vec::new();
-    let mut push = |from: Vector3<f64>, to: Vector3<f64>, angle: Option<f64>| {
+    let mut push = |measures, from: Vector3<f64>, to: Vector3<f64>, angle: Option<f64>| {
         let length = (to - from).norm();
         if length > tiny || angle.is_some_and(|a| a > ANGLE_TINY) {
             out.push(Dimension {
+                measures,
                 from,
                 to,
                 length,
@@ -78,7 +95,7 @@ pub fn dimensions(robot: &Robot, fk: &ForwardKinematics) -> Vec<Dimension> {
     // Where each axis meets the normal from the one before (or the base) and the one
     // after (or the tool).
     let mut arrive = foot(&base, axis(0));
-    push(base, arrive, None);
+    push(Measures::BaseTo(1), base, arrive, None);
     for i in 0..n {
         let (o, z) = axis(i);
         let leave = if i + 1 < n {
@@ -89,81 +106,186 @@ pub fn dimensions(robot: &Robot, fk: &ForwardKinematics) -> Vec<Dimension> {
         } else {
             (foot(&tool, axis(i)), None)
         };
-        push(arrive, leave.0, None);
+        push(Measures::Along(i + 1), arrive, leave.0, None);
         match leave.1 {
             Some((next, angle)) => {
-                push(leave.0, next, Some(angle));
+                push(Measures::Normal(i + 1), leave.0, next, Some(angle));
                 arrive = next;
             }
-            None => push(leave.0, tool, None),
+            None => push(Measures::ToTool(i + 1), leave.0, tool, None),
         }
     }
     out
 }
 
+/// Each joint axis as drawn: from behind its origin to its arrowhead (world), sized to
+/// the drawing rather than to the reach, so a folded arm's arrows do not dwarf it.
+fn axis_ends(robot: &Robot, fk: &ForwardKinematics, dims: &[Dimension]) -> Vec<[Vector3<f64>; 2]> {
+    let mut points: Vec<Vector3<f64>> = fk.joint_origins.clone();
+    points.extend(dims.iter().flat_map(|d| [d.from, d.to]));
+    let (_, extent) = bounds(&points);
+    let length = extent.max(robot.reach() * 0.1);
+    fk.joint_origins
+        .iter()
+        .zip(&fk.joint_axes)
+        .map(|(o, z)| [o - z * 0.25 * length, o + z * 0.35 * length])
+        .collect()
+}
+
+/// The centre of the box around `points`, and the farthest point's distance from it.
+pub fn bounds(points: &[Vector3<f64>]) -> (Vector3<f64>, f64) {
+    let Some(first) = points.first() else {
+        return (Vector3::zeros(), 0.0);
+    };
+    let (lo, hi) = points
+        .iter()
+        .fold((*first, *first), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
+    let centre = (lo + hi) * 0.5;
+    let radius = points
+        .iter()
+        .map(|p| (p - centre).norm())
+        .fold(0.0, f64::max);
+    (centre, radius)
+}
+
+/// The points the exercise's drawing spans: the base, every axis with its arrow, the
+/// dimensions and the tool point, so Fit shows the arm as large as the view allows
+/// whatever its pose.
+pub fn drawing_points(robot: &Robot, fk: &ForwardKinematics) -> Vec<Vector3<f64>> {
+    let dims = dimensions(robot, fk);
+    let mut points = vec![
+        robot.world_from_base.translation.vector,
+        fk.base_from_tool.translation.vector,
+    ];
+    points.extend(dims.iter().flat_map(|d| [d.from, d.to]));
+    points.extend(axis_ends(robot, fk, &dims).into_iter().flatten());
+    points
+}
+
+/// A dimension's label: which axes it measures, its length and the angle between them.
+fn dimension_text(model: &Model, d: &Dimension) -> String {
+    let reach = model.robot().reach();
+    let unit = model.robot().length_unit.symbol();
+    let mut text = String::new();
+    if d.length > reach * 1e-6 {
+        text = format!("{} {unit}", number(d.length, 1));
+    }
+    if let Some(angle) = d.angle.filter(|a| *a > ANGLE_TINY) {
+        let angle = format!("{}°", number(angle.to_degrees(), 1));
+        text = if text.is_empty() {
+            angle
+        } else {
+            format!("{text}, {angle}")
+        };
+    }
+    match d.measures {
+        Measures::BaseTo(i) => trf(model, Key::ExerciseBaseTo, &[&i, &text]),
+        Measures::Along(i) => trf(model, Key::ExerciseAlong, &[&i, &text]),
+        Measures::Normal(i) => trf(model, Key::ExerciseNormal, &[&i, &(i + 1), &text]),
+        Measures::ToTool(i) => trf(model, Key::ExerciseToTool, &[&i, &text]),
+    }
+}
+
+/// A label to draw once every label is placed: its place, its anchor, its text, colour,
+/// and whether it gets a leader line.
+type Queued = (
+    egui::Rect,
+    egui::Pos2,
+    std::sync::Arc<egui::Galley>,
+    egui::Color32,
+    bool,
+);
+
+/// Draws each joint axis with its arrowhead and places its name beyond the arrowhead.
+fn draw_axes(
+    model: &Model,
+    painter: &egui::Painter,
+    (dims, font): (&[Dimension], &egui::FontId),
+    placer: &mut Placer,
+    project: &dyn Fn(&Point3<f64>) -> Option<egui::Pos2>,
+) -> Vec<Queued> {
+    let axis_color = egui::Color32::from_rgb(110, 165, 255);
+    let mut queued = Vec::new();
+    for (i, [back, front]) in axis_ends(model.robot(), model.fk(), dims)
+        .iter()
+        .enumerate()
+    {
+        let (Some(a), Some(b)) = (
+            project(&Point3::from(*back)),
+            project(&Point3::from(*front)),
+        ) else {
+            continue;
+        };
+        painter.line_segment([a, b], egui::Stroke::new(2.0, axis_color));
+        let dir = (b - a).normalized();
+        let side = egui::vec2(-dir.y, dir.x) * 5.0;
+        painter.add(egui::Shape::convex_polygon(
+            vec![b, b - dir * 12.0 + side, b - dir * 12.0 - side],
+            axis_color,
+            egui::Stroke::NONE,
+        ));
+        let name = trf(model, Key::ExerciseAxis, &[&(i + 1)]);
+        let galley = painter.layout_no_wrap(name.clone(), font.clone(), axis_color);
+        let size = galley.size() + egui::vec2(8.0, 4.0);
+        // Beyond the arrowhead, in line with the axis.
+        let shift = dir * (size.x.max(size.y) * 0.5 + 4.0);
+        let rect = placer.place(name, size, b, shift);
+        queued.push((
+            rect,
+            b,
+            galley,
+            axis_color,
+            b.distance(rect.center()) > shift.length() + 4.0,
+        ));
+    }
+    queued
+}
+
 /// Draws each joint axis (a line with an arrowhead on its positive end, named) and the
-/// [`dimensions`] as dashed lines labelled with their lengths and angles, over the 3D
-/// view; `project` maps a world point to the window.
+/// [`dimensions`] as dashed lines labelled with what they measure, over the 3D view in
+/// `view`; `project` maps a world point to the window. No label covers another: the axis
+/// names are placed first, then each dimension's label at its middle or, where that is
+/// taken, nearby with a leader line to it. Gives the labels as placed.
 pub fn draw_in_view(
     model: &Model,
     painter: &egui::Painter,
+    view: egui::Rect,
     project: &dyn Fn(&Point3<f64>) -> Option<egui::Pos2>,
-) {
+) -> Vec<Placed> {
     let robot = model.robot();
     let fk = model.fk();
-    let reach = robot.reach();
     let font = egui::FontId::proportional(if model.settings().presentation {
         16.0
     } else {
         13.0
     });
-    let axis_color = egui::Color32::from_rgb(90, 150, 255);
-    let label = |at: egui::Pos2, text: String, color: egui::Color32| {
-        let galley = painter.layout_no_wrap(text, font.clone(), color);
-        let rect = egui::Rect::from_center_size(at, galley.size() + egui::vec2(6.0, 2.0));
-        painter.rect_filled(rect, 3.0, egui::Color32::from_black_alpha(170));
-        painter.galley(rect.min + egui::vec2(3.0, 1.0), galley, color);
-    };
-    for (i, (o, z)) in fk.joint_origins.iter().zip(&fk.joint_axes).enumerate() {
-        let ends = (
-            project(&Point3::from(o - z * 0.18 * reach)),
-            project(&Point3::from(o + z * 0.22 * reach)),
-        );
-        if let (Some(a), Some(b)) = ends {
-            painter.line_segment([a, b], egui::Stroke::new(2.0, axis_color));
-            let dir = (b - a).normalized();
-            let side = egui::vec2(-dir.y, dir.x) * 5.0;
-            painter.add(egui::Shape::convex_polygon(
-                vec![b, b - dir * 12.0 + side, b - dir * 12.0 - side],
-                axis_color,
-                egui::Stroke::NONE,
-            ));
-            let name = trf(model, Key::ExerciseAxis, &[&(i + 1)]);
-            label(b + dir * 14.0, name, axis_color);
+    let dims = dimensions(robot, fk);
+    let mut placer = Placer::new(view);
+    for d in &dims {
+        if let (Some(a), Some(b)) = (project(&Point3::from(d.from)), project(&Point3::from(d.to))) {
+            placer.keep_clear(a, b);
         }
     }
-    let unit = robot.length_unit.symbol();
-    for d in dimensions(robot, fk) {
+    let mut queued = draw_axes(model, painter, (&dims, &font), &mut placer, project);
+    for d in &dims {
         let (Some(a), Some(b)) = (project(&Point3::from(d.from)), project(&Point3::from(d.to)))
         else {
             continue;
         };
         let stroke = egui::Stroke::new(1.5, style::HIGHLIGHT);
         painter.extend(egui::Shape::dashed_line(&[a, b], stroke, 6.0, 4.0));
-        let mut text = String::new();
-        if d.length > reach * 1e-6 {
-            text = format!("{} {unit}", number(d.length, 1));
-        }
-        if let Some(angle) = d.angle.filter(|a| *a > ANGLE_TINY) {
-            let angle = format!("{}°", number(angle.to_degrees(), 1));
-            text = if text.is_empty() {
-                angle
-            } else {
-                format!("{text}, {angle}")
-            };
-        }
-        label(a + (b - a) * 0.5, text, style::HIGHLIGHT);
+        let text = dimension_text(model, d);
+        let galley = painter.layout_no_wrap(text.clone(), font.clone(), style::HIGHLIGHT);
+        let size = galley.size() + egui::vec2(8.0, 4.0);
+        let mid = a + (b - a) * 0.5;
+        let rect = placer.place(text, size, mid, egui::Vec2::ZERO);
+        queued.push((rect, mid, galley, style::HIGHLIGHT, true));
     }
+    for (rect, anchor, galley, color, leader) in queued {
+        let anchor = if leader { anchor } else { rect.center() };
+        labels::draw(painter, rect, anchor, galley, color);
+    }
+    placer.into_placed()
 }
 
 #[cfg(test)]

@@ -9,8 +9,10 @@
 
 pub mod convention;
 pub mod exercise;
+mod frame_labels;
 mod ghosts;
 pub mod jacobian;
+pub mod labels;
 pub mod marker;
 mod motion;
 mod overlay;
@@ -70,6 +72,8 @@ pub struct Viewport {
     /// Where and when (egui's input time, s) the press of the current drag began: a
     /// release near it soon after is a click (on a ghost arm).
     press: Option<(egui::Pos2, f64)>,
+    /// The labels drawn over the picture last frame.
+    labels: Vec<labels::Placed>,
 }
 
 /// A press released within this distance (points) of where it began is a click.
@@ -92,6 +96,7 @@ impl Viewport {
             grid_step: 0.0,
             rendered: false,
             press: None,
+            labels: Vec::new(),
         }
     }
 
@@ -116,6 +121,12 @@ impl Viewport {
         self.rect
     }
 
+    /// The labels drawn over the picture last frame: the exercise's axes and dimensions,
+    /// or the DH frames' axis names.
+    pub fn labels(&self) -> &[labels::Placed] {
+        &self.labels
+    }
+
     /// The grid spacing last drawn (robot units).
     pub fn grid_step(&self) -> f64 {
         self.grid_step
@@ -136,13 +147,22 @@ impl Viewport {
     }
 
     /// Frames the robot (a sphere of 0.85 reach about a point above the base) for the
-    /// view's aspect ratio, so a narrow or wide view keeps the whole arm in sight.
+    /// view's aspect ratio, so a narrow or wide view keeps the whole arm in sight. The
+    /// exercise frames its drawing as the arm stands, with room for the labels: the
+    /// student reads lengths off it.
     fn fit(&mut self, model: &Model, size: egui::Vec2) {
         let reach = model.robot().reach();
         let base = model.robot().world_from_base.translation.vector;
-        let centre = Point3::from(base + Vector3::new(0.0, 0.0, reach * 0.35));
         let aspect = (size.x / size.y.max(1.0)) as f64;
-        self.camera.fit(centre, reach * 0.85, aspect);
+        if model.exercise().is_some() {
+            let points = exercise::drawing_points(model.robot(), model.fk());
+            let (centre, radius) = exercise::bounds(&points);
+            self.camera.fit(Point3::from(centre), radius, aspect);
+            fill_view(&mut self.camera, &points, size);
+        } else {
+            let centre = Point3::from(base + Vector3::new(0.0, 0.0, reach * 0.35));
+            self.camera.fit(centre, reach * 0.85, aspect);
+        }
         self.framed_at = Some((model.reframes(), size));
     }
 
@@ -193,10 +213,7 @@ impl Viewport {
             view.project(p)
                 .map(|s| egui::pos2(s[0] as f32, s[1] as f32))
         };
-        if model.exercise().is_some() {
-            // The exercise's joint axes and dimensions, over the picture.
-            exercise::draw_in_view(model, &ui.painter_at(rect), &project);
-        }
+        self.labels = draw_labels(model, &ui.painter_at(rect), rect, &project);
         paths::draw_in_view(model, &ui.painter_at(rect), &project);
         self.publish_points(model, rect, &axes, points);
         if response.hovered() && self.hover.is_some() {
@@ -498,6 +515,59 @@ impl Viewport {
         add("tool".into(), &Point3::from(model.fk().tool_position()));
         let base = model.robot().world_from_base.translation.vector;
         add("base".into(), &Point3::from(base));
+    }
+}
+
+/// The labels over the picture: the exercise's joint axes and dimensions, or the DH
+/// frames' axis names when the frames are drawn.
+fn draw_labels(
+    model: &Model,
+    painter: &egui::Painter,
+    rect: Rect,
+    project: &dyn Fn(&Point3<f64>) -> Option<Pos2>,
+) -> Vec<labels::Placed> {
+    if model.exercise().is_some() {
+        exercise::draw_in_view(model, painter, rect, project)
+    } else if model.settings().show_frames && !model.table_hidden() {
+        frame_labels::draw_in_view(model, painter, rect, project)
+    } else {
+        Vec::new()
+    }
+}
+
+/// The share of the view's width and height the exercise's drawing fills when framed;
+/// the rest is room for its labels.
+const EXERCISE_FILL: f64 = 0.72;
+
+/// Pans and zooms so the picture of `points` is centred in a view of `size` and fills
+/// [`EXERCISE_FILL`] of it in its tighter direction: a sphere around the points leaves a
+/// flat or tall arm small. A few rounds, as perspective moves the picture with distance.
+fn fill_view(camera: &mut OrbitCamera, points: &[Vector3<f64>], size: egui::Vec2) {
+    let s = [size.x as f64, size.y.max(1.0) as f64];
+    for _ in 0..4 {
+        let Some(px) = points
+            .iter()
+            .map(|p| camera.project(&Point3::from(*p), s))
+            .collect::<Option<Vec<_>>>()
+        else {
+            return;
+        };
+        let (lo, hi) = px.iter().fold(
+            ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+            |(lo, hi), p| {
+                (
+                    [lo[0].min(p[0]), lo[1].min(p[1])],
+                    [hi[0].max(p[0]), hi[1].max(p[1])],
+                )
+            },
+        );
+        let scale = ((hi[0] - lo[0]) / s[0]).max((hi[1] - lo[1]) / s[1]) / EXERCISE_FILL;
+        if !(scale.is_finite() && scale > 1e-6) {
+            return;
+        }
+        let centre = [(lo[0] + hi[0]) * 0.5, (lo[1] + hi[1]) * 0.5];
+        camera.pan(s[0] * 0.5 - centre[0], s[1] * 0.5 - centre[1], s[1]);
+        camera.zoom(1.0 / scale);
     }
 }
 

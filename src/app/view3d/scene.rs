@@ -125,11 +125,12 @@ pub fn build(input: &SceneInput<'_>) -> (Scene, f64) {
     for part in robot_parts(input.robot, input.fk) {
         instances.push(part_instance(&part, input.highlighted_link));
     }
+    let (lines, step) = ground_grid(sizes.reach);
+    marker(input, &mut instances);
+    // After the marker: a frame at the target is drawn over it.
     if input.show_frames {
         dh_frames(input, &sizes, &mut instances);
     }
-    let (lines, step) = ground_grid(sizes.reach);
-    marker(input, &mut instances);
     let camera = input.camera;
     let aspect = input.viewport_px[0] / input.viewport_px[1].max(1.0);
     let eye = camera.eye();
@@ -213,11 +214,23 @@ fn part_instance(part: &Part, highlighted_link: Option<usize>) -> Instance {
     instance(shape, &part.centre, &part.rotation, part.size, color)
 }
 
+/// A DH frame's axis length, drawn and labelled: 9 % of the reach.
+pub(crate) fn frame_axis_length(reach: f64) -> f64 {
+    reach * 0.09
+}
+
 /// Every DH frame (base, each joint's, tool) as three axis cylinders; the highlighted
-/// link's frame drawn thicker.
+/// link's frame drawn thicker. A frame within the target marker's rings (the wrist's and
+/// the tool's once the target is reached) is drawn on top of the marker, not hidden
+/// under it.
 fn dh_frames(input: &SceneInput<'_>, sizes: &Proportions, out: &mut Vec<Instance>) {
-    let len = sizes.reach * 0.09;
+    let len = frame_axis_length(sizes.reach);
     let fk = input.fk;
+    let camera = input.camera;
+    let target = Point3::from(input.target.translation.vector);
+    let px = camera.world_per_pixel(input.viewport_px[1]) * (camera.eye() - target).norm()
+        / camera.distance;
+    let near_target = |o: &Point3<f64>| (o - target).norm() <= handle_px::RING * px * 1.3;
     let frames = std::iter::once(input.robot.world_from_base)
         .chain(fk.base_from_frames.iter().copied())
         .chain(std::iter::once(fk.base_from_tool));
@@ -228,15 +241,15 @@ fn dh_frames(input: &SceneInput<'_>, sizes: &Proportions, out: &mut Vec<Instance
             len * 0.045
         };
         let o = Point3::from(f.translation.vector);
+        let on_top = near_target(&o);
         for (c, color) in AXIS.iter().enumerate() {
             let dir = f.rotation.matrix().column(c).into_owned();
-            out.extend(segment(
-                Shape::Cylinder,
-                &o,
-                &(o + dir * len),
-                width,
-                *color,
-            ));
+            out.extend(
+                segment(Shape::Cylinder, &o, &(o + dir * len), width, *color).map(|mut i| {
+                    i.on_top = on_top;
+                    i
+                }),
+            );
         }
     }
 }
@@ -298,11 +311,69 @@ fn marker(input: &SceneInput<'_>, out: &mut Vec<Instance>) {
         if marker.rings {
             let active = marker.active == Some(Handle::Ring(c));
             let color = if active { HIGHLIGHT } else { AXIS[c] };
-            let width = if active { 5.0 * px } else { 3.0 * px };
+            // Thin, so the wrist's and the tool's frames show through them.
+            let width = if active { 3.5 * px } else { 1.5 * px };
             let pts = crate::app::view3d::marker::ring_points(&centre, dir, handle_px::RING * px);
             for pair in pts.windows(2) {
                 out.extend(segment(Shape::Cylinder, &pair[0], &pair[1], width, color).map(on_top));
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The tool's frame, at a reached target, is drawn over the target's marker.
+    #[test]
+    fn the_tool_frame_at_the_target_is_drawn_over_the_marker() {
+        let robot = armlab_core::preset("ur10").expect("a preset");
+        let q: Vec<f64> = robot.joints.iter().map(|j| j.home).collect();
+        let fk = ForwardKinematics::new(&robot, &q).expect("a pose");
+        let mut camera = OrbitCamera::default();
+        camera.fit(Point3::origin(), robot.reach(), 1.0);
+        let target = fk.base_from_tool;
+        let marker = MarkerLook {
+            color: [0, 200, 0, 255],
+            axes: [0, 1, 2].map(|c| target.rotation.matrix().column(c).into_owned()),
+            rings: true,
+            active: None,
+        };
+        let (scene, _) = build(&SceneInput {
+            robot: &robot,
+            fk: &fk,
+            camera: &camera,
+            viewport_px: [700.0, 700.0],
+            show_frames: true,
+            highlighted_link: None,
+            target: &target,
+            marker: &marker,
+            background: [0, 0, 0],
+        });
+        let len = frame_axis_length(robot.reach());
+        let o = target.translation.vector;
+        for (c, color) in AXIS.iter().enumerate() {
+            let mid = o + target.rotation.matrix().column(c) * (len * 0.5);
+            let axis = scene.instances.iter().find(|i| {
+                i.shape == Shape::Cylinder
+                    && i.color == *color
+                    && (i.model.column(3).xyz().cast::<f64>() - mid).norm() < len * 1e-3
+            });
+            let axis = axis.expect("the tool frame's axis is drawn");
+            assert!(
+                axis.on_top,
+                "axis {c} of the tool frame is drawn over the marker"
+            );
+        }
+        // The base's frame, far from the target, keeps the depth test.
+        let base_z = scene.instances.iter().find(|i| {
+            i.shape == Shape::Cylinder
+                && i.color == AXIS[2]
+                && (i.model.column(3).xyz().cast::<f64>() - Vector3::new(0.0, 0.0, len * 0.5))
+                    .norm()
+                    < len * 1e-3
+        });
+        assert!(!base_z.expect("the base's z axis").on_top);
     }
 }

@@ -9,7 +9,7 @@ use crate::app::screen_points::ScreenPoints;
 use crate::app::state::model::Model;
 use crate::app::state::tr;
 use crate::app::state::trf;
-use crate::app::widgets::style;
+use crate::app::widgets::{math, style};
 use armlab_session::format::number;
 use armlab_session::session::RobotSource;
 
@@ -18,9 +18,40 @@ const CELL_DECIMALS: usize = 6;
 
 /// Column names of the editable DH cells.
 pub const COLUMNS: [&str; 6] = ["θ (°)", "d", "a", "α (°)", "min", "max"];
-/// The cells' names beside them in a narrow table's blocks, where the units would not fit
-/// (the caption above the table gives them).
-const BLOCK_NAMES: [&str; 6] = ["θ", "d", "a", "α", "min", "max"];
+
+/// A column's header as a formula ([`math`]): θ_i, d_i, a_i, α_i in standard DH; a_{i−1}
+/// and α_{i−1} in modified DH, as the convention is taught. With its unit where `units`
+/// (a narrow table's blocks leave the units to the caption above the table).
+pub(crate) fn header(convention: Convention, c: usize, units: bool) -> &'static str {
+    match (convention, c, units) {
+        (_, 0, true) => "θ_i (°)",
+        (_, 0, false) => "θ_i",
+        (_, 1, _) => "d_i",
+        (Convention::Standard, 2, _) => "a_i",
+        (Convention::Modified, 2, _) => "a_\u{7b}i−1\u{7d}",
+        (Convention::Standard, 3, true) => "α_i (°)",
+        (Convention::Standard, 3, false) => "α_i",
+        (Convention::Modified, 3, true) => "α_\u{7b}i−1\u{7d} (°)",
+        (Convention::Modified, 3, false) => "α_\u{7b}i−1\u{7d}",
+        (_, 4, _) => "min",
+        _ => "max",
+    }
+}
+
+/// The order the columns are shown in: modified DH reads a_{i−1}, α_{i−1}, d_i, θ_i (the
+/// order of its product Rx·Tx·Rz·Tz). The cells keep their column numbers.
+pub(crate) fn column_order(convention: Convention) -> [usize; 6] {
+    match convention {
+        Convention::Standard => [0, 1, 2, 3, 4, 5],
+        Convention::Modified => [2, 3, 1, 0, 4, 5],
+    }
+}
+
+/// A header's width (points) in `font`.
+fn header_width(ui: &egui::Ui, source: &str, font: &egui::FontId) -> f32 {
+    let job = math::job(source, font, egui::Color32::WHITE);
+    ui.fonts_mut(|f| f.layout_job(job)).size().x
+}
 
 /// One row of cell texts.
 #[derive(Debug, Clone, PartialEq)]
@@ -246,8 +277,10 @@ const CELL_MIN_WIDTH: f32 = 50.0;
 const BLOCK_CELL_MIN_WIDTH: f32 = 44.0;
 /// The widest a cell grows with its text (points); a longer text scrolls inside it.
 const CELL_MAX_WIDTH: f32 = 400.0;
+/// A cell's text margin left and right (points).
+const CELL_MARGIN: i8 = 4;
 /// A cell's frame around its text: the text edit's margins and room for the cursor.
-const CELL_FRAME: f32 = 14.0;
+const CELL_FRAME: f32 = 2.0 * CELL_MARGIN as f32 + 6.0;
 /// The width of a row's R/P menu.
 const KIND_MENU_WIDTH: f32 = 36.0;
 
@@ -262,14 +295,15 @@ const KIND_MENU_WIDTH: f32 = 36.0;
 pub(crate) fn dh_rows(
     ui: &mut egui::Ui,
     model: &Model,
-    id_salt: &str,
+    (id_salt, convention): (&str, Convention),
     rows: &mut [RowText],
     error: Option<&CellError>,
     points: &mut ScreenPoints,
 ) -> TableEdit {
     let unit = model.robot().length_unit.symbol();
     ui.label(egui::RichText::new(trf(model, Key::LengthsIn, &[&unit])).small());
-    let widths = TableWidths::measure(ui, model, rows);
+    let widths = TableWidths::measure(ui, model, rows, convention);
+    let order = column_order(convention);
     let room = style::room(ui);
     let mut edit = TableEdit {
         changed: false,
@@ -282,11 +316,11 @@ pub(crate) fn dh_rows(
             .min_col_width(0.0)
             .max_col_width(widths.widest_column())
             .show(ui, |ui| {
-                dh_header_row(model, ui);
+                dh_header_row(model, ui, convention);
                 for (i, row) in rows.iter_mut().enumerate() {
                     let number = ui.label(format!("{}", i + 1));
                     edit.changed |= kind_menu(ui, model, i, row, number.id);
-                    for c in 0..COLUMNS.len() {
+                    for c in order {
                         let width = widths.columns[c];
                         edit.changed |= dh_cell(ui, i, c, row, width, error, points);
                     }
@@ -313,9 +347,9 @@ pub(crate) fn dh_rows(
                         edit.remove = Some(i);
                     }
                     ui.end_row();
-                    for pair in [[0, 1], [2, 3], [4, 5]] {
-                        for c in pair {
-                            ui.label(BLOCK_NAMES[c]);
+                    for pair in order.chunks(2) {
+                        for &c in pair {
+                            math::label(ui, header(convention, c, false));
                             edit.changed |=
                                 dh_cell(ui, i, c, row, widths.block_cell, error, points);
                         }
@@ -346,7 +380,7 @@ struct TableWidths {
 }
 
 impl TableWidths {
-    fn measure(ui: &egui::Ui, model: &Model, rows: &[RowText]) -> Self {
+    fn measure(ui: &egui::Ui, model: &Model, rows: &[RowText], convention: Convention) -> Self {
         let font = egui::TextStyle::Body.resolve(ui.style());
         let text_width = |text: &str| style::text_width(ui, text, &font);
         let mut texts = [0.0f32; 6];
@@ -358,7 +392,8 @@ impl TableWidths {
         let cell = |text: f32, min: f32| (text + CELL_FRAME).clamp(min, CELL_MAX_WIDTH);
         let mut columns = [0.0; 6];
         for (c, width) in columns.iter_mut().enumerate() {
-            *width = cell(texts[c], CELL_MIN_WIDTH).max(text_width(COLUMNS[c]));
+            let head = header_width(ui, header(convention, c, true), &font);
+            *width = cell(texts[c], CELL_MIN_WIDTH).max(head);
         }
         let number = text_width(&rows.len().to_string()).max(text_width("#"));
         let kind = (KIND_MENU_WIDTH + 2.0 * ui.spacing().button_padding.x)
@@ -390,7 +425,11 @@ fn dh_cell(
     points: &mut ScreenPoints,
 ) -> bool {
     let bad = error.is_some_and(|e| e.row == i && e.column == c);
+    // The margin fixed rather than the theme's (a touch screen's is wide and would cut the
+    // measured numbers), and the text centred in a tall touch cell's height.
     let mut edit = egui::TextEdit::singleline(&mut row.cells[c])
+        .margin(egui::Margin::symmetric(CELL_MARGIN, 2))
+        .align(egui::Align2::LEFT_CENTER)
         .desired_width(width)
         .id_salt(("dh", i, c))
         .hint_text(COLUMNS[c]);
@@ -474,13 +513,13 @@ pub(crate) fn apply_edit(editor: &mut DhEditor, mut edited: DhEditor, model: &mu
     }
 }
 
-/// The DH table's header row: #, type, the columns, and room for the remove button (the
-/// editor and the exercise's answer table share it).
-fn dh_header_row(model: &Model, ui: &mut egui::Ui) {
+/// The DH table's header row: #, type, the columns as formulas in the convention's order,
+/// and room for the remove button (the editor and the exercise's answer table share it).
+fn dh_header_row(model: &Model, ui: &mut egui::Ui, convention: Convention) {
     ui.label("#");
     ui.label(tr(model, Key::ColumnType));
-    for c in COLUMNS {
-        ui.label(c);
+    for c in column_order(convention) {
+        math::label(ui, header(convention, c, true));
     }
     ui.label("");
     ui.end_row();

@@ -4,6 +4,7 @@
 
 pub mod dh_table;
 pub mod draft;
+pub mod math;
 pub mod numbers;
 pub mod plot;
 pub mod style;

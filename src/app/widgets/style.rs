@@ -81,6 +81,13 @@ pub fn presentation_zoom(css_width: f32) -> f32 {
     (css_width / 820.0).clamp(1.25, 1.5)
 }
 
+/// The small text's size (points): egui's, and presentation mode's (14 CSS pixels at the
+/// smallest presentation zoom).
+const NORMAL_SMALL: f32 = 9.0;
+const PRESENT_SMALL: f32 = 11.2;
+/// A text field's fill in presentation mode, against its black panels.
+const PRESENT_FIELD: Color32 = Color32::from_gray(36);
+
 /// The height of every clickable thing on a touch screen (points; one point is one CSS
 /// pixel at zoom 1): a thumb needs about 40.
 pub const TOUCH_TARGET: f32 = 40.0;
@@ -114,6 +121,8 @@ pub fn install(ctx: &egui::Context, presentation: bool, touch: bool, screen: Scr
         visuals.widgets.noninteractive.fg_stroke.color = Color32::WHITE;
         visuals.widgets.inactive.fg_stroke.color = Color32::WHITE;
         visuals.selection.bg_fill = Color32::from_rgb(0, 110, 220);
+        // A text field's fill apart from the black panel: the DH cells keep their boxes.
+        visuals.extreme_bg_color = PRESENT_FIELD;
     }
     // One theme everywhere: the browser's light/dark preference must not change the
     // colours the lecture sees (nor the browser tests' comparison with native).
@@ -121,6 +130,16 @@ pub fn install(ctx: &egui::Context, presentation: bool, touch: bool, screen: Scr
     ctx.set_visuals_of(egui::Theme::Dark, visuals);
     ctx.all_styles_mut(|style| {
         let normal = egui::style::Spacing::default();
+        // Notes under a heading (a robot's description, the units of a table) read from
+        // the back of the room too: small text is nearly body-sized in presentation.
+        let small = if presentation {
+            PRESENT_SMALL
+        } else {
+            NORMAL_SMALL
+        };
+        if let Some(font) = style.text_styles.get_mut(&egui::TextStyle::Small) {
+            font.size = small;
+        }
         let spacing = &mut style.spacing;
         if touch {
             spacing.interact_size.y = TOUCH_TARGET;

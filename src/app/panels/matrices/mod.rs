@@ -174,7 +174,7 @@ fn link_blocks(
         Convention::Standard => Key::StandardFormula,
         Convention::Modified => Key::ModifiedFormula,
     };
-    ui.label(tr(model, convention));
+    crate::app::widgets::math::label(ui, tr(model, convention));
     let lang = model.settings().lang;
     let mut hovered = None;
     // The joint under the pointer (its slider, its link in 3D, its matrices): symbolic
