@@ -5,11 +5,11 @@
 use egui::{Color32, Rect};
 
 use crate::app::state::model::Model;
-use crate::app::state::{tr, trf};
+use crate::app::state::tr;
 use crate::app::widgets::style;
 use armlab_core::ik::Reach;
 use armlab_session::format::number;
-use armlab_text::{Key, Lang, fill};
+use armlab_text::{Key, Lang, fill, text};
 
 /// Draws the labels over the picture; `touch` names finger gestures instead of the mouse.
 pub fn draw(model: &Model, painter: &egui::Painter, rect: Rect, grid_step: f64, touch: bool) {
@@ -22,22 +22,7 @@ pub fn draw(model: &Model, painter: &egui::Painter, rect: Rect, grid_step: f64, 
         Color32::from_gray(200)
     };
     let wrap = (rect.width() - 20.0).max(40.0);
-    let controls = tr(
-        model,
-        if touch {
-            Key::TouchControls
-        } else {
-            Key::MouseControls
-        },
-    );
-    let mut bottom = trf(
-        model,
-        Key::GridControls,
-        &[&number(grid_step, 4), &unit, &controls],
-    );
-    if !touch {
-        bottom = format!("{bottom}\n{}", tr(model, Key::ShortcutHint));
-    }
+    let bottom = controls_text(model.settings().lang, &number(grid_step, 4), unit, touch);
     let galley = painter.layout(bottom, small.clone(), text_color, wrap);
     painter.galley(
         rect.left_bottom() + egui::vec2(10.0, -10.0 - galley.size().y),
@@ -64,6 +49,26 @@ pub fn draw(model: &Model, painter: &egui::Painter, rect: Rect, grid_step: f64, 
     }
 }
 
+/// The hint at the foot of the view: the grid's step in `unit`, what a drag (or a finger)
+/// does, the target ball first (a first-time user does not guess that it moves), and with
+/// a mouse the shortcut keys.
+fn controls_text(lang: Lang, grid: &str, unit: &str, touch: bool) -> String {
+    let controls = text(
+        lang,
+        if touch {
+            Key::TouchControls
+        } else {
+            Key::MouseControls
+        },
+    );
+    let bottom = fill(lang, Key::GridControls, &[&grid, &unit, &controls]);
+    if touch {
+        bottom
+    } else {
+        format!("{bottom}\n{}", text(lang, Key::ShortcutHint))
+    }
+}
+
 /// The line naming the highlighted joint `link` (1-based) and its matrices. A name that
 /// only numbers the joint ("joint 3", the Panda's) is not said twice.
 fn highlight_text(lang: Lang, link: usize, name: &str) -> String {
@@ -78,6 +83,20 @@ fn highlight_text(lang: Lang, link: usize, name: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_hint_says_the_ball_moves_the_target_with_a_mouse_and_a_finger() {
+        for (lang, said) in [
+            (Lang::En, "drag the ball: move the target"),
+            (Lang::Fi, "vedä palloa: siirrä kohdetta"),
+        ] {
+            for touch in [false, true] {
+                let hint = controls_text(lang, "500", "mm", touch);
+                assert!(hint.contains(said), "{lang:?}, touch {touch}: {hint}");
+                assert!(hint.starts_with(&fill(lang, Key::GridControls, &[&"500", &"mm", &""])));
+            }
+        }
+    }
 
     #[test]
     fn a_joint_is_named_once() {
