@@ -337,3 +337,32 @@ fn the_metrover_reaches_only_some_tool_directions_at_its_target_and_the_ur10_all
     let (ur10, total) = reached("#robot=ur10&show=dirs&panels=ik&task=position");
     assert!(ur10 >= total * 9 / 10, "the UR10 reaches {ur10} of {total}");
 }
+
+#[test]
+fn the_jacobian_shows_in_the_tool_frame_and_symbolically() {
+    let mut h = harness_at("#robot=ur10&panels=matrices", [1366.0, 768.0]);
+    assert!(h.query_by_label("J  (6×n, base frame)").is_some());
+    h.get_by_label("tool").click();
+    h.run_steps(2);
+    assert!(h.query_by_label("J  (6×n, tool frame)").is_some());
+    h.get_by_label("Tool orientation").click();
+    h.run_steps(2);
+    h.get_by_label("symbolic").click();
+    h.run_steps(2);
+    let panel = h.get_by_label("symbolic").rect().center();
+    app_harness::wheel(&mut h, panel, -6000.0);
+    // The UR10's fifth column in the tool frame, as a textbook derives it: the last
+    // wrist offset (92.2 mm) turned by θ6.
+    for entry in ["92.2 c6", "-92.2 s6"] {
+        assert!(h.query_by_label(entry).is_some(), "the entry {entry}");
+    }
+    app_harness::wheel(&mut h, panel, 6000.0);
+    h.get_by_label("base").click();
+    h.run_steps(2);
+    app_harness::wheel(&mut h, panel, -6000.0);
+    assert!(h.query_by_label("J  (6×n, base frame)").is_some());
+    assert!(
+        h.query_by_label("92.2 c6").is_none(),
+        "the base frame's J differs"
+    );
+}
