@@ -366,3 +366,22 @@ fn the_jacobian_shows_in_the_tool_frame_and_symbolically() {
         "the base frame's J differs"
     );
 }
+
+#[test]
+fn the_planar_2rs_target_arrows_stay_clear_of_the_hint_at_1366x768() {
+    let h = harness_at("#robot=planar-2r&q=0.3,0", [1366.0, 768.0]);
+    let view = h.state().viewport().rect().expect("a view");
+    let [x, y] = h
+        .state()
+        .points()
+        .get("target")
+        .expect("the target is drawn");
+    // An arrow is 80 points long whichever way it points; the hint takes two lines (about
+    // 40 points) at the foot of the view.
+    let arrow = armlab::app::view3d::marker::handle_px::ARROW as f32;
+    let clear = view.shrink(arrow);
+    assert!(
+        clear.contains(egui::pos2(x, y)) && y + arrow < view.bottom() - 40.0,
+        "the target at ({x:.0}, {y:.0}) in the view {view:?}"
+    );
+}

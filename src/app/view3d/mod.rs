@@ -136,13 +136,36 @@ impl Viewport {
     }
 
     /// Frames the robot (a sphere of 0.85 reach about a point above the base) for the
-    /// view's aspect ratio, so a narrow or wide view keeps the whole arm in sight.
+    /// view's aspect ratio, so a narrow or wide view keeps the whole arm in sight. Then it
+    /// steps back until the tool and the target lie an arrow's length inside the view and
+    /// above the hint lines at its foot: a planar arm stretched along the floor lies
+    /// outside the usual sphere, and its target's arrows ran over the hint.
     fn fit(&mut self, model: &Model, size: egui::Vec2) {
         let reach = model.robot().reach();
         let base = model.robot().world_from_base.translation.vector;
         let centre = Point3::from(base + Vector3::new(0.0, 0.0, reach * 0.35));
         let aspect = (size.x / size.y.max(1.0)) as f64;
         self.camera.fit(centre, reach * 0.85, aspect);
+        let (w, h) = (f64::from(size.x), f64::from(size.y));
+        let arrow = marker::handle_px::ARROW + 10.0;
+        let hint = 45.0;
+        let shown = [
+            model.target().translation.vector,
+            model.fk().tool_position(),
+        ];
+        for _ in 0..30 {
+            let clear = shown.iter().all(|p| {
+                self.camera
+                    .project(&Point3::from(*p), [w, h])
+                    .is_some_and(|[x, y]| {
+                        x > arrow && x < w - arrow && y > arrow && y < h - arrow - hint
+                    })
+            });
+            if clear {
+                break;
+            }
+            self.camera.zoom(1.0 / 1.05);
+        }
         self.framed_at = Some((model.reframes(), size));
     }
 
