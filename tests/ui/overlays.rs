@@ -385,3 +385,46 @@ fn the_planar_2rs_target_arrows_stay_clear_of_the_hint_at_1366x768() {
         "the target at ({x:.0}, {y:.0}) in the view {view:?}"
     );
 }
+
+#[test]
+fn the_workspace_cloud_has_a_colour_legend_and_lies_in_the_view_at_1366x768() {
+    use armlab::app::view3d::workspace::{SAMPLES, measure, ramp};
+    let mut h = harness_at("#robot=ur10&show=cloud&panels=ik", [1366.0, 768.0]);
+    h.get_by_label("Reachable workspace").click();
+    h.run_steps(1);
+    let m = measure(h.state().model());
+    let now = armlab::app::platform::clock::now_ms;
+    h.state_mut()
+        .model_mut()
+        .fill_workspace(m, SAMPLES, f64::INFINITY, now);
+    h.run_steps(3);
+    let cloud = h.state().model().workspace().expect("a cloud").clone();
+    // The panel names the measure and its range.
+    let largest = armlab_session::format::number(cloud.largest_value(), 3);
+    let said = format!("colour: manipulability w (unit-free): blue 0 to yellow {largest}");
+    assert!(h.query_by_label(&said).is_some(), "{said}");
+    // The legend's bar in the view: blue at 0, yellow at the largest, as the cloud.
+    let image = h.render().expect("a frame");
+    let ppp = h.ctx.pixels_per_point();
+    for (end, t) in [("cloud-legend-low", 0.0), ("cloud-legend-high", 1.0)] {
+        let [x, y] = h.state().points().get(end).expect("the legend is drawn");
+        let got = image.get_pixel((x * ppp) as u32, (y * ppp) as u32).0;
+        let want = ramp(t);
+        let off = (0..3).map(|i| got[i].abs_diff(want[i])).max().unwrap_or(0);
+        assert!(off <= 24, "{end}: {got:?}, the cloud's colour {want:?}");
+    }
+    // Every sample lies in the view, above the hint lines at its foot.
+    let view = h.state().viewport().rect().expect("a view");
+    let size = [f64::from(view.width()), f64::from(view.height())];
+    let camera = h.state().viewport().camera();
+    let outside = cloud
+        .positions
+        .iter()
+        .filter(|p| {
+            camera
+                .project(&nalgebra::Point3::from(**p), size)
+                .is_none_or(|[x, y]| x < 0.0 || x > size[0] || y < 0.0 || y > size[1] - 40.0)
+        })
+        .count();
+    assert_eq!(outside, 0, "samples outside the view, of {}", cloud.len());
+}

@@ -70,6 +70,12 @@ pub fn workspace_ui(model: &mut Model, ui: &mut egui::Ui) {
             Key::WorkspaceFilling,
             &[&cloud.len(), &workspace::SAMPLES],
         ));
+        if model.settings().overlays.contains(Overlay::Workspace) {
+            let sigma = model.settings().overlays.contains(Overlay::WorkspaceSigma);
+            let name = tr(model, crate::app::view3d::overlay::legend_name(sigma));
+            let largest = number(cloud.largest_value(), 3);
+            ui.label(trf(model, Key::WorkspaceColours, &[&name, &largest]));
+        }
         let target = model.target().translation.vector;
         if let Some(near) = cloud.nearest(&target) {
             let key = if cloud.contains(&target) {

@@ -13,7 +13,7 @@ mod ghosts;
 pub mod jacobian;
 pub mod marker;
 mod motion;
-mod overlay;
+pub mod overlay;
 pub mod paths;
 pub mod scene;
 pub mod workspace;
@@ -62,6 +62,9 @@ pub struct Viewport {
     hover: Option<Handle>,
     /// The model's reframe count and the view's size the camera last framed the arm at.
     framed_at: Option<(u64, egui::Vec2)>,
+    /// Whether the camera last framed the workspace cloud (it reframes when the cloud is
+    /// switched on or off).
+    framed_cloud: bool,
     /// The model's camera-load count last applied (a link's camera).
     camera_loaded: u64,
     rect: Option<Rect>,
@@ -87,6 +90,7 @@ impl Viewport {
             drag: None,
             hover: None,
             framed_at: None,
+            framed_cloud: false,
             camera_loaded: 0,
             rect: None,
             grid_step: 0.0,
@@ -135,17 +139,24 @@ impl Viewport {
         ctx.request_repaint();
     }
 
-    /// Frames the robot (a sphere of 0.85 reach about a point above the base) for the
-    /// view's aspect ratio, so a narrow or wide view keeps the whole arm in sight. Then it
+    /// Frames the robot (a sphere of 0.85 reach about a point above the base, or with the
+    /// workspace cloud shown the sphere of its reach about the base) for the view's aspect
+    /// ratio, so a narrow or wide view keeps the whole arm in sight. Then it
     /// steps back until the tool and the target lie an arrow's length inside the view and
     /// above the hint lines at its foot: a planar arm stretched along the floor lies
     /// outside the usual sphere, and its target's arrows ran over the hint.
     fn fit(&mut self, model: &Model, size: egui::Vec2) {
         let reach = model.robot().reach();
         let base = model.robot().world_from_base.translation.vector;
-        let centre = Point3::from(base + Vector3::new(0.0, 0.0, reach * 0.35));
         let aspect = (size.x / size.y.max(1.0)) as f64;
-        self.camera.fit(centre, reach * 0.85, aspect);
+        // The workspace cloud lies within the reach of the base, below it too.
+        self.framed_cloud = model.settings().overlays.contains(Overlay::Workspace);
+        if self.framed_cloud {
+            self.camera.fit(Point3::from(base), reach, aspect);
+        } else {
+            let centre = Point3::from(base + Vector3::new(0.0, 0.0, reach * 0.35));
+            self.camera.fit(centre, reach * 0.85, aspect);
+        }
         let (w, h) = (f64::from(size.x), f64::from(size.y));
         let arrow = marker::handle_px::ARROW + 10.0;
         let hint = 45.0;
@@ -180,8 +191,10 @@ impl Viewport {
     ) {
         let rect = ui.available_rect_before_wrap();
         self.take_link_camera(model, rect.size());
-        // Framed anew on load, on a robot change, on Fit and when the view's size changes.
-        if self.framed_at != Some((model.reframes(), rect.size())) {
+        // Framed anew on load, on a robot change, on Fit, when the view's size changes and
+        // when the workspace cloud is switched on or off.
+        let cloud = model.settings().overlays.contains(Overlay::Workspace);
+        if self.framed_at != Some((model.reframes(), rect.size())) || self.framed_cloud != cloud {
             self.fit(model, rect.size());
         }
         // Drags only: a widget that also senses clicks waits to see whether a press is a
@@ -211,6 +224,7 @@ impl Viewport {
         self.draw_scene(model, ui, rect, render_state, &axes, timing);
         let touch = ui.spacing().interact_size.y >= style::TOUCH_TARGET;
         overlay::draw(model, &ui.painter_at(rect), rect, self.grid_step, touch);
+        overlay::cloud_legend(model, &ui.painter_at(rect), rect, points);
         let view = view_geometry(&self.camera, model, rect);
         let project = |p: &Point3<f64>| {
             view.project(p)

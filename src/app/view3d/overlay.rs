@@ -4,11 +4,14 @@
 
 use egui::{Color32, Rect};
 
+use crate::app::screen_points::ScreenPoints;
 use crate::app::state::model::Model;
 use crate::app::state::tr;
+use crate::app::view3d::workspace;
 use crate::app::widgets::style;
 use armlab_core::ik::Reach;
 use armlab_session::format::number;
+use armlab_session::settings::Overlay;
 use armlab_text::{Key, Lang, fill, text};
 
 /// Draws the labels over the picture; `touch` names finger gestures instead of the mouse.
@@ -46,6 +49,73 @@ pub fn draw(model: &Model, painter: &egui::Painter, rect: Rect, grid_step: f64, 
         let galley = painter.layout(text, small, style::HIGHLIGHT, wrap);
         let at = rect.right_top() + egui::vec2(-10.0 - galley.size().x, 14.0 + status_height);
         painter.galley(at, galley, style::HIGHLIGHT);
+    }
+}
+
+/// The workspace cloud's colour scale, at the top right of the view under the line of a
+/// highlighted joint: the measure's name, and a bar from blue at 0 to yellow at the
+/// cloud's largest value. Its ends go to `points` (`cloud-legend-low`, `-high`).
+pub fn cloud_legend(model: &Model, painter: &egui::Painter, rect: Rect, points: &mut ScreenPoints) {
+    let overlays = model.settings().overlays;
+    let Some(cloud) = model
+        .workspace()
+        .filter(|_| overlays.contains(Overlay::Workspace))
+    else {
+        return;
+    };
+    let font = egui::FontId::proportional(if model.settings().presentation {
+        15.0
+    } else {
+        12.0
+    });
+    let color = Color32::from_gray(220);
+    let name = tr(
+        model,
+        legend_name(overlays.contains(Overlay::WorkspaceSigma)),
+    );
+    let largest = number(cloud.largest_value(), 3);
+    let (width, height) = (160.0, 10.0);
+    let right = rect.right() - 10.0;
+    let title = painter.layout(name.to_owned(), font.clone(), color, rect.width() - 20.0);
+    let top = rect.top() + 56.0;
+    let title_left = right - title.size().x.max(width);
+    let bar_top = top + title.size().y + 4.0;
+    painter.galley(egui::pos2(title_left, top), title, color);
+    let bar = Rect::from_min_size(
+        egui::pos2(right - width, bar_top),
+        egui::vec2(width, height),
+    );
+    let steps = 32;
+    for i in 0..steps {
+        let t = (i as f32 + 0.5) / steps as f32;
+        let [r, g, b, _] = workspace::ramp(f64::from(t));
+        let x = bar.left() + bar.width() * i as f32 / steps as f32;
+        let cell = Rect::from_min_size(
+            egui::pos2(x, bar.top()),
+            egui::vec2(width / steps as f32 + 0.5, height),
+        );
+        painter.rect_filled(cell, 0.0, Color32::from_rgb(r, g, b));
+    }
+    let below = egui::pos2(bar.left(), bar.bottom() + 2.0);
+    painter.text(below, egui::Align2::LEFT_TOP, "0", font.clone(), color);
+    let end = egui::pos2(bar.right(), bar.bottom() + 2.0);
+    painter.text(end, egui::Align2::RIGHT_TOP, largest, font, color);
+    points.insert(
+        "cloud-legend-low",
+        egui::pos2(bar.left() + 1.0, bar.center().y),
+    );
+    points.insert(
+        "cloud-legend-high",
+        egui::pos2(bar.right() - 1.0, bar.center().y),
+    );
+}
+
+/// The name of the measure the cloud is coloured by: σ_min, or the manipulability.
+pub fn legend_name(sigma: bool) -> Key {
+    if sigma {
+        Key::WorkspaceLegendSigma
+    } else {
+        Key::WorkspaceLegendW
     }
 }
 
