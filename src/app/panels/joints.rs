@@ -64,6 +64,27 @@ impl Panel for JointsPanel {
                 model.set_q_exact(model.robot().home());
             }
         });
+        let (q, changed, slider_under) = self.sliders_ui(model, ui, points);
+        if changed {
+            model.set_q_exact(q);
+        }
+        // The joint under the pointer highlights its link in 3D and its matrices (and the
+        // symbolic entries that depend on it).
+        model.set_hovered_link(slider_under, HoverSource::Joints);
+        self.self_motion_ui(model, ui);
+        self.speeds_ui(model, ui);
+    }
+}
+
+impl JointsPanel {
+    /// The joints' sliders; returns q as they set it, whether one changed it, and the
+    /// joint (from 1) whose slider is under the pointer.
+    fn sliders_ui(
+        &mut self,
+        model: &Model,
+        ui: &mut egui::Ui,
+        points: &mut ScreenPoints,
+    ) -> (Vec<f64>, bool, Option<usize>) {
         let mut q = model.q().to_vec();
         let mut changed = false;
         let mut slider_under = None;
@@ -114,14 +135,7 @@ impl Panel for JointsPanel {
                     }
                 });
         }
-        if changed {
-            model.set_q_exact(q);
-        }
-        // The joint under the pointer highlights its link in 3D and its matrices (and the
-        // symbolic entries that depend on it).
-        model.set_hovered_link(slider_under, HoverSource::Joints);
-        self.self_motion_ui(model, ui);
-        self.speeds_ui(model, ui);
+        (q, changed, slider_under)
     }
 }
 

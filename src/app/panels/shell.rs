@@ -92,32 +92,43 @@ impl SidePanels {
                 .default_size(column.default_width.min(max))
                 .size_range(column.min_width.min(max)..=max)
                 .resizable(true)
-                .show(ui, |ui| {
-                    let width = visible_width(ui);
-                    egui::ScrollArea::both()
-                        .id_salt(id)
-                        .auto_shrink([false, false])
-                        .show(ui, |ui| {
-                            for (i, kind) in column.open.iter().enumerate() {
-                                if i > 0 {
-                                    ui.separator();
-                                }
-                                if self.reveal == Some(*kind) {
-                                    ui.scroll_to_cursor(Some(egui::Align::TOP));
-                                    self.reveal = None;
-                                }
-                                if section_header(*kind, model, ui) {
-                                    model.set_panel_open(*kind, false);
-                                }
-                                ui.scope(|ui| {
-                                    wrap_at(ui, width);
-                                    self.ui(*kind, model, ui, points);
-                                });
-                            }
-                        });
-                });
+                .show(ui, |ui| self.column_body(column, id, model, ui, points));
             used += response.response.rect.width();
         }
+    }
+
+    /// A wide layout's column: its open panels one under the other, scrolling both ways;
+    /// a panel just opened from its edge tab is scrolled to.
+    fn column_body(
+        &mut self,
+        column: &Column,
+        id: &str,
+        model: &mut Model,
+        ui: &mut egui::Ui,
+        points: &mut ScreenPoints,
+    ) {
+        let width = visible_width(ui);
+        egui::ScrollArea::both()
+            .id_salt(id)
+            .auto_shrink([false, false])
+            .show(ui, |ui| {
+                for (i, kind) in column.open.iter().enumerate() {
+                    if i > 0 {
+                        ui.separator();
+                    }
+                    if self.reveal == Some(*kind) {
+                        ui.scroll_to_cursor(Some(egui::Align::TOP));
+                        self.reveal = None;
+                    }
+                    if section_header(*kind, model, ui) {
+                        model.set_panel_open(*kind, false);
+                    }
+                    ui.scope(|ui| {
+                        wrap_at(ui, width);
+                        self.ui(*kind, model, ui, points);
+                    });
+                }
+            });
     }
 
     /// The narrow layout: a tab bar at the bottom and, when a tab is chosen, its panel as

@@ -180,6 +180,13 @@ impl Viewport {
         self.framed_at = Some((model.reframes(), size));
     }
 
+    /// Whether to frame anew: on load, on a robot change, on Fit, when the view's size
+    /// changes and when the workspace cloud is switched on or off.
+    fn needs_fit(&self, model: &Model, size: egui::Vec2) -> bool {
+        let cloud = model.settings().overlays.contains(Overlay::Workspace);
+        self.framed_at != Some((model.reframes(), size)) || self.framed_cloud != cloud
+    }
+
     /// Shows the viewport and handles its input.
     pub fn ui(
         &mut self,
@@ -191,10 +198,7 @@ impl Viewport {
     ) {
         let rect = ui.available_rect_before_wrap();
         self.take_link_camera(model, rect.size());
-        // Framed anew on load, on a robot change, on Fit, when the view's size changes and
-        // when the workspace cloud is switched on or off.
-        let cloud = model.settings().overlays.contains(Overlay::Workspace);
-        if self.framed_at != Some((model.reframes(), rect.size())) || self.framed_cloud != cloud {
+        if self.needs_fit(model, rect.size()) {
             self.fit(model, rect.size());
         }
         // Drags only: a widget that also senses clicks waits to see whether a press is a
