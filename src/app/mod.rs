@@ -120,6 +120,7 @@ impl ArmLabApp {
                 ik: ik::IkPanel::default(),
                 matrices: matrices::MatricesPanel::default(),
                 motion: motion::MotionPanel::default(),
+                reveal: None,
             },
             model,
             sheet: None,

@@ -308,3 +308,46 @@ fn on_a_projector_the_replay_of_a_solve_fits_its_column() {
         assert!(outside.is_empty(), "{size:?}, edge {edge}: {outside:#?}");
     }
 }
+
+#[test]
+fn at_1366x768_the_symbolic_t04_to_t06_show_whole_in_their_column() {
+    let mut h = harness_at("#robot=ur10", [1366.0, 768.0]);
+    for fold in ["Tool orientation", "Jacobian"] {
+        h.get_by_label(fold).click();
+        h.run_steps(2);
+    }
+    h.get_by_label("symbolic").click();
+    h.run_steps(2);
+    let panel = h.get_by_label("symbolic").rect().center();
+    let view = h.state().viewport().rect().expect("a view");
+    let right = 1366.0 - armlab::app::panels::layout::EDGE_TAB_WIDTH;
+    for title in ["T_04", "T_05", "T_06"] {
+        // Scrolled until the matrix's title is in sight, as a person would.
+        for _ in 0..40 {
+            let top = h.query_by_label(title).map(|n| n.rect().top());
+            if top.is_some_and(|y| y > view.top() && y < 300.0) {
+                break;
+            }
+            app_harness::wheel(&mut h, panel, -150.0);
+        }
+        let top = h.get_by_label(title).rect().top();
+        // Every entry of the matrix (its labels in the next 200 points) ends in the column.
+        let cut: Vec<String> = h
+            .query_all_by_role(Role::Label)
+            .filter(|n| n.rect().left() > view.right() && n.rect().left() < right)
+            .filter(|n| n.rect().top() > top && n.rect().top() < top + 200.0)
+            .filter(|n| n.rect().right() > right + 0.5)
+            .map(|n| {
+                format!(
+                    "{:?} ends at {:.0}",
+                    n.accesskit_node().label(),
+                    n.rect().right()
+                )
+            })
+            .collect();
+        assert!(
+            cut.is_empty(),
+            "{title}, past the column's edge {right}: {cut:#?}"
+        );
+    }
+}

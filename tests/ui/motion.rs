@@ -180,3 +180,23 @@ fn a_motion_into_the_base_stops_at_the_last_free_pose_and_names_the_parts() {
     h.run_steps(60 - frames);
     h.snapshot("motion_collision_stop");
 }
+
+#[test]
+fn the_motion_tab_brings_its_panel_into_sight_at_1366x768() {
+    let mut h = harness_at("#robot=ur10", [1366.0, 768.0]);
+    h.get_by_label("Motion").click();
+    h.run_steps(30);
+    // The panel's first control and its last fold both show: the column scrolled to it.
+    let bottom = h.ctx.content_rect().bottom();
+    let top = h.state().viewport().rect().expect("a view").top();
+    let [_, first] = h
+        .state()
+        .points()
+        .get("motion-move")
+        .expect("the motion panel is drawn");
+    let last = h.get_by_label("Keep-out boxes").rect().bottom();
+    assert!(
+        first > top && last < bottom,
+        "the panel runs from y {first} to {last}, the column shows {top}..{bottom}"
+    );
+}

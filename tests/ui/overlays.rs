@@ -337,3 +337,94 @@ fn the_metrover_reaches_only_some_tool_directions_at_its_target_and_the_ur10_all
     let (ur10, total) = reached("#robot=ur10&show=dirs&panels=ik&task=position");
     assert!(ur10 >= total * 9 / 10, "the UR10 reaches {ur10} of {total}");
 }
+
+#[test]
+fn the_jacobian_shows_in_the_tool_frame_and_symbolically() {
+    let mut h = harness_at("#robot=ur10&panels=matrices", [1366.0, 768.0]);
+    assert!(h.query_by_label("J  (6×n, base frame)").is_some());
+    h.get_by_label("tool").click();
+    h.run_steps(2);
+    assert!(h.query_by_label("J  (6×n, tool frame)").is_some());
+    h.get_by_label("Tool orientation").click();
+    h.run_steps(2);
+    h.get_by_label("symbolic").click();
+    h.run_steps(2);
+    let panel = h.get_by_label("symbolic").rect().center();
+    app_harness::wheel(&mut h, panel, -6000.0);
+    // The UR10's fifth column in the tool frame, as a textbook derives it: the last
+    // wrist offset (92.2 mm) turned by θ6.
+    for entry in ["92.2 c6", "-92.2 s6"] {
+        assert!(h.query_by_label(entry).is_some(), "the entry {entry}");
+    }
+    app_harness::wheel(&mut h, panel, 6000.0);
+    h.get_by_label("base").click();
+    h.run_steps(2);
+    app_harness::wheel(&mut h, panel, -6000.0);
+    assert!(h.query_by_label("J  (6×n, base frame)").is_some());
+    assert!(
+        h.query_by_label("92.2 c6").is_none(),
+        "the base frame's J differs"
+    );
+}
+
+#[test]
+fn the_planar_2rs_target_arrows_stay_clear_of_the_hint_at_1366x768() {
+    let h = harness_at("#robot=planar-2r&q=0.3,0", [1366.0, 768.0]);
+    let view = h.state().viewport().rect().expect("a view");
+    let [x, y] = h
+        .state()
+        .points()
+        .get("target")
+        .expect("the target is drawn");
+    // An arrow is 80 points long whichever way it points; the hint takes two lines (about
+    // 40 points) at the foot of the view.
+    let arrow = armlab::app::view3d::marker::handle_px::ARROW as f32;
+    let clear = view.shrink(arrow);
+    assert!(
+        clear.contains(egui::pos2(x, y)) && y + arrow < view.bottom() - 40.0,
+        "the target at ({x:.0}, {y:.0}) in the view {view:?}"
+    );
+}
+
+#[test]
+fn the_workspace_cloud_has_a_colour_legend_and_lies_in_the_view_at_1366x768() {
+    use armlab::app::view3d::workspace::{SAMPLES, measure, ramp};
+    let mut h = harness_at("#robot=ur10&show=cloud&panels=ik", [1366.0, 768.0]);
+    h.get_by_label("Reachable workspace").click();
+    h.run_steps(1);
+    let m = measure(h.state().model());
+    let now = armlab::app::platform::clock::now_ms;
+    h.state_mut()
+        .model_mut()
+        .fill_workspace(m, SAMPLES, f64::INFINITY, now);
+    h.run_steps(3);
+    let cloud = h.state().model().workspace().expect("a cloud").clone();
+    // The panel names the measure and its range.
+    let largest = armlab_session::format::number(cloud.largest_value(), 3);
+    let said = format!("colour: manipulability w (unit-free): blue 0 to yellow {largest}");
+    assert!(h.query_by_label(&said).is_some(), "{said}");
+    // The legend's bar in the view: blue at 0, yellow at the largest, as the cloud.
+    let image = h.render().expect("a frame");
+    let ppp = h.ctx.pixels_per_point();
+    for (end, t) in [("cloud-legend-low", 0.0), ("cloud-legend-high", 1.0)] {
+        let [x, y] = h.state().points().get(end).expect("the legend is drawn");
+        let got = image.get_pixel((x * ppp) as u32, (y * ppp) as u32).0;
+        let want = ramp(t);
+        let off = (0..3).map(|i| got[i].abs_diff(want[i])).max().unwrap_or(0);
+        assert!(off <= 24, "{end}: {got:?}, the cloud's colour {want:?}");
+    }
+    // Every sample lies in the view, above the hint lines at its foot.
+    let view = h.state().viewport().rect().expect("a view");
+    let size = [f64::from(view.width()), f64::from(view.height())];
+    let camera = h.state().viewport().camera();
+    let outside = cloud
+        .positions
+        .iter()
+        .filter(|p| {
+            camera
+                .project(&nalgebra::Point3::from(**p), size)
+                .is_none_or(|[x, y]| x < 0.0 || x > size[0] || y < 0.0 || y > size[1] - 40.0)
+        })
+        .count();
+    assert_eq!(outside, 0, "samples outside the view, of {}", cloud.len());
+}

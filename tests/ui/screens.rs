@@ -190,3 +190,42 @@ fn a_finger_held_on_the_target_before_moving_still_drags_it() {
     );
     assert!(!h.state().viewport().dragging());
 }
+
+/// The presentation column's width in CSS pixels: from the view's right edge to the edge
+/// tabs.
+fn presentation_column(h: &Harness<'_, ArmLabApp>) -> f32 {
+    let view = h.state().viewport().rect().expect("the view was laid out");
+    let tabs = h.ctx.content_rect().right() - armlab::app::panels::layout::EDGE_TAB_WIDTH;
+    (tabs - view.right()) * h.ctx.zoom_factor()
+}
+
+#[test]
+fn presentation_turned_off_and_on_keeps_its_column_and_fine_rails() {
+    let mut h = harness_at("#robot=ur10&present=on", [1024.0, 768.0]);
+    h.run_steps(2);
+    let first = presentation_column(&h);
+    for _ in 0..2 {
+        h.key_press(egui::Key::P);
+        h.run_steps(3);
+    }
+    assert!(h.state().model().settings().presentation);
+    let again = presentation_column(&h);
+    assert!(first > 350.0, "the column is {first} pixels wide");
+    assert!(
+        (again - first).abs() < 1.0,
+        "turned off and on, the column is {again} pixels wide, first {first}"
+    );
+    // Each of the UR10's ±360° joints: no more than 3° a pixel of its rail.
+    let zoom = h.ctx.zoom_factor();
+    for i in 1..=6 {
+        let at = |end: &str| h.state().points().get(&format!("slider-{i}-{end}"));
+        let [x0, _] = at("min").expect("the rail's start");
+        let [x1, _] = at("max").expect("the rail's end");
+        let degrees_per_pixel = 720.0 / ((x1 - x0) * zoom);
+        assert!(
+            degrees_per_pixel <= 3.0,
+            "θ{i}: {degrees_per_pixel:.1}° a pixel on a rail of {:.0} pixels",
+            (x1 - x0) * zoom
+        );
+    }
+}

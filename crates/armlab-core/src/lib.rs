@@ -27,6 +27,7 @@ pub mod redundancy;
 pub mod rng;
 pub mod robot;
 pub mod symbolic;
+pub mod symbolic_jacobian;
 pub mod workspace;
 
 pub use error::{DhColumn, Expected, Field, Place, RobotError};

@@ -64,41 +64,7 @@ impl Panel for JointsPanel {
                 model.set_q_exact(model.robot().home());
             }
         });
-        let mut q = model.q().to_vec();
-        let mut changed = false;
-        let mut slider_under = None;
-        self.sliders.clear();
-        // The slider fills the column: the name and the value box beside it stay.
-        joints_rail(ui, model);
-        egui::Grid::new("joint_sliders")
-            .num_columns(2)
-            .striped(true)
-            .show(ui, |ui| {
-                for (i, joint) in model.robot().joints.iter().enumerate() {
-                    let response = joint_slider(ui, model, i, joint, &mut q[i]);
-                    self.sliders.push(response.id);
-                    // Where the slider's minimum and maximum values sit, for the browser
-                    // tests: egui insets the rail's ends by the handle's radius, a 2.5th
-                    // of the slider's height.
-                    let r = response.rect;
-                    let inset = r.height() / 2.5;
-                    let rail = ui.spacing().slider_width;
-                    let y = r.center().y;
-                    points.insert(
-                        format!("slider-{}-min", i + 1),
-                        egui::pos2(r.left() + inset, y),
-                    );
-                    points.insert(
-                        format!("slider-{}-max", i + 1),
-                        egui::pos2(r.left() + rail - inset, y),
-                    );
-                    changed |= response.changed();
-                    if response.hovered() {
-                        slider_under = Some(i + 1);
-                    }
-                    ui.end_row();
-                }
-            });
+        let (q, changed, slider_under) = self.sliders_ui(model, ui, points);
         if changed {
             model.set_q_exact(q);
         }
@@ -107,6 +73,69 @@ impl Panel for JointsPanel {
         model.set_hovered_link(slider_under, HoverSource::Joints);
         self.self_motion_ui(model, ui);
         self.speeds_ui(model, ui);
+    }
+}
+
+impl JointsPanel {
+    /// The joints' sliders; returns q as they set it, whether one changed it, and the
+    /// joint (from 1) whose slider is under the pointer.
+    fn sliders_ui(
+        &mut self,
+        model: &Model,
+        ui: &mut egui::Ui,
+        points: &mut ScreenPoints,
+    ) -> (Vec<f64>, bool, Option<usize>) {
+        let mut q = model.q().to_vec();
+        let mut changed = false;
+        let mut slider_under = None;
+        self.sliders.clear();
+        // The slider fills the column: the name and the value box beside it stay, unless
+        // that leaves the rail too short to set a joint by the degree; then the name and
+        // the value box share a line and the rail has the next one to itself.
+        let stacked = joints_rail(ui, model) < fine_rail(ui, model);
+        let mut row = |ui: &mut egui::Ui, i: usize, joint: &Joint, q: &mut f64| {
+            let response = joint_slider(ui, model, (i, joint), q, stacked);
+            self.sliders.push(response.id);
+            // Where the slider's minimum and maximum values sit, for the browser tests:
+            // egui insets the rail's ends by the handle's radius, a 2.5th of the
+            // slider's height.
+            let r = response.rect;
+            let inset = r.height() / 2.5;
+            let rail = ui.spacing().slider_width;
+            let y = r.center().y;
+            points.insert(
+                format!("slider-{}-min", i + 1),
+                egui::pos2(r.left() + inset, y),
+            );
+            points.insert(
+                format!("slider-{}-max", i + 1),
+                egui::pos2(r.left() + rail - inset, y),
+            );
+            changed |= response.changed();
+            if response.hovered() {
+                slider_under = Some(i + 1);
+            }
+        };
+        let joints = &model.robot().joints;
+        if stacked {
+            ui.scope(|ui| {
+                ui.spacing_mut().slider_width = style::room(ui).max(40.0);
+                for (i, joint) in joints.iter().enumerate() {
+                    row(ui, i, joint, &mut q[i]);
+                }
+            });
+        } else {
+            egui::Grid::new("joint_sliders")
+                .num_columns(2)
+                .striped(true)
+                .show(ui, |ui| {
+                    for (i, joint) in joints.iter().enumerate() {
+                        row(ui, i, joint, &mut q[i]);
+                        ui.end_row();
+                    }
+                });
+        }
+        (q, changed, slider_under)
     }
 }
 
@@ -139,8 +168,8 @@ fn speed_rail(ui: &mut egui::Ui, model: &Model) {
 /// The joint sliders' rail: what the visible room leaves beside the widest name (the
 /// grid's name column is at least egui's interact width) and the widest value at either
 /// limit. A fixed 110 points for both would leave a prismatic joint's "-0.300 m" past a
-/// phone's edge.
-fn joints_rail(ui: &mut egui::Ui, model: &Model) {
+/// phone's edge. Returns the rail's length.
+fn joints_rail(ui: &mut egui::Ui, model: &Model) -> f32 {
     let robot = model.robot();
     let degrees = model.settings().degrees;
     let unit = robot.length_unit.symbol();
@@ -158,7 +187,7 @@ fn joints_rail(ui: &mut egui::Ui, model: &Model) {
     let name = format!("θ{}", robot.dof());
     let font = egui::TextStyle::Body.resolve(ui.style());
     let name_width = style::text_width(ui, &name, &font).max(ui.spacing().interact_size.x);
-    style::fit_rail(ui, name_width, &widest);
+    style::fit_rail(ui, name_width, &widest)
 }
 
 /// The self-motion slider (±3 rad, in steps of 0.05 rad: an arrow key moves it by one
@@ -309,46 +338,89 @@ impl JointsPanel {
     }
 }
 
-/// One joint's label and slider (degrees or radians, or the length unit).
+/// The most degrees a pixel of a joint's rail may stand for: at more, a drag of a few
+/// pixels jumps past the angle wanted (a 35-pixel rail for ±360° made a 17-pixel drag
+/// turn a joint by 290°).
+const MAX_DEGREES_PER_PIXEL: f32 = 3.0;
+
+/// The shortest rail (points) on which every revolute joint's range keeps to
+/// [`MAX_DEGREES_PER_PIXEL`]; a point is the zoom's count of CSS pixels.
+fn fine_rail(ui: &egui::Ui, model: &Model) -> f32 {
+    let widest = model
+        .robot()
+        .joints
+        .iter()
+        .filter(|j| j.kind == JointKind::Revolute)
+        .map(|j| (j.limits.max - j.limits.min).to_degrees() as f32)
+        .fold(0.0, f32::max);
+    widest / (MAX_DEGREES_PER_PIXEL * ui.ctx().zoom_factor())
+}
+
+/// A joint's value as its slider shows it: the factor from the model's unit, the suffix
+/// and the decimals (none: egui's own).
+fn shown(model: &Model, joint: &Joint) -> (f64, String, Option<usize>) {
+    match joint.kind {
+        JointKind::Revolute if model.settings().degrees => {
+            (180.0 / std::f64::consts::PI, "°".into(), Some(1))
+        }
+        JointKind::Revolute => (1.0, " rad".into(), Some(3)),
+        JointKind::Prismatic => (
+            1.0,
+            format!(" {}", model.robot().length_unit.symbol()),
+            None,
+        ),
+    }
+}
+
+/// One joint's label and slider (degrees or radians, or the length unit). `stacked`: the
+/// name and a value box on one line, the rail alone on the next.
 fn joint_slider(
     ui: &mut egui::Ui,
     model: &Model,
-    i: usize,
-    joint: &Joint,
+    (i, joint): (usize, &Joint),
     value: &mut f64,
+    stacked: bool,
 ) -> egui::Response {
     let symbol = match joint.kind {
         JointKind::Revolute => format!("θ{}", i + 1),
         JointKind::Prismatic => format!("d{}", i + 1),
     };
-    let label = ui.label(symbol).on_hover_text(&joint.name);
-    let (lo, hi) = (joint.limits.min, joint.limits.max);
-    let response = match joint.kind {
-        JointKind::Revolute if model.settings().degrees => {
-            let mut v = value.to_degrees();
-            let r = ui.add(
-                egui::Slider::new(&mut v, lo.to_degrees()..=hi.to_degrees())
-                    .suffix("°")
-                    .fixed_decimals(1)
-                    .clamping(egui::SliderClamping::Never),
-            );
-            if r.changed() {
-                *value = v.to_radians();
+    let (scale, suffix, decimals) = shown(model, joint);
+    let range = joint.limits.min * scale..=joint.limits.max * scale;
+    let mut v = *value * scale;
+    let mut typed = false;
+    let label = if stacked {
+        ui.horizontal(|ui| {
+            let label = ui.label(&symbol).on_hover_text(&joint.name);
+            let mut field = egui::DragValue::new(&mut v)
+                .suffix(&suffix)
+                .range(range.clone())
+                .clamp_existing_to_range(false)
+                .speed((range.end() - range.start()) / 1000.0);
+            if let Some(d) = decimals {
+                field = field.fixed_decimals(d);
             }
-            r
-        }
-        JointKind::Revolute => ui.add(
-            egui::Slider::new(value, lo..=hi)
-                .suffix(" rad")
-                .fixed_decimals(3)
-                .clamping(egui::SliderClamping::Never),
-        ),
-        JointKind::Prismatic => ui.add(
-            egui::Slider::new(value, lo..=hi)
-                .suffix(format!(" {}", model.robot().length_unit.symbol()))
-                .clamping(egui::SliderClamping::Never),
-        ),
+            typed = ui.add(field).labelled_by(label.id).changed();
+            label
+        })
+        .inner
+    } else {
+        ui.label(&symbol).on_hover_text(&joint.name)
     };
+    let mut slider = egui::Slider::new(&mut v, range)
+        .suffix(suffix)
+        .show_value(!stacked)
+        .clamping(egui::SliderClamping::Never);
+    if let Some(d) = decimals {
+        slider = slider.fixed_decimals(d);
+    }
+    let mut response = ui.add(slider);
+    if typed {
+        response.mark_changed();
+    }
+    if response.changed() {
+        *value = v / scale;
+    }
     response.labelled_by(label.id)
 }
 

@@ -28,6 +28,9 @@ pub struct SidePanels {
     pub matrices: matrices::MatricesPanel,
     /// The motion lab: controllers, time scale, plots.
     pub motion: motion::MotionPanel,
+    /// A panel just opened from its edge tab: its column scrolls to it once drawn (below
+    /// the others, it opened out of sight).
+    pub reveal: Option<PanelKind>,
 }
 
 impl SidePanels {
@@ -58,7 +61,9 @@ impl SidePanels {
     ) {
         let mut used = 0.0;
         for (index, column) in plan.columns.iter().enumerate() {
-            edge_tabs(column, model, ui, points);
+            if let Some(opened) = edge_tabs(column, model, ui, points) {
+                self.reveal = Some(opened);
+            }
             if column.open.is_empty() {
                 continue;
             }
@@ -67,12 +72,15 @@ impl SidePanels {
                 Side::Left => "armlab_left",
                 Side::Right => "armlab_right",
             };
-            // A column remembers the width it was dragged to, per zoom and screen width (to
-            // 50 points): a width kept from another zoom or screen (presentation mode, a
-            // resized window, the page's first frame before its canvas had its size) would
-            // not fit this one.
+            // A column remembers the width it was dragged to, per mode, zoom and screen
+            // width (to 50 points): a width kept from another zoom or screen (presentation
+            // mode, a resized window, the page's first frame before its canvas had its
+            // size) would not fit this one. The mode too: in the frame that turns
+            // presentation off the zoom is still presentation's, and the two-column plan
+            // squeezed the one presentation column, which kept that width when turned on.
             let salt = (
                 id,
+                model.settings().presentation,
                 (ui.ctx().zoom_factor() * 100.0).round() as i32,
                 (plan.width / 50.0).round() as i32,
             );
@@ -84,28 +92,43 @@ impl SidePanels {
                 .default_size(column.default_width.min(max))
                 .size_range(column.min_width.min(max)..=max)
                 .resizable(true)
-                .show(ui, |ui| {
-                    let width = visible_width(ui);
-                    egui::ScrollArea::both()
-                        .id_salt(id)
-                        .auto_shrink([false, false])
-                        .show(ui, |ui| {
-                            for (i, kind) in column.open.iter().enumerate() {
-                                if i > 0 {
-                                    ui.separator();
-                                }
-                                if section_header(*kind, model, ui) {
-                                    model.set_panel_open(*kind, false);
-                                }
-                                ui.scope(|ui| {
-                                    wrap_at(ui, width);
-                                    self.ui(*kind, model, ui, points);
-                                });
-                            }
-                        });
-                });
+                .show(ui, |ui| self.column_body(column, id, model, ui, points));
             used += response.response.rect.width();
         }
+    }
+
+    /// A wide layout's column: its open panels one under the other, scrolling both ways;
+    /// a panel just opened from its edge tab is scrolled to.
+    fn column_body(
+        &mut self,
+        column: &Column,
+        id: &str,
+        model: &mut Model,
+        ui: &mut egui::Ui,
+        points: &mut ScreenPoints,
+    ) {
+        let width = visible_width(ui);
+        egui::ScrollArea::both()
+            .id_salt(id)
+            .auto_shrink([false, false])
+            .show(ui, |ui| {
+                for (i, kind) in column.open.iter().enumerate() {
+                    if i > 0 {
+                        ui.separator();
+                    }
+                    if self.reveal == Some(*kind) {
+                        ui.scroll_to_cursor(Some(egui::Align::TOP));
+                        self.reveal = None;
+                    }
+                    if section_header(*kind, model, ui) {
+                        model.set_panel_open(*kind, false);
+                    }
+                    ui.scope(|ui| {
+                        wrap_at(ui, width);
+                        self.ui(*kind, model, ui, points);
+                    });
+                }
+            });
     }
 
     /// The narrow layout: a tab bar at the bottom and, when a tab is chosen, its panel as
@@ -229,8 +252,14 @@ fn section_header(kind: PanelKind, model: &Model, ui: &mut egui::Ui) -> bool {
 }
 
 /// A column's strip of edge tabs: one vertical tab per panel, lit when open; a click
-/// opens or closes that panel.
-fn edge_tabs(column: &Column, model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
+/// opens or closes that panel. Returns the panel it opened.
+fn edge_tabs(
+    column: &Column,
+    model: &mut Model,
+    ui: &mut egui::Ui,
+    points: &mut ScreenPoints,
+) -> Option<PanelKind> {
+    let mut opened = None;
     let id = match column.side {
         Side::Left => "armlab_left_tabs",
         Side::Right => "armlab_right_tabs",
@@ -251,9 +280,11 @@ fn edge_tabs(column: &Column, model: &mut Model, ui: &mut egui::Ui, points: &mut
                 points.insert(format!("tab-{}", kind.id()), response.rect.center());
                 if response.clicked() {
                     model.set_panel_open(*kind, !open);
+                    opened = (!open).then_some(*kind);
                 }
             }
         });
+    opened
 }
 
 /// One vertical tab: its label turned a quarter, reading upward.

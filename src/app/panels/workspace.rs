@@ -70,6 +70,7 @@ pub fn workspace_ui(model: &mut Model, ui: &mut egui::Ui) {
             Key::WorkspaceFilling,
             &[&cloud.len(), &workspace::SAMPLES],
         ));
+        colours_line(model, ui, cloud.largest_value());
         let target = model.target().translation.vector;
         if let Some(near) = cloud.nearest(&target) {
             let key = if cloud.contains(&target) {
@@ -81,6 +82,17 @@ pub fn workspace_ui(model: &mut Model, ui: &mut egui::Ui) {
             ui.label(trf(model, key, &[&number(near.distance, 1), &unit]));
         }
     });
+}
+
+/// While the cloud shows: the measure it is coloured by and the range of its colours, as
+/// the legend in the view draws them.
+fn colours_line(model: &Model, ui: &mut egui::Ui, largest: f64) {
+    if model.settings().overlays.contains(Overlay::Workspace) {
+        let sigma = model.settings().overlays.contains(Overlay::WorkspaceSigma);
+        let name = tr(model, crate::app::view3d::overlay::legend_name(sigma));
+        let largest = number(largest, 3);
+        ui.label(trf(model, Key::WorkspaceColours, &[&name, &largest]));
+    }
 }
 
 /// When the drag stalls short of the target: the joint that holds it at a limit, if one

@@ -15,7 +15,7 @@ pub mod jacobian;
 pub mod labels;
 pub mod marker;
 mod motion;
-mod overlay;
+pub mod overlay;
 pub mod paths;
 pub mod scene;
 pub mod workspace;
@@ -64,6 +64,9 @@ pub struct Viewport {
     hover: Option<Handle>,
     /// The model's reframe count and the view's size the camera last framed the arm at.
     framed_at: Option<(u64, egui::Vec2)>,
+    /// Whether the camera last framed the workspace cloud (it reframes when the cloud is
+    /// switched on or off).
+    framed_cloud: bool,
     /// The model's camera-load count last applied (a link's camera).
     camera_loaded: u64,
     rect: Option<Rect>,
@@ -91,6 +94,7 @@ impl Viewport {
             drag: None,
             hover: None,
             framed_at: None,
+            framed_cloud: false,
             camera_loaded: 0,
             rect: None,
             grid_step: 0.0,
@@ -146,24 +150,67 @@ impl Viewport {
         ctx.request_repaint();
     }
 
-    /// Frames the robot (a sphere of 0.85 reach about a point above the base) for the
-    /// view's aspect ratio, so a narrow or wide view keeps the whole arm in sight. The
-    /// exercise frames its drawing as the arm stands, with room for the labels: the
-    /// student reads lengths off it.
+    /// Frames the robot (a sphere of 0.85 reach about a point above the base, or with the
+    /// workspace cloud shown the sphere of its reach about the base) for the view's aspect
+    /// ratio, so a narrow or wide view keeps the whole arm in sight. The exercise frames
+    /// its drawing as the arm stands, with room for the labels: the student reads lengths
+    /// off it. Otherwise it then steps back until the tool and the target lie an arrow's
+    /// length inside the view and above the hint lines at its foot: a planar arm stretched
+    /// along the floor lies outside the usual sphere, and its target's arrows ran over the
+    /// hint.
     fn fit(&mut self, model: &Model, size: egui::Vec2) {
         let reach = model.robot().reach();
         let base = model.robot().world_from_base.translation.vector;
         let aspect = (size.x / size.y.max(1.0)) as f64;
+        // The workspace cloud lies within the reach of the base, below it too.
+        self.framed_cloud = model.settings().overlays.contains(Overlay::Workspace);
         if model.exercise().is_some() {
             let points = exercise::drawing_points(model.robot(), model.fk());
             let (centre, radius) = exercise::bounds(&points);
             self.camera.fit(Point3::from(centre), radius, aspect);
             fill_view(&mut self.camera, &points, size);
         } else {
-            let centre = Point3::from(base + Vector3::new(0.0, 0.0, reach * 0.35));
-            self.camera.fit(centre, reach * 0.85, aspect);
+            if self.framed_cloud {
+                self.camera.fit(Point3::from(base), reach, aspect);
+            } else {
+                let centre = Point3::from(base + Vector3::new(0.0, 0.0, reach * 0.35));
+                self.camera.fit(centre, reach * 0.85, aspect);
+            }
+            self.step_back_to_show_handles(model, size);
         }
         self.framed_at = Some((model.reframes(), size));
+    }
+
+    /// Zooms out in small steps until the tool and the target lie an arrow's length inside
+    /// the view and above its hint lines.
+    fn step_back_to_show_handles(&mut self, model: &Model, size: egui::Vec2) {
+        let (w, h) = (f64::from(size.x), f64::from(size.y));
+        let arrow = marker::handle_px::ARROW + 10.0;
+        let hint = 45.0;
+        let shown = [
+            model.target().translation.vector,
+            model.fk().tool_position(),
+        ];
+        for _ in 0..30 {
+            let clear = shown.iter().all(|p| {
+                self.camera
+                    .project(&Point3::from(*p), [w, h])
+                    .is_some_and(|[x, y]| {
+                        x > arrow && x < w - arrow && y > arrow && y < h - arrow - hint
+                    })
+            });
+            if clear {
+                break;
+            }
+            self.camera.zoom(1.0 / 1.05);
+        }
+    }
+
+    /// Whether to frame anew: on load, on a robot change, on Fit, when the view's size
+    /// changes and when the workspace cloud is switched on or off.
+    fn needs_fit(&self, model: &Model, size: egui::Vec2) -> bool {
+        let cloud = model.settings().overlays.contains(Overlay::Workspace);
+        self.framed_at != Some((model.reframes(), size)) || self.framed_cloud != cloud
     }
 
     /// Shows the viewport and handles its input.
@@ -177,8 +224,7 @@ impl Viewport {
     ) {
         let rect = ui.available_rect_before_wrap();
         self.take_link_camera(model, rect.size());
-        // Framed anew on load, on a robot change, on Fit and when the view's size changes.
-        if self.framed_at != Some((model.reframes(), rect.size())) {
+        if self.needs_fit(model, rect.size()) {
             self.fit(model, rect.size());
         }
         // Drags only: a widget that also senses clicks waits to see whether a press is a
@@ -208,6 +254,7 @@ impl Viewport {
         self.draw_scene(model, ui, rect, render_state, &axes, timing);
         let touch = ui.spacing().interact_size.y >= style::TOUCH_TARGET;
         overlay::draw(model, &ui.painter_at(rect), rect, self.grid_step, touch);
+        overlay::cloud_legend(model, &ui.painter_at(rect), rect, points);
         let view = view_geometry(&self.camera, model, rect);
         let project = |p: &Point3<f64>| {
             view.project(p)

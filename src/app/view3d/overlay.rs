@@ -4,12 +4,15 @@
 
 use egui::{Color32, Rect};
 
+use crate::app::screen_points::ScreenPoints;
 use crate::app::state::model::Model;
-use crate::app::state::{tr, trf};
+use crate::app::state::tr;
+use crate::app::view3d::workspace;
 use crate::app::widgets::style;
 use armlab_core::ik::Reach;
 use armlab_session::format::number;
-use armlab_text::{Key, Lang, fill};
+use armlab_session::settings::Overlay;
+use armlab_text::{Key, Lang, fill, text};
 
 /// Draws the labels over the picture; `touch` names finger gestures instead of the mouse.
 pub fn draw(model: &Model, painter: &egui::Painter, rect: Rect, grid_step: f64, touch: bool) {
@@ -22,22 +25,7 @@ pub fn draw(model: &Model, painter: &egui::Painter, rect: Rect, grid_step: f64, 
         Color32::from_gray(200)
     };
     let wrap = (rect.width() - 20.0).max(40.0);
-    let controls = tr(
-        model,
-        if touch {
-            Key::TouchControls
-        } else {
-            Key::MouseControls
-        },
-    );
-    let mut bottom = trf(
-        model,
-        Key::GridControls,
-        &[&number(grid_step, 4), &unit, &controls],
-    );
-    if !touch {
-        bottom = format!("{bottom}\n{}", tr(model, Key::ShortcutHint));
-    }
+    let bottom = controls_text(model.settings().lang, &number(grid_step, 4), unit, touch);
     let galley = painter.layout(bottom, small.clone(), text_color, wrap);
     painter.galley(
         rect.left_bottom() + egui::vec2(10.0, -10.0 - galley.size().y),
@@ -64,6 +52,93 @@ pub fn draw(model: &Model, painter: &egui::Painter, rect: Rect, grid_step: f64, 
     }
 }
 
+/// The workspace cloud's colour scale, at the top right of the view under the line of a
+/// highlighted joint: the measure's name, and a bar from blue at 0 to yellow at the
+/// cloud's largest value. Its ends go to `points` (`cloud-legend-low`, `-high`).
+pub fn cloud_legend(model: &Model, painter: &egui::Painter, rect: Rect, points: &mut ScreenPoints) {
+    let overlays = model.settings().overlays;
+    let Some(cloud) = model
+        .workspace()
+        .filter(|_| overlays.contains(Overlay::Workspace))
+    else {
+        return;
+    };
+    let font = egui::FontId::proportional(if model.settings().presentation {
+        15.0
+    } else {
+        12.0
+    });
+    let color = Color32::from_gray(220);
+    let name = tr(
+        model,
+        legend_name(overlays.contains(Overlay::WorkspaceSigma)),
+    );
+    let largest = number(cloud.largest_value(), 3);
+    let (width, height) = (160.0, 10.0);
+    let right = rect.right() - 10.0;
+    let title = painter.layout(name.to_owned(), font.clone(), color, rect.width() - 20.0);
+    let top = rect.top() + 56.0;
+    let title_left = right - title.size().x.max(width);
+    let bar_top = top + title.size().y + 4.0;
+    painter.galley(egui::pos2(title_left, top), title, color);
+    let bar = Rect::from_min_size(
+        egui::pos2(right - width, bar_top),
+        egui::vec2(width, height),
+    );
+    let steps = 32;
+    for i in 0..steps {
+        let t = (i as f32 + 0.5) / steps as f32;
+        let [r, g, b, _] = workspace::ramp(f64::from(t));
+        let x = bar.left() + bar.width() * i as f32 / steps as f32;
+        let cell = Rect::from_min_size(
+            egui::pos2(x, bar.top()),
+            egui::vec2(width / steps as f32 + 0.5, height),
+        );
+        painter.rect_filled(cell, 0.0, Color32::from_rgb(r, g, b));
+    }
+    let below = egui::pos2(bar.left(), bar.bottom() + 2.0);
+    painter.text(below, egui::Align2::LEFT_TOP, "0", font.clone(), color);
+    let end = egui::pos2(bar.right(), bar.bottom() + 2.0);
+    painter.text(end, egui::Align2::RIGHT_TOP, largest, font, color);
+    points.insert(
+        "cloud-legend-low",
+        egui::pos2(bar.left() + 1.0, bar.center().y),
+    );
+    points.insert(
+        "cloud-legend-high",
+        egui::pos2(bar.right() - 1.0, bar.center().y),
+    );
+}
+
+/// The name of the measure the cloud is coloured by: σ_min, or the manipulability.
+pub fn legend_name(sigma: bool) -> Key {
+    if sigma {
+        Key::WorkspaceLegendSigma
+    } else {
+        Key::WorkspaceLegendW
+    }
+}
+
+/// The hint at the foot of the view: the grid's step in `unit`, what a drag (or a finger)
+/// does, the target ball first (a first-time user does not guess that it moves), and with
+/// a mouse the shortcut keys.
+fn controls_text(lang: Lang, grid: &str, unit: &str, touch: bool) -> String {
+    let controls = text(
+        lang,
+        if touch {
+            Key::TouchControls
+        } else {
+            Key::MouseControls
+        },
+    );
+    let bottom = fill(lang, Key::GridControls, &[&grid, &unit, &controls]);
+    if touch {
+        bottom
+    } else {
+        format!("{bottom}\n{}", text(lang, Key::ShortcutHint))
+    }
+}
+
 /// The line naming the highlighted joint `link` (1-based) and its matrices. A name that
 /// only numbers the joint ("joint 3", the Panda's) is not said twice.
 fn highlight_text(lang: Lang, link: usize, name: &str) -> String {
@@ -78,6 +153,20 @@ fn highlight_text(lang: Lang, link: usize, name: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_hint_says_the_ball_moves_the_target_with_a_mouse_and_a_finger() {
+        for (lang, said) in [
+            (Lang::En, "drag the ball: move the target"),
+            (Lang::Fi, "vedä palloa: siirrä kohdetta"),
+        ] {
+            for touch in [false, true] {
+                let hint = controls_text(lang, "500", "mm", touch);
+                assert!(hint.contains(said), "{lang:?}, touch {touch}: {hint}");
+                assert!(hint.starts_with(&fill(lang, Key::GridControls, &[&"500", &"mm", &""])));
+            }
+        }
+    }
 
     #[test]
     fn a_joint_is_named_once() {

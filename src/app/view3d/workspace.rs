@@ -25,8 +25,9 @@ pub fn measure(model: &Model) -> WorkspaceMeasure {
     }
 }
 
-/// Blue (low) to yellow (high).
-fn ramp(t: f64) -> [u8; 4] {
+/// Blue (low) to yellow (high): the colour of a sample whose measure is `t` of the
+/// cloud's largest.
+pub fn ramp(t: f64) -> [u8; 4] {
     let t = t.clamp(0.0, 1.0);
     let lerp = |a: f64, b: f64| (a + (b - a) * t) as u8;
     [lerp(40.0, 250.0), lerp(90.0, 220.0), lerp(220.0, 60.0), 255]

@@ -172,7 +172,7 @@ fn matrix_body(
 }
 
 /// The caption over one block of a matrix cut into blocks of columns ([`Fit::Blocks`]).
-fn column_caption(ui: &mut egui::Ui, lang: Lang, columns: &std::ops::Range<usize>) {
+pub(super) fn column_caption(ui: &mut egui::Ui, lang: Lang, columns: &std::ops::Range<usize>) {
     let caption = if columns.len() == 1 {
         fill(lang, Key::MatrixColumn, &[&columns.end])
     } else {

@@ -9,7 +9,7 @@ use crate::app::widgets::style;
 /// largest first: a 1024×768 projector's side column shows T_06 whole at 80 %. Few fixed
 /// steps, so that moving numbers do not make a new font size (and new glyphs in egui's
 /// font atlas) in every frame.
-const FIT_SCALES: [f32; 3] = [1.0, 0.9, 0.8];
+pub(super) const FIT_SCALES: [f32; 3] = [1.0, 0.9, 0.8];
 
 /// How a matrix's numbers fit the visible room ([`fit`]).
 #[derive(Debug, Clone, PartialEq)]
@@ -61,7 +61,11 @@ pub(super) fn fit(ui: &egui::Ui, texts: &[String], rows: usize, font: &egui::Fon
 /// consecutive columns that each fit `room`, as even in count as they fit (6 columns of
 /// which 4 fit: 3 and 3, not 4 and 2; an odd one over goes to the first blocks); `None`
 /// when a column alone is wider than `room`.
-fn column_blocks(widths: &[f32], gap: f32, room: f32) -> Option<Vec<std::ops::Range<usize>>> {
+pub(super) fn column_blocks(
+    widths: &[f32],
+    gap: f32,
+    room: f32,
+) -> Option<Vec<std::ops::Range<usize>>> {
     if widths.is_empty() || widths.iter().any(|w| *w > room) {
         return None;
     }

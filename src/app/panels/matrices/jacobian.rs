@@ -19,19 +19,50 @@ use crate::app::widgets::toggles::overlay_checkbox;
 use armlab_session::format::{fixed, number};
 use armlab_session::settings::Overlay;
 
+/// The title of J in the base frame or, with `tool_frame`, in the tool frame.
+pub(super) fn title(tool_frame: bool) -> Key {
+    if tool_frame {
+        Key::JacobianToolTitle
+    } else {
+        Key::JacobianTitle
+    }
+}
+
+/// The switch between J in the base frame and J in the tool frame.
+pub(super) fn frame_switch(model: &Model, ui: &mut egui::Ui, tool_frame: &mut bool) {
+    let hint = tr(model, Key::JacobianFrameHint);
+    crate::app::widgets::style::wrapped(ui, |ui| {
+        ui.label(tr(model, Key::JacobianFrame)).on_hover_text(hint);
+        ui.selectable_value(tool_frame, false, tr(model, Key::JacobianBase))
+            .on_hover_text(hint);
+        ui.selectable_value(tool_frame, true, tr(model, Key::JacobianTool))
+            .on_hover_text(hint);
+    });
+}
+
+/// J with its check, measures, drawings and legend; `tool_frame`: J shown in the tool
+/// frame, `blockdiag(Rᵀ, Rᵀ)·J` (the measures are the same in either frame).
 pub(super) fn jacobian_block(
     model: &mut Model,
     analysis: &JacobianAnalysis,
     ui: &mut egui::Ui,
-    decimals: usize,
+    (decimals, tool_frame): (usize, bool),
     hiding: &mut Hiding,
 ) {
     let j = &analysis.geometric;
-    let jm = DMatrix::from_fn(6, j.ncols(), |r, c| j[(r, c)]);
+    let turn = if tool_frame {
+        model.fk().base_from_tool.rotation.matrix().transpose()
+    } else {
+        nalgebra::Matrix3::identity()
+    };
+    let jm = DMatrix::from_fn(6, j.ncols(), |r, c| {
+        let part = r / 3 * 3;
+        (0..3).map(|k| turn[(r % 3, k)] * j[(part + k, c)]).sum()
+    });
     matrix_block(
         ui,
         model.settings().lang,
-        tr(model, Key::JacobianTitle),
+        tr(model, title(tool_frame)),
         tr(model, Key::JacobianHint),
         &jm,
         decimals,

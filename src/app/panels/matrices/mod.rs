@@ -33,7 +33,7 @@ use block::matrix_block;
 use jacobian::jacobian_block;
 use orientation::orientation_block;
 use predict::{Hiding, Target};
-use symbolic::{SymbolicCache, symbolic_block};
+use symbolic::{Symbolic, SymbolicCache, symbolic_block};
 
 fn homogeneous(pose: &nalgebra::IsometryMatrix3<f64>) -> DMatrix<f64> {
     let h = armlab_core::fk::homogeneous(pose);
@@ -47,8 +47,10 @@ fn homogeneous(pose: &nalgebra::IsometryMatrix3<f64>) -> DMatrix<f64> {
 #[derive(Debug, Clone, Default)]
 pub struct MatricesPanel {
     analysis: Option<AnalysisCache>,
-    /// Show A_i and T_0i symbolically instead of as numbers.
+    /// Show A_i, T_0i and J symbolically instead of as numbers.
     symbolic: bool,
+    /// Show J in the tool frame instead of the base frame.
+    tool_frame: bool,
     chain: SymbolicCache,
     /// Predict, then reveal: the lecturer is choosing what to hide.
     choosing: bool,
@@ -122,13 +124,32 @@ impl Panel for MatricesPanel {
         .id_salt("jacobian")
         .default_open(true)
         .show(ui, |ui| {
+            jacobian::frame_switch(model, ui, &mut self.tool_frame);
+            let tool_frame = self.tool_frame;
             let analysis = self.analysis(model);
-            jacobian_block(model, analysis, ui, decimals, &mut hiding)
+            jacobian_block(model, analysis, ui, (decimals, tool_frame), &mut hiding)
         });
+        let hovered = self.links_fold(model, ui, decimals, &mut hiding);
+        model.set_hovered_link(hovered, HoverSource::Matrices);
+        self.finish_hiding(model, hiding, points);
+    }
+}
+
+impl MatricesPanel {
+    /// The fold of every A_i and T_0i (and, symbolically, J); returns the link whose
+    /// matrix is under the pointer.
+    fn links_fold(
+        &mut self,
+        model: &Model,
+        ui: &mut egui::Ui,
+        decimals: usize,
+        hiding: &mut Hiding,
+    ) -> Option<usize> {
+        let tool_frame = self.tool_frame;
         let symbolic = self
             .symbolic
             .then(|| self.chain.chain(model.robot(), model.robot_changes()));
-        let hovered = egui::CollapsingHeader::new(crate::app::widgets::style::fold_title(
+        egui::CollapsingHeader::new(crate::app::widgets::style::fold_title(
             ui,
             tr(model, Key::LinkTransforms),
         ))
@@ -137,13 +158,52 @@ impl Panel for MatricesPanel {
         .show(ui, |ui| {
             ui.checkbox(&mut self.symbolic, tr(model, Key::ShowSymbolic))
                 .on_hover_text(tr(model, Key::ShowSymbolicHint));
-            link_blocks(model, ui, decimals, symbolic, &mut hiding)
+            let links = link_blocks(model, ui, decimals, symbolic.map(|s| &s.0), hiding);
+            if let Some((_, j)) = symbolic {
+                symbolic_jacobian_block(model, ui, &j[usize::from(tool_frame)], tool_frame);
+            }
+            links
         })
         .body_returned
-        .flatten();
-        model.set_hovered_link(hovered, HoverSource::Matrices);
-        self.finish_hiding(model, hiding, points);
+        .flatten()
     }
+}
+
+/// A symbolic A_i or T_0i, or the "?" of a whole matrix hidden for the lecture; `hot`:
+/// the joint under the pointer and whether this matrix is its. Returns whether the
+/// pointer is over it.
+fn symbolic_unless_hidden(
+    ui: &mut egui::Ui,
+    hiding: &mut Hiding,
+    (id, title, lang): (MatrixId, &str, armlab_text::Lang),
+    m: &armlab_core::symbolic::SymbolicMatrix,
+    (joint_under, highlighted): (Option<usize>, bool),
+) -> bool {
+    match hiding.concealed_whole(id) {
+        Some(item) => hiding.concealed_block(ui, lang, title, item),
+        None => symbolic_block(
+            ui,
+            lang,
+            title,
+            Symbolic::Transform(m),
+            joint_under,
+            highlighted,
+        ),
+    }
+}
+
+/// The symbolic J under the symbolic T_0i, in the frame the Jacobian's fold shows; the
+/// entries that depend on the joint under the pointer are highlighted.
+fn symbolic_jacobian_block(
+    model: &Model,
+    ui: &mut egui::Ui,
+    j: &armlab_core::symbolic_jacobian::SymbolicJacobian,
+    tool_frame: bool,
+) {
+    let title = tr(model, jacobian::title(tool_frame));
+    let joint_under = model.hovered_link().and_then(|l| l.checked_sub(1));
+    let lang = model.settings().lang;
+    symbolic_block(ui, lang, title, Symbolic::Jacobian(j), joint_under, false);
 }
 
 fn precision_row(model: &mut Model, ui: &mut egui::Ui) {
@@ -190,16 +250,12 @@ fn link_blocks(
             let title = trf(model, Key::LinkTitle, &[&(i + 1), &joint.name, &variable]);
             let a = &chain.link_transforms[i];
             let t = &chain.base_from_frames[i];
-            // A whole matrix hidden for the lecture stays a "?" here too.
-            let over_a = match hiding.concealed_whole(MatrixId::Link(i + 1)) {
-                Some(item) => hiding.concealed_block(ui, lang, &title, item),
-                None => symbolic_block(ui, lang, &title, a, joint_under, highlighted),
-            };
+            let hot = (joint_under, highlighted);
+            let over_a =
+                symbolic_unless_hidden(ui, hiding, (MatrixId::Link(i + 1), &title, lang), a, hot);
             let title = format!("T_0{}", i + 1);
-            let over_t = match hiding.concealed_whole(MatrixId::Frame(i + 1)) {
-                Some(item) => hiding.concealed_block(ui, lang, &title, item),
-                None => symbolic_block(ui, lang, &title, t, joint_under, highlighted),
-            };
+            let over_t =
+                symbolic_unless_hidden(ui, hiding, (MatrixId::Frame(i + 1), &title, lang), t, hot);
             if over_a || over_t {
                 hovered = Some(i + 1);
             }

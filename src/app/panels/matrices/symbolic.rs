@@ -1,41 +1,91 @@
-//! The symbolic A_i and T_0i in the matrices panel (docs/kinematics.md §13): each entry as
-//! the robot's constants and the sines and cosines of joint sums (c1, s23, 222.1), the
+//! The symbolic A_i, T_0i and J in the matrices panel (docs/kinematics.md §13): each entry
+//! as the robot's constants and the sines and cosines of joint sums (c1, s23, 222.1), the
 //! entries that depend on the joint under the pointer (its slider, its link in 3D or its
 //! matrix) highlighted, each matrix copyable as LaTeX. A fold of the panel apart from the
 //! numbers: its entries are text, built once per robot.
 
-use armlab_core::symbolic::{EntryText, SymbolicChain, SymbolicMatrix, symbolic_chain};
+use armlab_core::symbolic::{EntryText, Expr, SymbolicChain, SymbolicMatrix, symbolic_chain};
+use armlab_core::symbolic_jacobian::{SymbolicJacobian, in_tool_frame, symbolic_jacobian};
 use armlab_text::{Key, Lang, fill, text};
 
 use crate::app::widgets::style;
 
-/// The symbolic chain of the robot last shown, kept until the robot changes.
+/// The symbolic chain and Jacobians (base frame, tool frame) of the robot last shown,
+/// kept until the robot changes.
 #[derive(Debug, Clone, Default)]
 pub struct SymbolicCache {
     made_for: Option<u64>,
-    chain: Option<SymbolicChain>,
+    built: Option<(SymbolicChain, [SymbolicJacobian; 2])>,
 }
 
 impl SymbolicCache {
-    /// The chain of the robot with this change count (built once per robot: a few
-    /// milliseconds for seven joints).
-    pub fn chain(&mut self, robot: &armlab_core::Robot, robot_changes: u64) -> &SymbolicChain {
+    /// The chain and the Jacobians in the base and the tool frame of the robot with this
+    /// change count (built once per robot: a few milliseconds for seven joints).
+    pub fn chain(
+        &mut self,
+        robot: &armlab_core::Robot,
+        robot_changes: u64,
+    ) -> &(SymbolicChain, [SymbolicJacobian; 2]) {
         if self.made_for != Some(robot_changes) {
             self.made_for = Some(robot_changes);
-            self.chain = None;
+            self.built = None;
         }
-        self.chain.get_or_insert_with(|| symbolic_chain(robot))
+        self.built.get_or_insert_with(|| {
+            let chain = symbolic_chain(robot);
+            let base = symbolic_jacobian(robot, &chain);
+            let tool = in_tool_frame(robot, &chain, &base);
+            (chain, [base, tool])
+        })
     }
 }
 
-/// One symbolic matrix in a framed block: its title, a LaTeX copy button and the 4 × 4
+/// A symbolic matrix the panel shows: a homogeneous transform or a Jacobian.
+#[derive(Debug, Clone, Copy)]
+pub enum Symbolic<'a> {
+    /// A_i or T_0i (4 × 4).
+    Transform(&'a SymbolicMatrix),
+    /// J (6 × n).
+    Jacobian(&'a SymbolicJacobian),
+}
+
+impl<'a> Symbolic<'a> {
+    fn rows(&self) -> usize {
+        match self {
+            Symbolic::Transform(_) => 4,
+            Symbolic::Jacobian(_) => 6,
+        }
+    }
+
+    fn cols(&self) -> usize {
+        match self {
+            Symbolic::Transform(_) => 4,
+            Symbolic::Jacobian(j) => j.columns.len(),
+        }
+    }
+
+    fn entry(&self, r: usize, c: usize) -> &'a Expr {
+        match self {
+            Symbolic::Transform(m) => &m.entries[r][c],
+            Symbolic::Jacobian(j) => j.entry(r, c),
+        }
+    }
+
+    fn latex(&self) -> String {
+        match self {
+            Symbolic::Transform(m) => m.latex(),
+            Symbolic::Jacobian(j) => j.latex(),
+        }
+    }
+}
+
+/// One symbolic matrix in a framed block: its title, a LaTeX copy button and its
 /// entries; entries that depend on joint `joint` (from 0) are drawn in the highlight
 /// colour. Returns whether the pointer is over the block.
 pub fn symbolic_block(
     ui: &mut egui::Ui,
     lang: Lang,
     title: &str,
-    m: &SymbolicMatrix,
+    m: Symbolic<'_>,
     joint: Option<usize>,
     highlighted: bool,
 ) -> bool {
@@ -59,48 +109,145 @@ pub fn symbolic_block(
                     ui.ctx().copy_text(m.latex());
                 }
             });
-            // Sideways in its own scroll area, as the numeric matrices: entries never wrap,
-            // and the column does not grow to the widest T_0i.
-            egui::ScrollArea::horizontal()
-                .id_salt(("symbolic scroll", title))
-                .show(ui, |ui| {
-                    symbolic_grid(ui, lang, title, m, joint);
-                });
+            symbolic_body(ui, lang, title, m, joint);
         });
         response.response.hovered() || ui.rect_contains_pointer(response.response.rect)
     })
     .unwrap_or(false)
 }
 
-/// The 4 × 4 entries of [`symbolic_block`], each on one line.
-fn symbolic_grid(
+/// The gap between a symbolic matrix's columns (points).
+const GAP: f32 = 14.0;
+
+/// Each entry's text as drawn, column by column, and whether it is the "too long" note.
+fn entry_texts(lang: Lang, m: Symbolic<'_>) -> Vec<(String, bool)> {
+    (0..m.cols())
+        .flat_map(move |c| (0..m.rows()).map(move |r| m.entry(r, c)))
+        .map(|entry| match entry.text() {
+            EntryText::Shown { plain, .. } => (plain.to_string(), false),
+            EntryText::TooLong { terms } => (fill(lang, Key::SymbolicTooLong, &[&terms]), true),
+        })
+        .collect()
+}
+
+/// The cells of (part of) a symbolic matrix: each entry's text column by column, `rows`
+/// to a column, and whether the entry in row r, column c depends on the joint under the
+/// pointer.
+struct Cells<'a> {
+    texts: &'a [(String, bool)],
+    rows: usize,
+    hot: &'a dyn Fn(usize, usize) -> bool,
+    font: egui::FontId,
+}
+
+/// The entries of [`symbolic_block`] fitted to the visible room as the numeric matrices
+/// are: whole at the largest of the fit's text sizes, else in the fewest blocks of
+/// columns (the rotation, the position under it), each captioned. A column wider than
+/// the room even alone (the position of a six-joint T_06) is a block of its own whose
+/// entries break between their terms: a sideways scroll hid it behind a bar few found.
+fn symbolic_body(
     ui: &mut egui::Ui,
     lang: Lang,
     title: &str,
-    m: &SymbolicMatrix,
+    m: Symbolic<'_>,
     joint: Option<usize>,
 ) {
-    egui::Grid::new(("symbolic", title))
-        .num_columns(4)
-        .spacing([14.0, 2.0])
+    let texts = entry_texts(lang, m);
+    let rows = m.rows();
+    let full = egui::TextStyle::Monospace.resolve(ui.style());
+    let room = style::room(ui);
+    let mut best: Option<(egui::FontId, Vec<std::ops::Range<usize>>)> = None;
+    for scale in super::fit::FIT_SCALES {
+        let font = egui::FontId::new(full.size * scale, full.family.clone());
+        let widths: Vec<f32> = texts
+            .chunks(rows)
+            .map(|column| {
+                let width = |t: &str| style::text_width(ui, t, &font);
+                column.iter().map(|(t, _)| width(t)).fold(0.0, f32::max)
+            })
+            .map(|w| w.min(room))
+            .collect();
+        if let Some(blocks) = super::fit::column_blocks(&widths, GAP, room)
+            && best.as_ref().is_none_or(|(_, b)| blocks.len() < b.len())
+        {
+            let whole = blocks.len() == 1;
+            best = Some((font, blocks));
+            if whole {
+                break;
+            }
+        }
+    }
+    let Some((font, blocks)) = best else {
+        return;
+    };
+    let hot = |c: usize, r: usize| joint.is_some_and(|j| m.entry(r, c).depends_on(j));
+    let cells = Cells {
+        texts: &texts,
+        rows,
+        hot: &hot,
+        font,
+    };
+    let cut = blocks.len() > 1;
+    for (i, columns) in blocks.into_iter().enumerate() {
+        if cut {
+            super::block::column_caption(ui, lang, &columns);
+        }
+        symbolic_grid(ui, (title, i), columns, &cells);
+    }
+}
+
+/// An entry's text that breaks only between terms: before a sign, never inside a product
+/// ("c1 c234 s5" stays whole).
+fn breaking_between_terms(text: &str) -> String {
+    text.replace(' ', "\u{a0}")
+        .replace("\u{a0}+\u{a0}", " +\u{a0}")
+        .replace("\u{a0}-\u{a0}", " -\u{a0}")
+}
+
+/// The entries of a symbolic matrix's `columns`, those that depend on the joint under the
+/// pointer (`hot`) in the highlight colour. A single column's entries wrap at the room
+/// (between terms); several columns are a grid, each entry on one line.
+fn symbolic_grid(
+    ui: &mut egui::Ui,
+    id: (&str, usize),
+    columns: std::ops::Range<usize>,
+    cells: &Cells<'_>,
+) {
+    let wrap = columns.len() == 1;
+    let entry = |ui: &mut egui::Ui, c: usize, r: usize| {
+        let (text, too_long) = &cells.texts[c * cells.rows + r];
+        let text = if wrap {
+            breaking_between_terms(text)
+        } else {
+            text.clone()
+        };
+        let mut shown = egui::RichText::new(text).font(cells.font.clone());
+        if *too_long {
+            shown = shown.weak();
+        }
+        if (cells.hot)(c, r) {
+            shown = shown.color(style::HIGHLIGHT).strong();
+        }
+        let label = egui::Label::new(shown);
+        ui.add(if wrap { label.wrap() } else { label.extend() });
+    };
+    if wrap {
+        // A little space between entries, so that a broken one reads as one.
+        ui.scope(|ui| {
+            ui.spacing_mut().item_spacing.y += 3.0;
+            for r in 0..cells.rows {
+                entry(ui, columns.start, r);
+            }
+        });
+        return;
+    }
+    egui::Grid::new(("symbolic", id.0, id.1))
+        .num_columns(columns.len())
+        .spacing([GAP, 2.0])
         .show(ui, |ui| {
-            for row in &m.entries {
-                for entry in row {
-                    let shown = match entry.text() {
-                        EntryText::Shown { plain, .. } => egui::RichText::new(plain).monospace(),
-                        EntryText::TooLong { terms } => {
-                            egui::RichText::new(fill(lang, Key::SymbolicTooLong, &[&terms])).weak()
-                        }
-                    };
-                    let hot = joint.is_some_and(|j| entry.depends_on(j));
-                    ui.add(
-                        egui::Label::new(if hot {
-                            shown.color(style::HIGHLIGHT).strong()
-                        } else {
-                            shown
-                        })
-                        .extend(),
-                    );
+            for r in 0..cells.rows {
+                for c in columns.clone() {
+                    entry(ui, c, r);
                 }
                 ui.end_row();
             }
