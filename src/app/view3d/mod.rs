@@ -70,6 +70,10 @@ pub struct Viewport {
     /// Where and when (egui's input time, s) the press of the current drag began: a
     /// release near it soon after is a click (on a ghost arm).
     press: Option<(egui::Pos2, f64)>,
+    /// Where the pointer was at the drag's last frame: the camera turns by the pointer's
+    /// own path from the press, never by egui's delta from wherever the pointer was
+    /// last seen (a click with no move before it would jump by that distance).
+    pointer: Option<egui::Pos2>,
 }
 
 /// A press released within this distance (points) of where it began is a click.
@@ -92,6 +96,7 @@ impl Viewport {
             grid_step: 0.0,
             rendered: false,
             press: None,
+            pointer: None,
         }
     }
 
@@ -293,10 +298,16 @@ impl Viewport {
             let primary = response.dragged_by(egui::PointerButton::Primary);
             self.drag = Some(self.start_drag(model, press, primary && !shift, axes));
             self.press = press.map(|p| (p, ui.input(|i| i.time)));
+            self.pointer = press;
         }
         let height = response.rect.height().max(1.0) as f64;
         if response.dragged() {
-            let delta = response.drag_delta();
+            let now = response.interact_pointer_pos();
+            let delta = match (self.pointer, now) {
+                (Some(before), Some(now)) => now - before,
+                _ => egui::Vec2::ZERO,
+            };
+            self.pointer = now.or(self.pointer);
             match self.drag {
                 Some(Drag::Orbit) if multi.is_none() => {
                     self.camera.orbit(delta.x as f64, delta.y as f64);
