@@ -57,9 +57,9 @@ pub fn pose_as_linked(pose: &IsometryMatrix3<f64>) -> [f64; 6] {
 /// An error or a residual, which spans many orders of magnitude: from 0.01 up as
 /// [`number`] with 3 decimals (`450.123`, `0.012`), below that in scientific form with
 /// at most `decimals` decimals in the mantissa (`4.5e-3`, `1.976e-8`), where 3 decimals
-/// would show 0; zero is `0` (not `0.000e0`).
+/// would show 0; zero and round-off (below [`ROUND_OFF`]) are `0` (not `0.000e0`).
 pub fn error_value(v: f64, decimals: usize) -> String {
-    if v != 0.0 && v.abs() < 0.01 {
+    if v.abs() >= ROUND_OFF && v.abs() < 0.01 {
         scientific(v, decimals)
     } else {
         number(v, 3)
@@ -209,6 +209,9 @@ mod tests {
         assert_eq!(number(0.9e-12, 6), "0");
         assert_eq!(number(1.1e12, 6), "∞");
         assert_eq!(number(0.9e12, 6), "9e11");
+        // An orientation error at a reached target.
+        assert_eq!(error_value(7.48e-15, 3), "0");
+        assert_eq!(error_value(2e-11, 3), "2e-11");
     }
 
     #[test]
