@@ -453,7 +453,7 @@ catalogue! {
     PathNoWaypoints: "No waypoints yet: \"Add waypoint\" stores the target." / "Ei vielä välipisteitä: \"Lisää välipiste\" tallentaa kohteen.",
     PathWaypointRow: "Waypoint {0}: x, y, z ({1})" / "Välipiste {0}: x, y, z ({1})",
     PathAllowedKinds: "joint or line" / "joint tai line",
-    WaypointsDropped: "The waypoints were removed: they do not fit this robot (another length unit, or beyond its reach)." / "Välipisteet poistettiin: ne eivät sovi tälle robotille (eri pituusyksikkö tai ulottuman ulkopuolella).",
+    WaypointsDropped: "The waypoints were removed: they are in another length unit than this robot." / "Välipisteet poistettiin: ne ovat eri pituusyksikössä kuin tämä robotti.",
     LinkPartDropped: "Part of this link was left out ({0}); the rest of it applies." / "Osa linkistä jätettiin pois ({0}); muu osa on käytössä.",
     CollisionContact: "Contact: {0} touches {1}." / "Kosketus: {0} ja {1} koskettavat toisiaan.",
     PartBase: "the base" / "jalusta",

@@ -668,9 +668,9 @@ impl Model {
 
     /// After a robot change: what was found for the old robot goes (the replay, the
     /// solutions and their ghosts, the rescue, the kept branch, the direction sphere, a
-    /// highlight past the last joint), and so do waypoints that no longer fit it (another
-    /// length unit, or a pose beyond its reach), with a sentence saying so, unless
-    /// `unit_before` is `None` (new waypoints come with the robot).
+    /// highlight past the last joint), and so do waypoints written in another length unit
+    /// than the new robot's, with a sentence saying so, unless `unit_before` is `None` (new
+    /// waypoints come with the robot).
     fn forget_old_robot(&mut self, unit_before: Option<armlab_core::LengthUnit>) {
         self.replay = None;
         self.branches = None;
@@ -688,15 +688,9 @@ impl Model {
         let Some(unit_before) = unit_before else {
             return;
         };
-        let reach = self.robot.reach();
-        let waypoints = self.paths.waypoints();
-        let fits = waypoints.is_empty()
-            || self.robot.length_unit == unit_before
-                && waypoints
-                    .poses()
-                    .iter()
-                    .all(|p| p.translation.vector.norm() <= reach);
-        if !fits {
+        // Waypoints out of the new reach stay (the plan shows them unreached): a DH cell
+        // typed digit by digit passes through small arms on the way.
+        if self.robot.length_unit != unit_before && !self.paths.waypoints().is_empty() {
             self.paths.stop_visit();
             *self.paths.waypoints_mut() = armlab_core::path::Waypoints::default();
             self.message = Some(Message::warning(armlab_text::text(
