@@ -425,3 +425,43 @@ fn a_click_in_the_view_with_no_move_before_it_leaves_the_camera() {
     assert_ne!(dragged.yaw, after.yaw, "a drag orbits");
     assert_eq!(dragged.pitch, after.pitch, "a level drag keeps the pitch");
 }
+
+/// A target inside the UR10's base cylinder (the shoulder offset keeps the wrist out of
+/// it), dragged there with the pseudo-inverse: the ball, the status, Solve and the
+/// Solutions fold all say "out of reach".
+#[test]
+fn a_target_by_the_base_axis_reads_out_of_reach_everywhere() {
+    let mut h = app_harness::open_app("#robot=ur10&panels=ik,joints&method=pinv", [1366.0, 768.0]);
+    let start = *h.state().model().target();
+    for i in 1..=60 {
+        let mut t = start;
+        let f = i as f64 / 60.0;
+        t.translation.vector.x = start.translation.vector.x * (1.0 - f) - 135.0 * f;
+        t.translation.vector.y = start.translation.vector.y * (1.0 - f);
+        h.state_mut().model_mut().set_target(t);
+        h.state_mut().model_mut().drag_step();
+    }
+    for _ in 0..300 {
+        h.state_mut().model_mut().drag_step();
+    }
+    h.run_steps(2);
+    assert!(
+        h.query_by_label("Target out of reach (closest pose shown)")
+            .is_some()
+    );
+    assert!(h.query_by_label("Tool not at the target").is_none());
+    h.get_by_label("Solve").click();
+    h.run_steps(2);
+    assert!(
+        h.query_by_label_contains("iterations, target out of reach")
+            .is_some()
+    );
+    h.get_by_label("Solutions of this target").click();
+    h.run_steps(3);
+    assert!(h.query_by_label_contains("No exact solution").is_some());
+    assert!(
+        h.query_by_label("Target out of reach (closest pose shown)")
+            .is_some()
+    );
+    assert_eq!(h.state().model().shown_reach(), Reach::OutOfReach);
+}
