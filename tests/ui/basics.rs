@@ -177,19 +177,55 @@ fn dragging_the_target_moves_the_arm_toward_it() {
 
 #[test]
 fn a_garbage_link_gives_a_message_and_the_default_robot() {
-    let h = harness("#robot=ur10&q=1,2,banana");
+    let h = harness("#robot=banana&q=1,2");
     assert_eq!(h.state().model().robot().name, "UR10");
     let message = h.state().model().message().expect("a message").clone();
     assert_eq!(message.kind, MessageKind::Warning);
     let message = message.text;
     assert!(
-        message.contains("\"banana\", which is not a number"),
+        message.contains("There is no robot called \"banana\""),
         "{message}"
     );
     assert!(
         h.query_by_label_contains("This link could not be opened")
             .is_some()
     );
+}
+
+#[test]
+fn a_bad_q_in_a_link_keeps_the_robot_at_home_and_says_what_was_left_out() {
+    let mut h = app_harness::open_app("#robot=planar-2r&q=abc,1", [1366.0, 768.0]);
+    h.run_steps(2);
+    let model = h.state().model();
+    assert_eq!(model.robot().dof(), 2, "{}", model.robot().name);
+    assert_eq!(model.q(), model.robot().home().as_slice());
+    let message = model.message().expect("a message").clone();
+    assert_eq!(message.kind, MessageKind::Warning);
+    assert_eq!(
+        message.text,
+        "Part of this link was left out (the link's q has \"abc\", which is not a number); \
+         the rest of it applies."
+    );
+    assert!(
+        h.query_by_label_contains("Part of this link was left out")
+            .is_some()
+    );
+}
+
+#[test]
+fn a_good_link_after_a_broken_one_takes_its_banner_away() {
+    for (broken, banner) in [
+        ("#robot=banana", "This link could not be opened"),
+        ("#robot=banana&lang=fi", "Linkkiä ei voitu avata"),
+    ] {
+        let mut h = app_harness::open_app(broken, [1366.0, 768.0]);
+        assert!(h.query_by_label_contains(banner).is_some(), "{broken}");
+        h.state_mut().open_hash("#exercise=mystery-3");
+        h.run_steps(3);
+        assert!(h.state().model().exercise().is_some(), "{broken}");
+        assert_eq!(h.state().model().message(), None, "{broken}");
+        assert!(h.query_by_label_contains(banner).is_none(), "{broken}");
+    }
 }
 
 #[test]
@@ -345,4 +381,88 @@ fn the_native_app_keeps_its_session_when_it_closes() {
     if let Some(dir) = file.parent() {
         std::fs::remove_dir_all(dir).expect("clean up");
     }
+}
+
+#[test]
+fn a_click_in_the_view_with_no_move_before_it_leaves_the_camera() {
+    let mut h = app_harness::open_app("#robot=ur10", [1024.0, 768.0]);
+    h.run_steps(2);
+    let rect = h.state().viewport().rect().expect("the view was laid out");
+    // The pointer was last over the side panel (then off to the slides); it comes back
+    // with a click in the view, as a presenter's remote and synthetic input do.
+    h.event(egui::Event::PointerMoved(egui::pos2(20.0, rect.center().y)));
+    h.run_steps(2);
+    let before = h.state().viewport().camera_pose();
+    let at = rect.center() + egui::vec2(rect.width() * 0.3, -rect.height() * 0.3);
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos: at,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        });
+        h.run_steps(1);
+    }
+    let after = h.state().viewport().camera_pose();
+    assert_eq!((after.yaw, after.pitch), (before.yaw, before.pitch));
+    // A real drag still orbits, by the pointer's own path.
+    h.event(egui::Event::PointerButton {
+        pos: at,
+        button: egui::PointerButton::Primary,
+        pressed: true,
+        modifiers: egui::Modifiers::NONE,
+    });
+    h.run_steps(1);
+    h.event(egui::Event::PointerMoved(at + egui::vec2(40.0, 0.0)));
+    h.run_steps(1);
+    h.event(egui::Event::PointerButton {
+        pos: at + egui::vec2(40.0, 0.0),
+        button: egui::PointerButton::Primary,
+        pressed: false,
+        modifiers: egui::Modifiers::NONE,
+    });
+    h.run_steps(1);
+    let dragged = h.state().viewport().camera_pose();
+    assert_ne!(dragged.yaw, after.yaw, "a drag orbits");
+    assert_eq!(dragged.pitch, after.pitch, "a level drag keeps the pitch");
+}
+
+/// A target inside the UR10's base cylinder (the shoulder offset keeps the wrist out of
+/// it), dragged there with the pseudo-inverse: the ball, the status, Solve and the
+/// Solutions fold all say "out of reach".
+#[test]
+fn a_target_by_the_base_axis_reads_out_of_reach_everywhere() {
+    let mut h = app_harness::open_app("#robot=ur10&panels=ik,joints&method=pinv", [1366.0, 768.0]);
+    let start = *h.state().model().target();
+    for i in 1..=60 {
+        let mut t = start;
+        let f = i as f64 / 60.0;
+        t.translation.vector.x = start.translation.vector.x * (1.0 - f) - 135.0 * f;
+        t.translation.vector.y = start.translation.vector.y * (1.0 - f);
+        h.state_mut().model_mut().set_target(t);
+        h.state_mut().model_mut().drag_step();
+    }
+    for _ in 0..300 {
+        h.state_mut().model_mut().drag_step();
+    }
+    h.run_steps(2);
+    assert!(
+        h.query_by_label("Target out of reach (closest pose shown)")
+            .is_some()
+    );
+    assert!(h.query_by_label("Tool not at the target").is_none());
+    h.get_by_label("Solve").click();
+    h.run_steps(2);
+    assert!(
+        h.query_by_label_contains("iterations, target out of reach")
+            .is_some()
+    );
+    h.get_by_label("Solutions of this target").click();
+    h.run_steps(3);
+    assert!(h.query_by_label_contains("No exact solution").is_some());
+    assert!(
+        h.query_by_label("Target out of reach (closest pose shown)")
+            .is_some()
+    );
+    assert_eq!(h.state().model().shown_reach(), Reach::OutOfReach);
 }

@@ -217,11 +217,11 @@ fn the_notebook_demos_print_the_notebooks_numbers_and_plot_the_error() {
         h.run_steps(3);
         let run = h
             .state()
-            .ik_panel()
+            .model()
             .replay()
+            .expect("the demo ran")
             .run
-            .clone()
-            .expect("the demo ran");
+            .clone();
         for ((got, want), d) in run.q.iter().zip(printed).zip(decimals) {
             let half = 0.5 * 10f64.powi(-d);
             assert!(

@@ -53,11 +53,11 @@ fn the_ik_panel_alone_solves_and_replays_its_run() {
     assert!((tool.translation.vector - target.translation.vector).norm() < 1e-3);
     let run = h
         .state()
-        .panel
+        .model
         .replay()
+        .expect("the run is kept for replay")
         .run
-        .clone()
-        .expect("the run is kept for replay");
+        .clone();
     assert!(
         run.trace.len() > 2,
         "{} iterations recorded",
@@ -72,7 +72,7 @@ fn the_ik_panel_alone_solves_and_replays_its_run() {
     }
     h.run_steps(1);
     let q = h.state().model.q().to_vec();
-    assert_eq!(h.state().panel.replay().step, 0);
+    assert_eq!(h.state().model.replay().map(|r| r.step), Some(0));
     let first: Vec<f64> = run.trace[0].q.clone();
     for (a, b) in q.iter().zip(&first) {
         assert!((a - b).abs() < 1e-12, "{q:?} vs {first:?}");
@@ -100,4 +100,49 @@ fn a_link_naming_only_the_robot_opens_its_default_task() {
         armlab_core::Task::FullPose,
         "a task the link names wins"
     );
+}
+
+/// Typing "1e999" into a DH cell key by key: the arm never takes a value met on the way
+/// (the "1"), and while the cell shows its error the arm is the one from before the typing.
+#[test]
+fn a_dh_cell_applies_no_value_met_while_typing() {
+    let mut h = harness_at("#robot=ur10&panels=joints,ik,robot", [1366.0, 768.0]);
+    h.get_by_label("DH table (editable)").click();
+    h.run_steps(3);
+    let a_before = h.state().model().robot().joints[1].dh.a;
+    let [x, y] = h.state().points().get("dh-2-3").expect("the cell is drawn");
+    let at = egui::pos2(x, y);
+    h.event(egui::Event::PointerMoved(at));
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos: at,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        });
+        h.run_steps(1);
+    }
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.run_steps(1);
+    let mut seen = Vec::new();
+    for key in ["1", "e", "9", "9", "9"] {
+        h.event(egui::Event::Text(key.into()));
+        h.run_steps(1);
+        seen.push(h.state().model().robot().joints[1].dh.a);
+    }
+    assert!(
+        h.state().robot_panel().editor().error.is_some(),
+        "the cell shows its error"
+    );
+    assert_eq!(
+        h.state().model().robot().joints[1].dh.a,
+        a_before,
+        "a as before the typing; on the way {seen:?}"
+    );
+    // Enter on a good value applies it.
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.event(egui::Event::Text("-600".into()));
+    h.key_press(egui::Key::Enter);
+    h.run_steps(2);
+    assert_eq!(h.state().model().robot().joints[1].dh.a, -600.0);
 }

@@ -9,20 +9,29 @@ use nalgebra::IsometryMatrix3;
 const LARGE: f64 = 1e6;
 /// Non-zero magnitudes below this are written in scientific form (`2.5e-7`).
 const SMALL: f64 = 1e-4;
+/// The accuracy of the app's computations: a few thousand times f64's ε (2.2e-16), what a
+/// chain of a few dozen products and sums on values near 1 keeps. A computed magnitude
+/// below it is round-off (a velocity's 2.6e-14 mm/s, a singular σ of 4e-17), and one
+/// above its reciprocal is the reciprocal of round-off (a condition number of 5e16).
+pub const ROUND_OFF: f64 = 1e-12;
 
 /// `v` with at most `decimals` decimals and no trailing zeros (`1.5`, `100.9`, `-180`);
 /// very large and very small magnitudes in scientific form with at most `decimals`
-/// digits after the mantissa's point (`3.2e8`, `1e-9`), `∞`/`-∞` and `NaN` for the
-/// non-finite. `-0` is written `0`. The text parses back with `str::parse::<f64>` to
-/// `v` rounded to what is shown.
+/// digits after the mantissa's point (`3.2e8`, `1e-9`), `NaN` for NaN. Magnitudes below
+/// [`ROUND_OFF`] are `0`, and those above its reciprocal (and the infinite) `∞`/`-∞`:
+/// digits there are the computation's noise. `-0` is written `0`. Other text parses back
+/// with `str::parse::<f64>` to `v` rounded to what is shown.
 pub fn number(v: f64, decimals: usize) -> String {
     if v.is_nan() {
         return "NaN".into();
     }
-    if v.is_infinite() {
+    let magnitude = v.abs();
+    if magnitude > 1.0 / ROUND_OFF {
         return if v > 0.0 { "∞".into() } else { "-∞".into() };
     }
-    let magnitude = v.abs();
+    if magnitude < ROUND_OFF {
+        return "0".into();
+    }
     if magnitude >= LARGE || (magnitude > 0.0 && magnitude < SMALL) {
         return scientific(v, decimals);
     }
@@ -48,9 +57,9 @@ pub fn pose_as_linked(pose: &IsometryMatrix3<f64>) -> [f64; 6] {
 /// An error or a residual, which spans many orders of magnitude: from 0.01 up as
 /// [`number`] with 3 decimals (`450.123`, `0.012`), below that in scientific form with
 /// at most `decimals` decimals in the mantissa (`4.5e-3`, `1.976e-8`), where 3 decimals
-/// would show 0; zero is `0` (not `0.000e0`).
+/// would show 0; zero and round-off (below [`ROUND_OFF`]) are `0` (not `0.000e0`).
 pub fn error_value(v: f64, decimals: usize) -> String {
-    if v != 0.0 && v.abs() < 0.01 {
+    if v.abs() >= ROUND_OFF && v.abs() < 0.01 {
         scientific(v, decimals)
     } else {
         number(v, 3)
@@ -177,20 +186,37 @@ mod tests {
     #[test]
     fn very_large_and_small_numbers_are_scientific() {
         assert_eq!(number(3.2e8, 3), "3.2e8");
-        assert_eq!(
-            number(1.234_567_890_123_456_7e33, 2),
-            "1.23e33",
-            "a condition number"
-        );
+        assert_eq!(number(4.98e11, 2), "4.98e11", "a condition number");
         assert_eq!(number(2.5e-7, 6), "2.5e-7");
-        assert_eq!(number(1e300, 6), "1e300");
+        assert_eq!(number(1.5e-12, 6), "1.5e-12");
         assert_eq!(number(f64::INFINITY, 2), "∞");
         assert_eq!(number(f64::NAN, 2), "NaN");
     }
 
     #[test]
+    fn round_off_reads_as_zero_and_its_reciprocal_as_infinity() {
+        // A UR10 tool velocity, and the measures at its wrist singularity.
+        let v = [-209.06, 2.6e-14, 425.18].map(|v| number(v, 2));
+        assert_eq!(v, ["-209.06", "0", "425.18"]);
+        let w = [0.0, -0.62, 3.796e-17].map(|v| number(v, 3));
+        assert_eq!(w, ["0", "-0.62", "0"]);
+        assert_eq!(number(4.0565e-17, 4), "0", "σ_min");
+        assert_eq!(number(-4.0565e-17, 4), "0");
+        assert_eq!(number(4.98e16, 2), "∞", "its condition number");
+        assert_eq!(number(-4.98e16, 2), "-∞");
+        assert_eq!(number(1.234_567_890_123_456_7e33, 2), "∞");
+        assert_eq!(number(1e300, 6), "∞");
+        assert_eq!(number(0.9e-12, 6), "0");
+        assert_eq!(number(1.1e12, 6), "∞");
+        assert_eq!(number(0.9e12, 6), "9e11");
+        // An orientation error at a reached target.
+        assert_eq!(error_value(7.48e-15, 3), "0");
+        assert_eq!(error_value(2e-11, 3), "2e-11");
+    }
+
+    #[test]
     fn written_numbers_parse_back() {
-        for v in [0.1, -2.5e-9, 123_456_789.0, 1e-300, -0.75, 1e6, 999_999.5] {
+        for v in [0.1, -2.5e-9, 123_456_789.0, 1e-11, -0.75, 1e6, 999_999.5] {
             let text = number(v, 12);
             let back: f64 = text.parse().expect("parses");
             assert!(

@@ -62,6 +62,9 @@ pub struct Session {
     pub motion: MotionPatch,
     /// The DH-table exercise this robot is (`exercise=`): the link then names no table.
     pub exercise: Option<ExerciseId>,
+    /// The parts of the link that were left out (a bad q, target, task, …), each with
+    /// what was wrong: the rest of the link applies.
+    pub dropped: Vec<LinkError>,
 }
 
 /// The preset the app opens with, and falls back to when a link is broken.
@@ -83,6 +86,7 @@ impl Session {
             camera: None,
             motion: MotionPatch::default(),
             exercise: None,
+            dropped: Vec::new(),
         })
     }
 
@@ -145,7 +149,7 @@ impl Session {
         if hash.is_empty() {
             return Ok(None);
         }
-        let parts = LinkParts::parse(hash)?;
+        let mut parts = LinkParts::parse(hash)?;
         let mut session = match parts.robot.as_deref() {
             _ if parts.exercise.is_some() => {
                 if parts.robot.is_some() || parts.dh.is_some() {
@@ -164,6 +168,7 @@ impl Session {
                     camera: None,
                     motion: MotionPatch::default(),
                     exercise: Some(id),
+                    dropped: Vec::new(),
                 }
             }
             Some("custom") => {
@@ -180,14 +185,17 @@ impl Session {
                     camera: None,
                     motion: MotionPatch::default(),
                     exercise: None,
+                    dropped: Vec::new(),
                 }
             }
             Some(id) => Session::for_preset(id)?,
             None => return Err(LinkError::NoRobot),
         };
         if let Some(q) = parts.q {
-            session.robot.check_q(&q)?;
-            session.q = q;
+            match session.robot.check_q(&q) {
+                Ok(()) => session.q = q,
+                Err(e) => parts.dropped.push(LinkError::Robot(e)),
+            }
         }
         session.target = parts.target.as_ref().map(target_from_array);
         // A link that names no task opens the robot's own default task.
@@ -196,6 +204,7 @@ impl Session {
         session.display = parts.display;
         session.camera = parts.camera;
         session.motion = parts.motion;
+        session.dropped = parts.dropped;
         Ok(Some(session))
     }
 }
@@ -212,6 +221,7 @@ struct LinkParts {
     camera: Option<CameraPose>,
     motion: MotionPatch,
     exercise: Option<ExerciseId>,
+    dropped: Vec<LinkError>,
 }
 
 impl LinkParts {
@@ -227,57 +237,73 @@ impl LinkParts {
             camera: None,
             motion: MotionPatch::default(),
             exercise: None,
+            dropped: Vec::new(),
         };
         for part in hash.split('&').filter(|p| !p.is_empty()) {
-            let (key, value) = part
-                .split_once('=')
-                .ok_or_else(|| LinkError::NoEquals(part.to_string()))?;
+            let Some((key, value)) = part.split_once('=') else {
+                parts.dropped.push(LinkError::NoEquals(part.to_string()));
+                continue;
+            };
             match key {
                 "robot" => parts.robot = Some(value.to_string()),
                 "dh" => parts.dh = Some(percent_decode(value)?),
-                "q" => parts.q = Some(parse_numbers(value, "q")?),
-                "target" => {
-                    let t = parse_numbers(value, "target")?;
-                    parts.target = Some(t.try_into().map_err(|_| LinkError::TargetLength)?);
-                }
-                "task" => {
-                    parts.task = Some(
-                        Task::from_id(value)
-                            .ok_or_else(|| LinkError::UnknownTask(value.to_string()))?,
-                    );
-                }
-                "method" => {
-                    parts.method = IkMethod::from_id(value)
-                        .ok_or_else(|| LinkError::UnknownMethod(value.to_string()))?;
-                }
-                "camera" => {
-                    let c: [f64; 6] = parse_numbers(value, "camera")?
-                        .try_into()
-                        .map_err(|_| LinkError::BadCamera)?;
-                    parts.camera = Some(CameraPose::from_array(c).ok_or(LinkError::BadCamera)?);
-                }
                 "exercise" => parts.exercise = Some(ExerciseId::parse(value)?),
-                "hide" => {
-                    let hidden = HiddenSet::from_link(value).map_err(LinkError::BadHidden)?;
-                    parts.display.hidden = Some(hidden);
-                }
                 other if parts.motion.read(other, value).map_err(LinkError::Motion)? => {}
                 other => {
-                    let read = parts.display.read(other, value).map_err(|allowed| {
-                        LinkError::BadValue {
-                            field: other.to_string(),
-                            text: value.to_string(),
-                            allowed,
-                        }
-                    })?;
-                    if !read {
-                        return Err(LinkError::UnknownPart(other.to_string()));
+                    if let Err(e) = parts.read_part(other, value) {
+                        parts.dropped.push(e);
                     }
                 }
             }
         }
         parts.motion.finish().map_err(LinkError::Motion)?;
         Ok(parts)
+    }
+
+    /// Reads a part that the robot does not depend on: a bad one is left out, and the
+    /// rest of the link still applies.
+    fn read_part(&mut self, key: &str, value: &str) -> Result<(), LinkError> {
+        match key {
+            "q" => self.q = Some(parse_numbers(value, "q")?),
+            "target" => {
+                let t = parse_numbers(value, "target")?;
+                self.target = Some(t.try_into().map_err(|_| LinkError::TargetLength)?);
+            }
+            "task" => {
+                self.task = Some(
+                    Task::from_id(value)
+                        .ok_or_else(|| LinkError::UnknownTask(value.to_string()))?,
+                );
+            }
+            "method" => {
+                self.method = IkMethod::from_id(value)
+                    .ok_or_else(|| LinkError::UnknownMethod(value.to_string()))?;
+            }
+            "camera" => {
+                let c: [f64; 6] = parse_numbers(value, "camera")?
+                    .try_into()
+                    .map_err(|_| LinkError::BadCamera)?;
+                self.camera = Some(CameraPose::from_array(c).ok_or(LinkError::BadCamera)?);
+            }
+            "hide" => {
+                let hidden = HiddenSet::from_link(value).map_err(LinkError::BadHidden)?;
+                self.display.hidden = Some(hidden);
+            }
+            other => {
+                let read =
+                    self.display
+                        .read(other, value)
+                        .map_err(|allowed| LinkError::BadValue {
+                            field: other.to_string(),
+                            text: value.to_string(),
+                            allowed,
+                        })?;
+                if !read {
+                    return Err(LinkError::UnknownPart(other.to_string()));
+                }
+            }
+        }
+        Ok(())
     }
 }
 
@@ -358,6 +384,40 @@ mod tests {
     #[cfg(target_arch = "wasm32")]
     use wasm_bindgen_test::wasm_bindgen_test as test;
 
+    /// The one part of `hash` left out; the robot and the rest of the link apply.
+    fn left_out(hash: &str) -> LinkError {
+        let session = Session::from_hash(hash)
+            .expect("the robot opens")
+            .expect("not empty");
+        assert_eq!(session.dropped.len(), 1, "{:?}", session.dropped);
+        assert_eq!(session.q.len(), session.robot.dof());
+        session.dropped[0].clone()
+    }
+
+    #[test]
+    fn a_bad_joint_vector_is_left_out_and_the_robot_opens_at_home() {
+        let session = Session::from_hash("#robot=planar-2r&q=abc,1&task=full&target=1,2")
+            .expect("the robot opens")
+            .expect("not empty");
+        assert_eq!(
+            session.robot.name,
+            preset("planar-2r").expect("a preset").name
+        );
+        assert_eq!(session.q, session.robot.home());
+        assert_eq!(session.task, Task::FullPose);
+        assert_eq!(session.target, None);
+        let said: Vec<String> = session.dropped.iter().map(|e| e.to_string()).collect();
+        assert_eq!(
+            said,
+            [
+                "the link's q has \"abc\", which is not a number",
+                "the link's target needs six numbers (x, y, z, α, β, γ)"
+            ]
+        );
+        // A robot that does not load still fails the whole link.
+        assert!(Session::from_hash("#robot=banana&q=1").is_err());
+    }
+
     #[test]
     fn every_allowed_value_list_of_the_display_fields_is_in_the_catalogue() {
         for key in [
@@ -372,7 +432,7 @@ mod tests {
 
     #[test]
     fn a_link_error_reads_in_english_and_in_finnish() {
-        let e = Session::from_hash("#robot=ur10&q=1,2,banana").expect_err("a bad link");
+        let e = left_out("#robot=ur10&q=1,2,banana");
         assert_eq!(
             e.to_string(),
             "the link's q has \"banana\", which is not a number"
@@ -381,13 +441,13 @@ mod tests {
             e.sentence(Lang::Fi),
             "linkin kentässä q on \"banana\", joka ei ole luku"
         );
-        let e = Session::from_hash("#robot=ur10&units=grad").expect_err("a bad link");
+        let e = left_out("#robot=ur10&units=grad");
         assert_eq!(
             e.to_string(),
             "the link's units is \"grad\"; it can be deg or rad"
         );
         assert!(e.sentence(Lang::Fi).ends_with("deg tai rad"));
-        let e = Session::from_hash("#robot=ur10&q=1,2").expect_err("a bad link");
+        let e = left_out("#robot=ur10&q=1,2");
         assert_eq!(
             e.to_string(),
             "The robot has 6 joints but 2 joint values were given."
@@ -398,19 +458,19 @@ mod tests {
     #[test]
     fn a_link_error_repeats_at_most_forty_characters_and_no_control_character() {
         let long = "z".repeat(1000);
-        let e = Session::from_hash(&format!("#robot=ur10&{long}=1")).expect_err("a bad link");
+        let e = left_out(&format!("#robot=ur10&{long}=1"));
         assert_eq!(
             e.to_string(),
             format!("the link has an unknown part \"{}…\"", "z".repeat(39))
         );
-        let e = Session::from_hash("#robot=ur10&task=a%0Ab%1B").expect_err("a bad link");
+        let e = left_out("#robot=ur10&task=a%0Ab%1B");
         assert_eq!(e.to_string(), "the link's task \"a%0Ab%1B\" is not known");
-        let e = Session::from_hash("#robot=ur10&method=\u{7}x\ry").expect_err("a bad link");
+        let e = left_out("#robot=ur10&method=\u{7}x\ry");
         assert_eq!(
             e.to_string(),
             "the link's method \"\u{25A1}x\u{25A1}y\" is not known"
         );
-        let e = Session::from_hash(&format!("#robot=ur10&q=1,{long}")).expect_err("a bad link");
+        let e = left_out(&format!("#robot=ur10&q=1,{long}"));
         assert_eq!(
             e.sentence(Lang::Fi),
             format!(
@@ -419,7 +479,7 @@ mod tests {
             )
         );
         // A custom robot's prismatic joint outside its stroke gets the core's sentence.
-        let e = Session::from_hash("#robot=scara&q=0,0,5,0").expect_err("a bad link");
+        let e = left_out("#robot=scara&q=0,0,5,0");
         assert_eq!(
             e.to_string(),
             "The value 5 of joint 3 lies outside its stroke 0 … 0.21."

@@ -104,6 +104,7 @@ impl StoredSession {
             camera: self.camera.map(camera_from_array).transpose()?,
             motion: self.motion.into_patch().map_err(LinkError::Motion)?,
             exercise,
+            dropped: Vec::new(),
         })
     }
 }

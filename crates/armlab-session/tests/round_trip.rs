@@ -296,6 +296,7 @@ fn random_session(rng: &mut Rng, id: &str) -> Session {
         }),
         motion: motion_patch(rng),
         exercise,
+        dropped: Vec::new(),
     }
 }
 

@@ -18,21 +18,9 @@ use crate::app::widgets::plot;
 use crate::app::widgets::style;
 use armlab_session::format::{error_value, fixed};
 
-/// The replay of the last full solve.
-#[derive(Debug, Clone, Default)]
-pub struct Replay {
-    /// The run, with its trace.
-    pub run: Option<IkResult>,
-    /// The iteration shown.
-    pub step: usize,
-}
-
-/// The IK panel; it owns the replay of the last full solve.
+/// The IK panel; the replay of the last full solve is the model's ([`Model::replay`]).
 #[derive(Debug, Clone, Default)]
 pub struct IkPanel {
-    replay: Replay,
-    /// The notebook run last started, if the replay is one.
-    demo: Option<NotebookDemo>,
     /// The Task and Method menus' widths ([`MenuWidths`]), measured once per language,
     /// text size and choice rather than in every frame of a drag.
     menu_widths: Option<MenuWidths>,
@@ -92,19 +80,10 @@ impl MenuWidths {
 }
 
 impl IkPanel {
-    /// The replay of the last full solve.
-    pub fn replay(&self) -> &Replay {
-        &self.replay
-    }
-
     /// Runs the chosen method to convergence with a trace and keeps it for replay.
     pub fn solve(&mut self, model: &mut Model) {
-        self.demo = None;
         if let Some(run) = model.solve_with_trace() {
-            self.replay = Replay {
-                step: run.trace.len().saturating_sub(1),
-                run: Some(run),
-            };
+            model.keep_replay(run, None);
         }
     }
 }
@@ -129,15 +108,11 @@ impl IkPanel {
                     if ui.button(tr(model, key)).clicked()
                         && let Some(run) = demo.run(model)
                     {
-                        self.replay = Replay {
-                            step: run.trace.len().saturating_sub(1),
-                            run: Some(run),
-                        };
-                        self.demo = Some(demo);
+                        model.keep_replay(run, Some(demo));
                     }
                 }
             });
-            let (Some(demo), Some(run)) = (self.demo, self.replay.run.as_ref()) else {
+            let Some((demo, run)) = model.replay().and_then(|r| Some((r.demo?, &r.run))) else {
                 return;
             };
             let list = |q: &[f64]| {
@@ -175,7 +150,7 @@ impl Panel for IkPanel {
             }
         });
         status(model, ui);
-        replay_ui(&mut self.replay, model, ui);
+        replay_ui(model, ui);
         self.notebook_ui(model, ui);
         crate::app::panels::solutions::solutions_ui(model, ui);
         crate::app::panels::workspace::workspace_ui(model, ui);
@@ -252,10 +227,11 @@ fn status(model: &Model, ui: &mut egui::Ui) {
     ));
 }
 
-fn replay_ui(replay: &mut Replay, model: &mut Model, ui: &mut egui::Ui) {
-    let Some(run) = replay.run.as_ref() else {
+fn replay_ui(model: &mut Model, ui: &mut egui::Ui) {
+    let Some(replay) = model.replay() else {
         return;
     };
+    let run = &replay.run;
     if run.trace.is_empty() {
         return;
     }
@@ -295,9 +271,7 @@ fn replay_ui(replay: &mut Replay, model: &mut Model, ui: &mut egui::Ui) {
     ui.label(trf(model, Key::KeptQ, &[&kept.join(", ")]));
     error_plot(model, ui, run, step);
     if changed {
-        let q = run.trace[step].q.clone();
-        replay.step = step;
-        model.set_q(q);
+        model.replay_step(step);
     }
 }
 

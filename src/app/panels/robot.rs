@@ -27,6 +27,8 @@ use armlab_session::session::RobotSource;
 /// dialog while it is open.
 pub struct RobotPanel {
     editor: DhEditor,
+    /// The robot before the focused cell's typing.
+    baseline: crate::app::widgets::draft::Baseline,
     /// The DH-table exercise's answer table (while an exercise is open).
     exercise: crate::app::panels::exercise::ExercisePanel,
     /// The model's robot-load count the editor's texts were taken at.
@@ -41,6 +43,7 @@ impl RobotPanel {
     pub fn new(robot: &Robot) -> Self {
         RobotPanel {
             editor: DhEditor::from_robot(robot),
+            baseline: Default::default(),
             exercise: crate::app::panels::exercise::ExercisePanel::default(),
             editor_loads: 0,
             #[cfg(not(target_arch = "wasm32"))]
@@ -314,7 +317,9 @@ impl Panel for RobotPanel {
         .default_open(false)
         // Unindented: a projector's column has room for the table's blocks only
         // with the indent's 18 points.
-        .show_unindented(ui, |ui| dh_table(&mut self.editor, model, ui, points));
+        .show_unindented(ui, |ui| {
+            dh_table((&mut self.editor, &mut self.baseline), model, ui, points)
+        });
         points.insert("dh-header", header.header_response.rect.center());
         crate::app::panels::convention::both_conventions_ui(model, ui);
         self.file_buttons(model, ui, points);
@@ -325,11 +330,12 @@ impl Panel for RobotPanel {
 
 /// The editor: convention, the table, add a joint; applies a valid table live.
 fn dh_table(
-    editor: &mut DhEditor,
+    (editor, baseline): (&mut DhEditor, &mut crate::app::widgets::draft::Baseline),
     model: &mut Model,
     ui: &mut egui::Ui,
     points: &mut ScreenPoints,
 ) {
+    baseline.track(ui, model);
     let mut edited = editor.clone();
     let mut changed = convention_row(&mut edited, model, ui);
     // Switching the convention rewrites the table so the arm keeps its shape
@@ -378,6 +384,9 @@ fn dh_table(
         model.edit_robot(robot, RobotSource::Custom);
     } else if changed {
         apply_edit(editor, edited, model);
+        if editor.error.is_some() {
+            baseline.restore(model, editor.rows.len());
+        }
     }
     if editor.rows.is_empty() {
         ui.colored_label(style::ERROR, tr(model, Key::ErrEmptyChain));

@@ -25,7 +25,11 @@ pub fn solutions_ui(model: &mut Model, ui: &mut egui::Ui) {
     .id_salt("ik_solutions")
     .default_open(false)
     .show(ui, |ui| {
-        let unreachable = model.has_closed_form() && closed_form_rows(model);
+        // The sentence only with the model's own verdict, so that the fold, the IK status
+        // and the ball never disagree.
+        let unreachable = model.has_closed_form()
+            && closed_form_rows(model)
+            && model.shown_reach() == armlab_core::ik::Reach::OutOfReach;
         ui.label(egui::RichText::new(tr(model, Key::SolutionsHint)).small());
         if !model.has_closed_form()
             && ui

@@ -77,6 +77,10 @@ pub struct Viewport {
     press: Option<(egui::Pos2, f64)>,
     /// The labels drawn over the picture last frame.
     labels: Vec<labels::Placed>,
+    /// Where the pointer was at the drag's last frame: the camera turns by the pointer's
+    /// own path from the press, never by egui's delta from wherever the pointer was
+    /// last seen (a click with no move before it would jump by that distance).
+    pointer: Option<egui::Pos2>,
 }
 
 /// A press released within this distance (points) of where it began is a click.
@@ -101,6 +105,7 @@ impl Viewport {
             rendered: false,
             press: None,
             labels: Vec::new(),
+            pointer: None,
         }
     }
 
@@ -357,10 +362,16 @@ impl Viewport {
             let primary = response.dragged_by(egui::PointerButton::Primary);
             self.drag = Some(self.start_drag(model, press, primary && !shift, axes));
             self.press = press.map(|p| (p, ui.input(|i| i.time)));
+            self.pointer = press;
         }
         let height = response.rect.height().max(1.0) as f64;
         if response.dragged() {
-            let delta = response.drag_delta();
+            let now = response.interact_pointer_pos();
+            let delta = match (self.pointer, now) {
+                (Some(before), Some(now)) => now - before,
+                _ => egui::Vec2::ZERO,
+            };
+            self.pointer = now.or(self.pointer);
             match self.drag {
                 Some(Drag::Orbit) if multi.is_none() => {
                     self.camera.orbit(delta.x as f64, delta.y as f64);

@@ -4,15 +4,16 @@
 use armlab_text::Sentence;
 
 use armlab_core::ik::{
-    IkError, IkResult, IkSettings, REACHED_ORIENTATION_TOLERANCE, REACHED_POSITION_TOLERANCE_M,
-    Reach, branch_of, closed_form_family, closed_form_solutions, distinct_solutions,
-    joint_distance, pose_error,
+    ClosedFormFamily, IkError, IkResult, IkSettings, REACHED_ORIENTATION_TOLERANCE,
+    REACHED_POSITION_TOLERANCE_M, Reach, branch_of, closed_form_family, closed_form_solutions,
+    distinct_solutions, joint_distance, pose_error,
 };
 use armlab_core::workspace::joints_held_at_limits;
 use armlab_core::{IkMethod, Task};
 use nalgebra::IsometryMatrix3;
 
 use super::{Message, Model};
+use crate::app::state::notebook::NotebookDemo;
 
 /// A drag stalled short of its target (often with a joint at its limit), and what other
 /// starts make of the target.
@@ -30,6 +31,19 @@ pub struct Rescue {
     pub reach: Option<Vec<f64>>,
     /// Starts tried: closed-form branches plus restarts.
     pub tried: usize,
+}
+
+/// The last full solve, kept for replay, with the robot it ran on: a run of another
+/// robot is never shown or replayed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Replay {
+    pub(super) robot_changes: u64,
+    /// The run, with its trace.
+    pub run: IkResult,
+    /// The iteration shown.
+    pub step: usize,
+    /// The notebook run it is, if it is one.
+    pub demo: Option<NotebookDemo>,
 }
 
 /// Random restarts tried for a target held at a limit: few and short, since the search
@@ -102,6 +116,38 @@ impl Model {
         true
     }
 
+    /// The last full solve of this robot, if any.
+    pub fn replay(&self) -> Option<&Replay> {
+        self.replay
+            .as_ref()
+            .filter(|r| r.robot_changes == self.robot_changes)
+    }
+
+    /// Keeps a run for replay, at its last iteration.
+    pub fn keep_replay(&mut self, run: IkResult, demo: Option<NotebookDemo>) {
+        self.replay = Some(Replay {
+            robot_changes: self.robot_changes,
+            step: run.trace.len().saturating_sub(1),
+            run,
+            demo,
+        });
+    }
+
+    /// Shows iteration `step` of the replay and moves the arm to its q.
+    pub fn replay_step(&mut self, step: usize) {
+        let Some(q) = self
+            .replay()
+            .and_then(|r| r.run.trace.get(step))
+            .map(|s| s.q.clone())
+        else {
+            return;
+        };
+        if let Some(replay) = self.replay.as_mut() {
+            replay.step = step;
+        }
+        self.set_q(q);
+    }
+
     /// Runs the method to convergence from q with every iteration recorded, moves the
     /// arm to its answer and returns the run (for replay).
     pub fn solve_with_trace(&mut self) -> Option<IkResult> {
@@ -135,9 +181,12 @@ impl Model {
                 self.ik.iterations = result.iterations;
                 Some(result)
             }
-            Ok(result) => {
+            Ok(mut result) => {
                 self.set_q(result.q.clone());
                 self.ik.iterations = result.iterations;
+                // One verdict: a run that stopped short of a target the closed form has
+                // no exact solution for found it out of reach.
+                result.unreachable |= !result.success && self.no_exact_solution();
                 if self.ik.reach != Reach::Reached {
                     self.ik.reach = if result.unreachable {
                         Reach::OutOfReach
@@ -155,6 +204,28 @@ impl Model {
                 None
             }
         }
+    }
+
+    /// Whether the closed form finds no exact solution for the target (for the full pose,
+    /// or the position of a 2R or RRR arm, which is all they solve): then no method
+    /// reaches it. Found once per target, task and robot.
+    pub(super) fn no_exact_solution(&mut self) -> bool {
+        let key = (self.target, self.task, self.robot_changes);
+        if let Some((target, task, changes, answer)) = self.no_exact
+            && (target, task, changes) == key
+        {
+            return answer;
+        }
+        let answers = match closed_form_family(&self.robot) {
+            Some(ClosedFormFamily::Planar2R | ClosedFormFamily::Rrr) => true,
+            Some(_) => self.task == Task::FullPose,
+            None => false,
+        };
+        let answer = answers
+            && closed_form_solutions(&self.robot, &self.target, &self.q)
+                .is_ok_and(|set| set.unreachable);
+        self.no_exact = Some((key.0, key.1, key.2, answer));
+        answer
     }
 
     /// When the drag stalls short of the target: the joint that holds it at a limit, if

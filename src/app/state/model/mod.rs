@@ -28,11 +28,13 @@ mod drag;
 mod exercise;
 mod explore;
 
-pub use drag::Rescue;
+pub use drag::{Replay, Rescue};
 pub use exercise::ExerciseState;
 pub use explore::{DIRECTION_SAMPLES, DirectionSphere};
 mod motion;
 mod paths;
+#[cfg(test)]
+mod robot_change_tests;
 #[cfg(test)]
 mod tests;
 
@@ -185,6 +187,9 @@ pub struct Model {
     motion: MotionLab,
     paths: PathLab,
     exercise: Option<ExerciseState>,
+    replay: Option<Replay>,
+    /// The closed form's "no exact solution", and the target, task and robot it is for.
+    no_exact: Option<(IsometryMatrix3<f64>, Task, u64, bool)>,
 }
 
 impl Model {
@@ -221,6 +226,8 @@ impl Model {
             motion: MotionLab::default(),
             paths: PathLab::default(),
             exercise: None,
+            replay: None,
+            no_exact: None,
         };
         model.open(session);
         model
@@ -424,6 +431,7 @@ impl Model {
             camera: self.camera,
             motion,
             exercise: self.exercise.as_ref().map(|e| e.id.clone()),
+            dropped: Vec::new(),
         }
     }
 
@@ -481,8 +489,10 @@ impl Model {
     }
 
     /// Replaces the whole session (a link, a stored session): robot, q, target, task and
-    /// method; the target sits at the tool when the session names none.
+    /// method; the target sits at the tool when the session names none. A sentence about
+    /// the session before goes; the parts the link left out get one.
     pub fn open(&mut self, session: Session) {
+        self.message = None;
         session.display.apply(&mut self.settings);
         if session.camera.is_some() {
             self.camera = session.camera;
@@ -500,10 +510,17 @@ impl Model {
         self.task = session.task;
         self.method = session.method;
         self.start_anew();
+        // The link brings its own waypoints.
+        self.forget_old_robot(None);
         self.target = session.target.unwrap_or(self.fk.base_from_tool);
         self.ik = IkStatus::default();
         self.recompute_reach();
         self.open_motion(&session.motion);
+        let lang = self.settings.lang;
+        let left_out = (session.dropped.iter().map(|e| e.sentence(lang)))
+            .chain(session.motion.dropped.iter().map(|e| e.sentence(lang)))
+            .collect();
+        self.say_left_out(left_out);
     }
 
     /// Loads a robot as a new start (a preset or a file): its home pose, its default task
@@ -514,6 +531,7 @@ impl Model {
             // A robot file's keep-out boxes (checked with the file) replace the lab's.
             let _ = self.motion.set_keep_outs(robot.keep_outs.clone());
         }
+        let unit_before = self.robot.length_unit;
         self.q = robot.home();
         self.task = Task::default_for(robot.dof());
         self.method = IkMethod::DampedLeastSquares;
@@ -521,6 +539,7 @@ impl Model {
         self.source = source;
         self.exercise = None;
         self.start_anew();
+        self.forget_old_robot(Some(unit_before));
         self.snap_target();
     }
 
@@ -537,15 +556,14 @@ impl Model {
             robot.home()
         };
         let reframe = robot.reach() / self.robot.reach();
+        let unit_before = self.robot.length_unit;
         self.robot = robot;
         self.source = source;
         self.exercise = None;
         self.q = q;
         self.robot_changes += 1;
         self.keep_method_available();
-        if self.hovered_link().is_some_and(|l| l > self.robot.dof()) {
-            self.hover = None;
-        }
+        self.forget_old_robot(Some(unit_before));
         self.recompute_kinematics();
         if !same_shape || !(0.5..2.0).contains(&reframe) {
             self.reframes += 1;
@@ -648,6 +666,40 @@ impl Model {
         self.recompute_kinematics();
     }
 
+    /// After a robot change: what was found for the old robot goes (the replay, the
+    /// solutions and their ghosts, the rescue, the kept branch, the direction sphere, a
+    /// highlight past the last joint), and so do waypoints written in another length unit
+    /// than the new robot's, with a sentence saying so, unless `unit_before` is `None` (new
+    /// waypoints come with the robot).
+    fn forget_old_robot(&mut self, unit_before: Option<armlab_core::LengthUnit>) {
+        self.replay = None;
+        self.branches = None;
+        self.rescue = None;
+        self.kept_branch = None;
+        self.branch_switch = None;
+        self.directions = None;
+        let dof = self.robot.dof();
+        if self.hovered_link().is_some_and(|l| l > dof) {
+            self.hover = None;
+        }
+        if self.hovered_column().is_some_and(|c| c >= dof) {
+            self.hovered_column = None;
+        }
+        let Some(unit_before) = unit_before else {
+            return;
+        };
+        // Waypoints out of the new reach stay (the plan shows them unreached): a DH cell
+        // typed digit by digit passes through small arms on the way.
+        if self.robot.length_unit != unit_before && !self.paths.waypoints().is_empty() {
+            self.paths.stop_visit();
+            *self.paths.waypoints_mut() = armlab_core::path::Waypoints::default();
+            self.message = Some(Message::warning(armlab_text::text(
+                self.settings.lang,
+                armlab_text::Key::WaypointsDropped,
+            )));
+        }
+    }
+
     fn keep_method_available(&mut self) {
         if self.method == IkMethod::ClosedForm && !self.has_closed_form() {
             self.method = IkMethod::DampedLeastSquares;
@@ -666,8 +718,9 @@ impl Model {
     }
 
     /// The errors against the target and whether they are within the "reached"
-    /// tolerances; an "out of reach" verdict stays until the target is reached or moved
-    /// onto the tool.
+    /// tolerances; a target the closed form has no exact solution for is out of reach
+    /// whatever the iterations say; an "out of reach" verdict stays until the target is
+    /// reached or moved onto the tool.
     fn recompute_reach(&mut self) {
         let (position, orientation) = pose_error(&self.robot, &self.q, &self.target, self.task);
         self.ik.position_error = position;
@@ -675,6 +728,8 @@ impl Model {
         let tolerance = REACHED_POSITION_TOLERANCE_M / self.robot.length_unit.in_metres();
         if position <= tolerance && orientation <= REACHED_ORIENTATION_TOLERANCE {
             self.ik.reach = Reach::Reached;
+        } else if self.no_exact_solution() {
+            self.ik.reach = Reach::OutOfReach;
         } else if self.ik.reach == Reach::Reached {
             self.ik.reach = Reach::Pending;
         }

@@ -70,33 +70,35 @@ impl Model {
     }
 
     /// Takes the link's path kind and waypoints (a link without them has none, and goes
-    /// in joint space); the values it left out get a sentence.
+    /// in joint space).
     pub(super) fn open_paths(&mut self, patch: &armlab_session::motion::MotionPatch) {
         self.paths.stop_visit();
         self.paths.set_kind(patch.path_kind.unwrap_or_default());
         let poses = patch.waypoints.clone().unwrap_or_default();
         *self.paths.waypoints_mut() = armlab_core::path::Waypoints::new(poses).unwrap_or_default();
-        if !patch.dropped.is_empty() {
-            let lang = self.settings.lang;
-            let mut reasons: Vec<String> = patch
-                .dropped
-                .iter()
-                .take(3)
-                .map(|e| e.sentence(lang))
-                .collect();
-            if patch.dropped.len() > 3 {
-                reasons.push(armlab_text::fill(
-                    lang,
-                    armlab_text::Key::PathMoreIssues,
-                    &[&(patch.dropped.len() - 3)],
-                ));
-            }
-            self.message = Some(Message::warning(armlab_text::fill(
-                lang,
-                armlab_text::Key::LinkPartDropped,
-                &[&reasons.join("; ")],
-            )));
+    }
+
+    /// Says which parts of a link were left out (at most three reasons, then how many
+    /// more), or nothing when none was.
+    pub(super) fn say_left_out(&mut self, mut reasons: Vec<String>) {
+        if reasons.is_empty() {
+            return;
         }
+        let lang = self.settings.lang;
+        if reasons.len() > 3 {
+            let more = reasons.len() - 3;
+            reasons.truncate(3);
+            reasons.push(armlab_text::fill(
+                lang,
+                armlab_text::Key::PathMoreIssues,
+                &[&more],
+            ));
+        }
+        self.message = Some(Message::warning(armlab_text::fill(
+            lang,
+            armlab_text::Key::LinkPartDropped,
+            &[&reasons.join("; ")],
+        )));
     }
 
     /// A frame of a visit: the simulation runs in slices of 5 ms of real time, and after

@@ -344,3 +344,44 @@ fn a_stalled_drag_offers_the_start_that_reaches_and_says_out_of_reach_only_when_
         assert_eq!(rescue.reach, None);
     }
 }
+
+#[test]
+fn a_target_inside_the_ur10_s_base_cylinder_has_one_verdict_everywhere() {
+    // Dragged to 135 mm from the base axis, inside the cylinder the shoulder offset
+    // leaves unreachable, with the pseudo-inverse: its steps never settle.
+    let mut model = Model::new(Session::for_preset("ur10").expect("preset"));
+    model.set_method(IkMethod::PseudoInverse);
+    let start = *model.target();
+    let mut goal = start;
+    goal.translation.vector.x = -135.0;
+    goal.translation.vector.y = 0.0;
+    for i in 1..=60 {
+        let mut t = start;
+        let f = i as f64 / 60.0;
+        t.translation.vector = start.translation.vector * (1.0 - f) + goal.translation.vector * f;
+        model.set_target(t);
+        model.drag_step();
+    }
+    for _ in 0..300 {
+        model.drag_step();
+    }
+    let set = closed_form_solutions(model.robot(), model.target(), model.q()).expect("a set");
+    assert!(set.unreachable, "the closed form has no exact solution");
+    assert!(
+        model.ik().position_error > 1.0,
+        "{}",
+        model.ik().position_error
+    );
+    assert_eq!(
+        model.shown_reach(),
+        Reach::OutOfReach,
+        "the ball and the status"
+    );
+    let run = model.solve_with_trace().expect("a run");
+    assert!(!run.success);
+    assert!(run.unreachable, "Solve says out of reach, not stopped");
+    assert_eq!(model.shown_reach(), Reach::OutOfReach);
+    // Back at the tool: reached again.
+    model.snap_target();
+    assert_eq!(model.shown_reach(), Reach::Reached);
+}
