@@ -106,7 +106,7 @@ fn a_link_naming_only_the_robot_opens_its_default_task() {
 /// (the "1"), and while the cell shows its error the arm is the one from before the typing.
 #[test]
 fn a_dh_cell_applies_no_value_met_while_typing() {
-    let mut h = harness_at("#robot=ur10&panels=joints,ik,robot", [1366.0, 768.0]);
+    let mut h = harness_at("#robot=ur10&panels=robot", [1366.0, 768.0]);
     h.get_by_label("DH table (editable)").click();
     h.run_steps(3);
     let a_before = h.state().model().robot().joints[1].dh.a;
