@@ -171,6 +171,19 @@ fn finger(phase: egui::TouchPhase, pos: egui::Pos2) -> Vec<egui::Event> {
 // --- The editor keeps q, the DH-table exercise, predict then reveal ----------------------
 
 /// Types `text` over the `index`-th text input (the DH cells come first in table order).
+/// A press and a release of the primary button at `at`, a frame after each.
+fn click_at(h: &mut Harness<'_, ArmLabApp>, at: egui::Pos2) {
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos: at,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        });
+        h.run_steps(1);
+    }
+}
+
 fn type_into_cell(h: &mut Harness<'_, ArmLabApp>, index: usize, text: &str) {
     let cells: Vec<_> = h.query_all_by_role(Role::TextInput).collect();
     cells[index].focus();

@@ -154,15 +154,7 @@ fn every_ur10_branch_is_listed_and_a_click_on_its_ghost_moves_the_arm_there() {
     let at = egui::pos2(pos[0], pos[1]);
     h.event(egui::Event::PointerMoved(at));
     h.run_steps(1);
-    for pressed in [true, false] {
-        h.event(egui::Event::PointerButton {
-            pos: at,
-            button: egui::PointerButton::Primary,
-            pressed,
-            modifiers: egui::Modifiers::NONE,
-        });
-        h.run_steps(1);
-    }
+    click_at(&mut h, at);
     let q = h.state().model().q().to_vec();
     assert_ne!(q, q0, "the arm moved");
     let want = &rows[index - 1].q;

@@ -113,15 +113,7 @@ fn a_dh_cell_applies_no_value_met_while_typing() {
     let [x, y] = h.state().points().get("dh-2-3").expect("the cell is drawn");
     let at = egui::pos2(x, y);
     h.event(egui::Event::PointerMoved(at));
-    for pressed in [true, false] {
-        h.event(egui::Event::PointerButton {
-            pos: at,
-            button: egui::PointerButton::Primary,
-            pressed,
-            modifiers: egui::Modifiers::NONE,
-        });
-        h.run_steps(1);
-    }
+    click_at(&mut h, at);
     h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
     h.run_steps(1);
     let mut seen = Vec::new();

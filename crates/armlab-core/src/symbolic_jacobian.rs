@@ -87,16 +87,17 @@ pub fn symbolic_jacobian(robot: &Robot, chain: &SymbolicChain) -> SymbolicJacobi
                 }
                 JointKind::Prismatic => (z, std::array::from_fn(|_| Expr::default())),
             };
-            Some([0, 1, 2, 3, 4, 5].map(|r| {
-                if r < 3 {
-                    v[r].clone()
-                } else {
-                    w[r - 3].clone()
-                }
-            }))
+            Some(stacked(v, w))
         })
         .collect();
     SymbolicJacobian { columns }
+}
+
+/// A column of J: its linear part `v` above its angular part `w`.
+fn stacked(v: [Expr; 3], w: [Expr; 3]) -> [Expr; 6] {
+    let [v0, v1, v2] = v;
+    let [w0, w1, w2] = w;
+    [v0, v1, v2, w0, w1, w2]
 }
 
 /// The Jacobian `j` (base frame) in the tool frame: `blockdiag(Rᵀ, Rᵀ) · J` with R the
@@ -118,16 +119,7 @@ pub fn in_tool_frame(
     let columns = j
         .columns
         .iter()
-        .map(|c| {
-            let (v, w) = (turn(&c[..3]), turn(&c[3..]));
-            [0, 1, 2, 3, 4, 5].map(|r| {
-                if r < 3 {
-                    v[r].clone()
-                } else {
-                    w[r - 3].clone()
-                }
-            })
-        })
+        .map(|c| stacked(turn(&c[..3]), turn(&c[3..])))
         .collect();
     SymbolicJacobian { columns }
 }

@@ -56,11 +56,7 @@ pub fn draw(model: &Model, painter: &egui::Painter, rect: Rect, grid_step: f64, 
 /// highlighted joint: the measure's name, and a bar from blue at 0 to yellow at the
 /// cloud's largest value. Its ends go to `points` (`cloud-legend-low`, `-high`).
 pub fn cloud_legend(model: &Model, painter: &egui::Painter, rect: Rect, points: &mut ScreenPoints) {
-    let overlays = model.settings().overlays;
-    let Some(cloud) = model
-        .workspace()
-        .filter(|_| overlays.contains(Overlay::Workspace))
-    else {
+    let Some(cloud) = model.shown_workspace() else {
         return;
     };
     let font = egui::FontId::proportional(if model.settings().presentation {
@@ -71,7 +67,7 @@ pub fn cloud_legend(model: &Model, painter: &egui::Painter, rect: Rect, points: 
     let color = Color32::from_gray(220);
     let name = tr(
         model,
-        legend_name(overlays.contains(Overlay::WorkspaceSigma)),
+        legend_name(model.settings().overlays.contains(Overlay::WorkspaceSigma)),
     );
     let largest = number(cloud.largest_value(), 3);
     let (width, height) = (160.0, 10.0);

@@ -35,18 +35,14 @@ pub fn ramp(t: f64) -> [u8; 4] {
 
 /// The cloud's points as small cubes (only the slice through the target when asked).
 pub fn instances(model: &Model, out: &mut Vec<Instance>) {
-    let overlays = model.settings().overlays;
-    let Some(cloud) = model
-        .workspace()
-        .filter(|_| overlays.contains(Overlay::Workspace))
-    else {
+    let Some(cloud) = model.shown_workspace() else {
         return;
     };
     let spacing = cloud.spacing();
     let size = Vector3::repeat(spacing * 0.2);
     let largest = cloud.largest_value().max(1e-300);
     let target_z = model.target().translation.vector.z;
-    let slice = overlays.contains(Overlay::WorkspaceSlice);
+    let slice = model.settings().overlays.contains(Overlay::WorkspaceSlice);
     let rot = Rotation3::identity();
     for (p, v) in cloud.positions.iter().zip(&cloud.values) {
         if slice && (p.z - target_z).abs() > spacing {

@@ -21,7 +21,7 @@ use crate::app::state::motion_lab::MotionLab;
 use crate::app::state::path_lab::PathLab;
 use armlab_session::session::{RobotSource, Session};
 pub use armlab_session::settings::Settings;
-use armlab_session::settings::{CameraPose, DisplayPatch};
+use armlab_session::settings::{CameraPose, DisplayPatch, Overlay};
 
 mod display;
 mod drag;
@@ -321,6 +321,12 @@ impl Model {
             .as_ref()
             .filter(|(made_for, _)| *made_for == self.robot_changes)
             .map(|(_, cloud)| cloud)
+    }
+
+    /// The workspace cloud when the view shows it (its overlay is on).
+    pub fn shown_workspace(&self) -> Option<&WorkspaceCloud> {
+        self.workspace()
+            .filter(|_| self.settings().overlays.contains(Overlay::Workspace))
     }
 
     /// The IK solutions of the current target, when the IK panel found them for this
