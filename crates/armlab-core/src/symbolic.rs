@@ -584,7 +584,7 @@ pub fn number(x: f64) -> String {
 
 /// How one entry is shown: its text in both forms, or only its size when it is longer
 /// than [`MAX_SHOWN_TERMS`] terms.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum EntryText {
     /// The entry as plain text and as LaTeX.
     Shown {

@@ -1,16 +1,15 @@
 //! The symbolic matrices as the matrices panel shows them: each entry's text and the
-//! joints it depends on, each matrix's LaTeX. Flat and serialisable, so that the page can
-//! have them computed by its lazily loaded module and keep the algebra out of its first
-//! load.
-
-use serde::{Deserialize, Serialize};
+//! joints it depends on, each matrix's LaTeX. Flat and written as text, so that the page
+//! can have them computed by its lazily loaded module and keep the algebra out of its
+//! first load. The text is split on control characters, not JSON: serde_json's reader of
+//! these types cost the page's wasm more than a third of what the move saved.
 
 use super::robot::Robot;
 use super::symbolic::{EntryText, Expr, SymbolicMatrix, symbolic_chain};
 use super::symbolic_jacobian::{SymbolicJacobian, in_tool_frame, symbolic_jacobian};
 
 /// One entry of a [`SymbolicTable`].
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct TableEntry {
     /// Its text, or its size when it is too long to show.
     pub text: EntryText,
@@ -28,7 +27,7 @@ impl TableEntry {
 }
 
 /// One symbolic matrix: its entries row by row and its LaTeX.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct SymbolicTable {
     /// Rows (4 for a transform, 6 for a Jacobian).
     pub rows: usize,
@@ -76,7 +75,7 @@ impl SymbolicTable {
 }
 
 /// Every symbolic matrix the matrices panel shows for a robot.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct SymbolicTables {
     /// A_i for i = 1..n.
     pub link_transforms: Vec<SymbolicTable>,
@@ -86,6 +85,90 @@ pub struct SymbolicTables {
     pub jacobian_base: SymbolicTable,
     /// J in the tool frame.
     pub jacobian_tool: SymbolicTable,
+}
+
+/// Between the fields of a table in [`SymbolicTables::to_text`] (the unit separator: no
+/// entry's text or LaTeX holds it).
+const FIELD: char = '\u{1f}';
+/// Between the tables (the record separator).
+const TABLE: char = '\u{1e}';
+
+impl SymbolicTables {
+    /// The tables as text: each table's rows, columns and LaTeX, then per entry its joints,
+    /// its plain text and its LaTeX (a too long entry: no text, and its term count), the
+    /// fields apart by [`FIELD`]; the tables (A_i, T_0i, J in the base frame, J in the tool
+    /// frame) apart by [`TABLE`].
+    pub fn to_text(&self) -> String {
+        let tables = self.link_transforms.iter().chain(&self.base_from_frames);
+        let tables = tables.chain([&self.jacobian_base, &self.jacobian_tool]);
+        let mut out = String::new();
+        for (i, t) in tables.enumerate() {
+            if i > 0 {
+                out.push(TABLE);
+            }
+            out += &format!("{}{FIELD}{}{FIELD}{}", t.rows, t.cols, t.latex);
+            for e in &t.entries {
+                let (plain, latex) = match &e.text {
+                    EntryText::Shown { plain, latex } => (plain.as_str(), latex.clone()),
+                    EntryText::TooLong { terms } => ("", terms.to_string()),
+                };
+                out += &format!("{FIELD}{}{FIELD}{plain}{FIELD}{latex}", e.joints);
+            }
+        }
+        out
+    }
+
+    /// The tables from [`SymbolicTables::to_text`]'s text; `None` when it is not such text.
+    pub fn from_text(text: &str) -> Option<Self> {
+        let mut tables = text
+            .split(TABLE)
+            .map(SymbolicTable::from_text)
+            .collect::<Option<Vec<_>>>()?;
+        if tables.len() % 2 != 0 {
+            return None;
+        }
+        let jacobian_tool = tables.pop()?;
+        let jacobian_base = tables.pop()?;
+        let base_from_frames = tables.split_off(tables.len() / 2);
+        Some(SymbolicTables {
+            link_transforms: tables,
+            base_from_frames,
+            jacobian_base,
+            jacobian_tool,
+        })
+    }
+}
+
+impl SymbolicTable {
+    /// One table of [`SymbolicTables::to_text`]'s text.
+    fn from_text(text: &str) -> Option<Self> {
+        let mut fields = text.split(FIELD);
+        let rows = fields.next()?.parse().ok()?;
+        let cols = fields.next()?.parse().ok()?;
+        let latex = fields.next()?.to_string();
+        let mut entries = Vec::new();
+        while let Some(joints) = fields.next() {
+            let joints = joints.parse().ok()?;
+            let (plain, latex) = (fields.next()?, fields.next()?);
+            let text = if plain.is_empty() {
+                EntryText::TooLong {
+                    terms: latex.parse().ok()?,
+                }
+            } else {
+                EntryText::Shown {
+                    plain: plain.to_string(),
+                    latex: latex.to_string(),
+                }
+            };
+            entries.push(TableEntry { text, joints });
+        }
+        (entries.len() == rows * cols).then_some(SymbolicTable {
+            rows,
+            cols,
+            entries,
+            latex,
+        })
+    }
 }
 
 /// The symbolic A_i, T_0i and J (base and tool frame) of `robot` as the panel shows them.
@@ -161,10 +244,39 @@ mod tests {
             same(&tables.jacobian_tool, 6, n, |r, c| tool.entry(r, c).clone());
             assert_eq!(tables.jacobian_base.latex, base.latex(), "{id}");
             assert_eq!(tables.jacobian_tool.latex, tool.latex(), "{id}");
-            // Through JSON and back unchanged.
-            let json = serde_json::to_string(&tables).expect("serialises");
-            let back: SymbolicTables = serde_json::from_str(&json).expect("deserialises");
-            assert_eq!(back, tables, "{id}");
+            // Through text and back unchanged.
+            let back = SymbolicTables::from_text(&tables.to_text());
+            assert_eq!(back.as_ref(), Some(&tables), "{id}");
         }
+    }
+
+    #[test]
+    fn a_too_long_entry_and_a_robot_without_joints_go_through_text_and_bad_text_does_not() {
+        let mut tables = symbolic_tables(&crate::preset("ur10").expect("preset"));
+        tables.jacobian_tool.entries[0].text = EntryText::TooLong { terms: 31 };
+        let back = SymbolicTables::from_text(&tables.to_text()).expect("reads back");
+        assert_eq!(
+            back.jacobian_tool.entries[0].text,
+            EntryText::TooLong { terms: 31 }
+        );
+        assert_eq!(back, tables);
+        let mut none = tables.clone();
+        none.link_transforms.clear();
+        none.base_from_frames.clear();
+        for j in [&mut none.jacobian_base, &mut none.jacobian_tool] {
+            j.cols = 0;
+            j.entries.clear();
+        }
+        assert_eq!(SymbolicTables::from_text(&none.to_text()), Some(none));
+        let text = tables.to_text();
+        // A table short of an entry, one table missing, not a number, nothing.
+        let cut = text.rfind(FIELD).expect("fields");
+        let cut = text[..cut].rfind(FIELD).expect("fields");
+        let cut = text[..cut].rfind(FIELD).expect("fields");
+        assert_eq!(SymbolicTables::from_text(&text[..cut]), None);
+        let first = text.find(TABLE).expect("tables");
+        assert_eq!(SymbolicTables::from_text(&text[first + 1..]), None);
+        assert_eq!(SymbolicTables::from_text(&text.replacen('4', "x", 1)), None);
+        assert_eq!(SymbolicTables::from_text(""), None);
     }
 }

@@ -281,7 +281,7 @@ pub fn urdf_import(urdf: JsValue, lang: JsValue) -> Result<String, JsError> {
 
 /// For the page's symbolic matrices (the page loads this module only when they are
 /// shown): a robot file (JSON text, as the page writes its robot) as the matrices panel's
-/// symbolic tables (JSON text, `armlab_core::symbolic_tables::SymbolicTables`). A bad
+/// symbolic tables (`armlab_core::symbolic_tables::SymbolicTables::to_text`). A bad
 /// robot file throws the core's sentence. Feature `urdf`.
 #[cfg(feature = "urdf")]
 #[wasm_bindgen(skip_typescript)]
@@ -296,8 +296,7 @@ pub fn symbolic_tables(robot: JsValue) -> Result<String, JsError> {
 #[cfg(feature = "urdf")]
 fn symbolic_tables_json(robot: &str) -> Result<String, String> {
     let robot = armlab_core::robot_from_json(robot).map_err(|e| e.sentence(Lang::En))?;
-    let tables = armlab_core::symbolic_tables::symbolic_tables(&robot);
-    serde_json::to_string(&tables).map_err(|e| e.to_string())
+    Ok(armlab_core::symbolic_tables::symbolic_tables(&robot).to_text())
 }
 
 /// For the page's collision check (the page loads this module only once checks are on):
@@ -576,7 +575,7 @@ export function urdf_to_robot(urdf: string): string;
 export function robot_to_urdf(robot: RobotFile | string): string;
 /** A URDF text as `{"robot", "meshes"}` (JSON text); errors in `lang` ("en", "fi"). Built with the feature `urdf`. */
 export function urdf_import(urdf: string, lang?: string): string;
-/** The page's symbolic matrices: a robot file (JSON text) in, its symbolic tables (JSON text) out. Built with the feature `urdf`. */
+/** The page's symbolic matrices: a robot file (JSON text) in, its symbolic tables (the page's text form) out. Built with the feature `urdf`. */
 export function symbolic_tables(robot: string): string;
 "#;
 
@@ -592,7 +591,7 @@ mod tests {
         for id in armlab_core::preset_ids() {
             let robot = armlab_core::preset(id).expect("preset");
             let answer = symbolic_tables_json(&armlab_core::robot_to_json(&robot)).expect(id);
-            let tables: SymbolicTables = serde_json::from_str(&answer).expect(id);
+            let tables = SymbolicTables::from_text(&answer).expect(id);
             assert_eq!(tables, symbolic_tables(&robot), "{id}");
         }
     }

@@ -40,12 +40,13 @@ pub fn retry_symbolic_tables() {
     super::web::modules::retry_symbolic_tables();
 }
 
-/// For the test hook: `idle`, `loading`, `ready` or `failed` and, when ready, the position
-/// column of the last T_0i as plain text (`null` natively, where nothing loads).
+/// For the test hook: `idle`, `loading`, `failed: <the words>`, or `ready: ` and the
+/// position column of the last T_0i as plain text, the entries apart by ` | ` (`null`
+/// natively, where nothing loads).
 pub fn symbolic_state_json() -> serde_json::Value {
     #[cfg(target_arch = "wasm32")]
     {
-        super::web::modules::symbolic_state_json()
+        serde_json::Value::from(super::web::modules::symbolic_state_text())
     }
     #[cfg(not(target_arch = "wasm32"))]
     {

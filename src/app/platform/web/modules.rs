@@ -10,6 +10,8 @@ use wasm_bindgen::prelude::*;
 
 use super::{js_error_text, wake};
 use crate::app::platform::symbolic::Tables;
+use armlab_core::symbolic::EntryText;
+use armlab_core::symbolic_tables::SymbolicTables;
 
 thread_local! {
     /// The URDF module's import: started by the first URDF file or download, kept for the
@@ -192,8 +194,9 @@ pub fn symbolic_tables(robot: &armlab_core::Robot) -> Tables {
     SYMBOLIC.with(|s| *s.borrow_mut() = Some((file.clone(), Tables::Loading)));
     wasm_bindgen_futures::spawn_local(async move {
         let answer = match urdf_module(|| ()).await {
-            Ok(module) => call_urdf_module(&module, "symbolic_tables", &[&file])
-                .and_then(|json| serde_json::from_str(&json).map_err(|e| e.to_string())),
+            Ok(module) => call_urdf_module(&module, "symbolic_tables", &[&file]).and_then(|text| {
+                SymbolicTables::from_text(&text).ok_or_else(|| "unreadable tables".to_string())
+            }),
             Err(e) => Err(e),
         };
         let tables = match answer {
@@ -224,31 +227,20 @@ pub fn retry_symbolic_tables() {
 }
 
 /// The symbolic tables' state for the test hook (see `platform::symbolic`).
-pub fn symbolic_state_json() -> serde_json::Value {
+pub fn symbolic_state_text() -> String {
     SYMBOLIC.with(|s| match &*s.borrow() {
-        None => serde_json::json!({ "state": "idle" }),
-        Some((_, Tables::Loading)) => serde_json::json!({ "state": "loading" }),
-        Some((_, Tables::Failed(why))) => serde_json::json!({ "state": "failed", "why": why }),
+        None => "idle".to_string(),
+        Some((_, Tables::Loading)) => "loading".to_string(),
+        Some((_, Tables::Failed(why))) => format!("failed: {why}"),
         Some((_, Tables::Ready(tables))) => {
-            let position: Vec<String> = tables
-                .base_from_frames
-                .last()
-                .map(|t| {
-                    (0..3)
-                        .filter_map(|r| t.entry(r, 3))
-                        .map(entry_plain)
-                        .collect()
+            let last = tables.base_from_frames.last();
+            let position: Vec<&str> = (0..3)
+                .filter_map(|r| match &last?.entry(r, 3)?.text {
+                    EntryText::Shown { plain, .. } => Some(plain.as_str()),
+                    EntryText::TooLong { .. } => Some("…"),
                 })
-                .unwrap_or_default();
-            serde_json::json!({ "state": "ready", "position": position })
+                .collect();
+            format!("ready: {}", position.join(" | "))
         }
     })
-}
-
-/// An entry's plain text, or its term count when it is too long to show.
-fn entry_plain(e: &armlab_core::symbolic_tables::TableEntry) -> String {
-    match &e.text {
-        armlab_core::symbolic::EntryText::Shown { plain, .. } => plain.clone(),
-        armlab_core::symbolic::EntryText::TooLong { terms } => format!("{terms} terms"),
-    }
 }
