@@ -598,7 +598,7 @@ mod tests {
 
     #[test]
     fn a_bad_robot_file_is_a_sentence() {
-        let e = symbolic_tables_json("{\"dh\": 5}").expect_err("not a robot");
+        let e = symbolic_tables_json("\u{7b}\"dh\": 5\u{7d}").expect_err("not a robot");
         assert!(!e.is_empty() && !e.contains("panick"), "{e}");
         assert!(symbolic_tables_json("not json").is_err());
     }
