@@ -136,9 +136,10 @@ build_web() {
 }
 
 # The URDF module: the JS package (armlab-js) built with its feature urdf (no GUI) as a second wasm module
-# in dist/urdf/, which the page imports only when a URDF file is opened or saved (the module
-# is ~225 kB gzip, urdf-rs and its XML crates included: more than the first load's budget
-# leaves). Trunk runs this as a build hook (Trunk.toml), so `trunk build` and `trunk serve`
+# in dist/urdf/, which the page imports only when a URDF file is opened or saved, collisions
+# are checked or the symbolic matrices are shown (the module is ~300 kB gzip, urdf-rs and its
+# XML crates, the collision library and the symbolic algebra included: more than the first
+# load's budget leaves). Trunk runs this as a build hook (Trunk.toml), so `trunk build` and `trunk serve`
 # make it too, beside the page and with its settings: build_web's profile variables, and in
 # release wasm-opt with index.html's data-wasm-opt level and data-wasm-opt-params. Its own
 # target folder inside the page's, so that the two builds' settings do not rebuild each

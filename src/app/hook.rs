@@ -70,6 +70,7 @@ pub fn state_json(app: &ArmLabApp) -> String {
         "workspace_samples": model.workspace().map(|c| c.len()),
         "directions_reachable": model.directions().map(|d| d.near.iter().filter(|n| **n).count()),
         "motion": motion_json(model),
+        "symbolic": crate::app::platform::symbolic::symbolic_state_json(),
         "paths": paths_json(model),
     })
     .to_string()

@@ -13,10 +13,11 @@
 // cache (web/tests/offline.test.mjs recomputes it from dist/).
 //
 // `files` includes urdf/, the URDF module (tools/setup.sh, build_urdf_module), which the
-// page itself fetches only when a URDF file is opened or saved. The worker precaches it
-// anyway, on purpose: it installs after the page's load event, so the first load and the
-// first frame do not wait for it, and then opening a URDF file works offline too, like the
-// rest of the page (the lecture hall whose Wi-Fi fails). The cost is the module's ~225 kB
+// page itself fetches only when a URDF file is opened or saved, collisions are checked or
+// the symbolic matrices are shown. The worker precaches it anyway, on purpose: it installs
+// after the page's load event, so the first load and the first frame do not wait for it,
+// and then opening a URDF file or ticking "symbolic" works offline too, like the
+// rest of the page (the lecture hall whose Wi-Fi fails). The cost is the module's ~305 kB
 // gzip once per build per browser, in the background.
 //
 // Run by hand on a built folder: TRUNK_STAGING_DIR=dist node web/build/service-worker-build.mjs

@@ -17,7 +17,7 @@ import crypto from 'node:crypto';
 import { execFileSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 import { launchChromium } from './static-server.mjs';
-import { dist, state, rendered as drawn, newPage } from './page.mjs';
+import { dist, state, rendered as drawn, newPage, point, until } from './page.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 // The target ball sits on the tool when a link opens: green (reached) where the tool is.
@@ -151,7 +151,8 @@ test('the worker lists exactly the build\'s files, under a version hashed from t
   const expected = expectedBuild(dist);
   assert.deepEqual(build.files, expected.files);
   assert.equal(build.version, expected.version);
-  for (const kind of [/^index\.html$/, /^armlab-[0-9a-f]+\.js$/, /^armlab-[0-9a-f]+_bg\.wasm$/, /^manifest\.webmanifest$/, /^icon\.svg$/]) {
+  for (const kind of [/^index\.html$/, /^armlab-[0-9a-f]+\.js$/, /^armlab-[0-9a-f]+_bg\.wasm$/, /^manifest\.webmanifest$/, /^icon\.svg$/,
+    /^urdf\/armlab_urdf\.js$/, /^urdf\/armlab_urdf-[0-9a-f]+_bg\.wasm$/]) {
     assert.ok(build.files.some((f) => kind.test(f)), `the worker caches ${kind}`);
   }
   const manifest = JSON.parse(fs.readFileSync(path.join(dist, 'manifest.webmanifest'), 'utf8'));
@@ -159,7 +160,7 @@ test('the worker lists exactly the build\'s files, under a version hashed from t
   assert.ok(manifest.icons.every((icon) => build.files.includes(icon.src)), 'the manifest\'s icons are cached');
 });
 
-test('after one visit the page opens and draws the arm with the server gone', async () => {
+test('after one visit the page opens and draws the arm with the server gone, and the lazy module (symbolic matrices) loads', async () => {
   const server = await serve(dist);
   const { ctx: context, page, errors } = await newPage(browser);
   try {
@@ -177,6 +178,15 @@ test('after one visit the page opens and draws the arm with the server gone', as
     measurements.offline_first_frame_ms = await rendered(page);
     await assertArmDrawn(page);
     assert.deepEqual((await state(page)).q.map((v) => +v.toFixed(6)), [0.4, -1.1, 1.3, -1.6, -1.4, 0.2], 'the link\'s pose');
+
+    // The module the page fetches later (here for the symbolic matrices) comes from the
+    // cache too. Tall, so that the Matrices panel's "symbolic" tick is on screen.
+    await page.setViewportSize({ width: 1400, height: 1400 });
+    await page.evaluate((h) => window.armlab.open(h), '#robot=rrr&panels=matrices');
+    await until(page, (s) => s.preset === 'rrr', 'the RRR');
+    const tick = await point(page, 'matrices-symbolic');
+    await page.mouse.click(tick.x, tick.y);
+    await until(page, (s) => s.symbolic === 'ready: c1(222.1 c2 + 136.2 c23) | s1(222.1 c2 + 136.2 c23) | 100.9 + 222.1 s2 + 136.2 s23', 'the symbolic T_03 offline');
     assert.deepEqual(errors, []);
   } finally {
     await context.close();

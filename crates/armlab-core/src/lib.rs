@@ -28,6 +28,7 @@ pub mod rng;
 pub mod robot;
 pub mod symbolic;
 pub mod symbolic_jacobian;
+pub mod symbolic_tables;
 pub mod workspace;
 
 pub use error::{DhColumn, Expected, Field, Place, RobotError};

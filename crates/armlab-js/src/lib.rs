@@ -279,6 +279,26 @@ pub fn urdf_import(urdf: JsValue, lang: JsValue) -> Result<String, JsError> {
     ))
 }
 
+/// For the page's symbolic matrices (the page loads this module only when they are
+/// shown): a robot file (JSON text, as the page writes its robot) as the matrices panel's
+/// symbolic tables (`armlab_core::symbolic_tables::SymbolicTables::to_text`). A bad
+/// robot file throws the core's sentence. Feature `urdf`.
+#[cfg(feature = "urdf")]
+#[wasm_bindgen(skip_typescript)]
+pub fn symbolic_tables(robot: JsValue) -> Result<String, JsError> {
+    let robot = robot
+        .as_string()
+        .ok_or_else(|| wrong_argument("symbolic_tables", Takes::RobotFile, &robot))?;
+    symbolic_tables_json(&robot).map_err(|e| JsError::new(&e))
+}
+
+/// What [`symbolic_tables`] answers, or the sentence it throws.
+#[cfg(feature = "urdf")]
+fn symbolic_tables_json(robot: &str) -> Result<String, String> {
+    let robot = armlab_core::robot_from_json(robot).map_err(|e| e.sentence(Lang::En))?;
+    Ok(armlab_core::symbolic_tables::symbolic_tables(&robot).to_text())
+}
+
 /// For the page's collision check (the page loads this module only once checks are on):
 /// a request of numbers (a `Float64Array` or an array of numbers) as
 /// `kinematics::collision_wire` writes it (the posed parts, the floor switch and the
@@ -555,4 +575,31 @@ export function urdf_to_robot(urdf: string): string;
 export function robot_to_urdf(robot: RobotFile | string): string;
 /** A URDF text as `{"robot", "meshes"}` (JSON text); errors in `lang` ("en", "fi"). Built with the feature `urdf`. */
 export function urdf_import(urdf: string, lang?: string): string;
+/** The page's symbolic matrices: a robot file (JSON text) in, its symbolic tables (the page's text form) out. Built with the feature `urdf`. */
+export function symbolic_tables(robot: string): string;
 "#;
+
+#[cfg(all(test, feature = "urdf"))]
+mod tests {
+    use super::symbolic_tables_json;
+    use armlab_core::symbolic_tables::{SymbolicTables, symbolic_tables};
+
+    /// The page sends its robot as a robot file and reads the tables back: for every
+    /// preset they are the ones the core makes from the robot itself, to the last digit.
+    #[test]
+    fn symbolic_tables_through_the_robot_file_are_the_cores() {
+        for id in armlab_core::preset_ids() {
+            let robot = armlab_core::preset(id).expect("preset");
+            let answer = symbolic_tables_json(&armlab_core::robot_to_json(&robot)).expect(id);
+            let tables = SymbolicTables::from_text(&answer).expect(id);
+            assert_eq!(tables, symbolic_tables(&robot), "{id}");
+        }
+    }
+
+    #[test]
+    fn a_bad_robot_file_is_a_sentence() {
+        let e = symbolic_tables_json("\u{7b}\"dh\": 5\u{7d}").expect_err("not a robot");
+        assert!(!e.is_empty() && !e.contains("panick"), "{e}");
+        assert!(symbolic_tables_json("not json").is_err());
+    }
+}

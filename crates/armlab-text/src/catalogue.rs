@@ -234,6 +234,8 @@ catalogue! {
     Stop: "Zero q̇" / "Nollaa q̇",
     ShowSymbolic: "symbolic" / "symbolisina",
     ShowSymbolicHint: "Each A_i, T_0i and J as the robot's constants and the sines and cosines of the joints (c1 = cos θ1, s23 = sin(θ2 + θ3)); entries that depend on the joint under the pointer are highlighted" / "Jokainen A_i, T_0i ja J robotin vakioina sekä nivelten sineinä ja kosineina (c1 = cos θ1, s23 = sin(θ2 + θ3)); osoittimen alla olevasta nivelestä riippuvat alkiot korostetaan",
+    SymbolicLoading: "Loading the symbolic matrices…" / "Ladataan symbolisia matriiseja…",
+    SymbolicFailed: "The symbolic matrices could not be loaded ({0}). Untick and tick “symbolic” to try again." / "Symbolisia matriiseja ei voitu ladata ({0}). Poista valinta “symbolisina” ja valitse se taas yrittääksesi uudelleen.",
     NotebookRuns: "The lecture notebook's runs" / "Luentomuistion ajot",
     NotebookHint: "Planar 2R (l = 2, 1) from θ = (0.1, 0.1): Newton–Raphson to (1.5, 1.5) never wrapping θ, and gradient descent on ‖e‖² with α = 0.01 to (1.0, 1.5), as the notebook runs them" / "Tason 2R (l = 2, 1) alkaen θ = (0,1, 0,1): Newton–Raphson pisteeseen (1,5, 1,5) θ:aa koskaan kiertämättä ja gradienttimenetelmä ‖e‖²:lle, α = 0,01, pisteeseen (1,0, 1,5), kuten muistio ne ajaa",
     NotebookNewton: "Newton–Raphson" / "Newton–Raphson",

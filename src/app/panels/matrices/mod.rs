@@ -27,13 +27,13 @@ use crate::app::screen_points::ScreenPoints;
 use crate::app::state::model::{HoverSource, Model};
 use crate::app::state::tr;
 use crate::app::state::trf;
-use armlab_core::symbolic::SymbolicChain;
+use armlab_core::symbolic_tables::{SymbolicTable, SymbolicTables};
 use armlab_session::settings::{Hidden, MatrixId};
 use block::matrix_block;
 use jacobian::jacobian_block;
 use orientation::orientation_block;
 use predict::{Hiding, Target};
-use symbolic::{Symbolic, SymbolicCache, symbolic_block};
+use symbolic::{SymbolicCache, symbolic_block};
 
 fn homogeneous(pose: &nalgebra::IsometryMatrix3<f64>) -> DMatrix<f64> {
     let h = armlab_core::fk::homogeneous(pose);
@@ -129,7 +129,7 @@ impl Panel for MatricesPanel {
             let analysis = self.analysis(model);
             jacobian_block(model, analysis, ui, (decimals, tool_frame), &mut hiding)
         });
-        let hovered = self.links_fold(model, ui, decimals, &mut hiding);
+        let hovered = self.links_fold(model, ui, (decimals, points), &mut hiding);
         model.set_hovered_link(hovered, HoverSource::Matrices);
         self.finish_hiding(model, hiding, points);
     }
@@ -142,13 +142,10 @@ impl MatricesPanel {
         &mut self,
         model: &Model,
         ui: &mut egui::Ui,
-        decimals: usize,
+        (decimals, points): (usize, &mut ScreenPoints),
         hiding: &mut Hiding,
     ) -> Option<usize> {
         let tool_frame = self.tool_frame;
-        let symbolic = self
-            .symbolic
-            .then(|| self.chain.chain(model.robot(), model.robot_changes()));
         egui::CollapsingHeader::new(crate::app::widgets::style::fold_title(
             ui,
             tr(model, Key::LinkTransforms),
@@ -156,17 +153,54 @@ impl MatricesPanel {
         .id_salt("link_transforms")
         .default_open(true)
         .show(ui, |ui| {
-            ui.checkbox(&mut self.symbolic, tr(model, Key::ShowSymbolic))
+            let tick = ui
+                .checkbox(&mut self.symbolic, tr(model, Key::ShowSymbolic))
                 .on_hover_text(tr(model, Key::ShowSymbolicHint));
-            let links = link_blocks(model, ui, decimals, symbolic.map(|s| &s.0), hiding);
-            if let Some((_, j)) = symbolic {
-                symbolic_jacobian_block(model, ui, &j[usize::from(tool_frame)], tool_frame);
+            points.insert("matrices-symbolic", tick.rect.center());
+            if tick.changed() && self.symbolic {
+                // Tables that failed to load are asked for again when ticked again.
+                crate::app::platform::symbolic::retry_symbolic_tables();
+            }
+            let tables = self
+                .symbolic
+                .then(|| self.chain.tables(model.robot(), model.robot_changes()));
+            let ready = tables.and_then(|t| ready_or_say(model, ui, t));
+            let links = link_blocks(model, ui, decimals, ready.as_deref(), hiding);
+            if let Some(t) = &ready {
+                let j = if tool_frame {
+                    &t.jacobian_tool
+                } else {
+                    &t.jacobian_base
+                };
+                symbolic_jacobian_block(model, ui, j, tool_frame);
             }
             links
         })
         .body_returned
         .flatten()
     }
+}
+
+/// Ready tables, or `None` after saying that they load or could not be loaded (the
+/// numbers are shown meanwhile).
+fn ready_or_say(
+    model: &Model,
+    ui: &mut egui::Ui,
+    tables: crate::app::platform::symbolic::Tables,
+) -> Option<std::rc::Rc<SymbolicTables>> {
+    use crate::app::platform::symbolic::Tables;
+    match tables {
+        Tables::Ready(t) => return Some(t),
+        Tables::Loading => {
+            ui.label(tr(model, Key::SymbolicLoading));
+        }
+        Tables::Failed(why) => {
+            let why = armlab_text::echo::text_within(&why, 60);
+            let sentence = trf(model, Key::SymbolicFailed, &[&why]);
+            ui.colored_label(crate::app::widgets::style::ERROR, sentence);
+        }
+    }
+    None
 }
 
 /// A symbolic A_i or T_0i, or the "?" of a whole matrix hidden for the lecture; `hot`:
@@ -176,34 +210,22 @@ fn symbolic_unless_hidden(
     ui: &mut egui::Ui,
     hiding: &mut Hiding,
     (id, title, lang): (MatrixId, &str, armlab_text::Lang),
-    m: &armlab_core::symbolic::SymbolicMatrix,
+    m: &SymbolicTable,
     (joint_under, highlighted): (Option<usize>, bool),
 ) -> bool {
     match hiding.concealed_whole(id) {
         Some(item) => hiding.concealed_block(ui, lang, title, item),
-        None => symbolic_block(
-            ui,
-            lang,
-            title,
-            Symbolic::Transform(m),
-            joint_under,
-            highlighted,
-        ),
+        None => symbolic_block(ui, lang, title, m, joint_under, highlighted),
     }
 }
 
 /// The symbolic J under the symbolic T_0i, in the frame the Jacobian's fold shows; the
 /// entries that depend on the joint under the pointer are highlighted.
-fn symbolic_jacobian_block(
-    model: &Model,
-    ui: &mut egui::Ui,
-    j: &armlab_core::symbolic_jacobian::SymbolicJacobian,
-    tool_frame: bool,
-) {
+fn symbolic_jacobian_block(model: &Model, ui: &mut egui::Ui, j: &SymbolicTable, tool_frame: bool) {
     let title = tr(model, jacobian::title(tool_frame));
     let joint_under = model.hovered_link().and_then(|l| l.checked_sub(1));
     let lang = model.settings().lang;
-    symbolic_block(ui, lang, title, Symbolic::Jacobian(j), joint_under, false);
+    symbolic_block(ui, lang, title, j, joint_under, false);
 }
 
 fn precision_row(model: &mut Model, ui: &mut egui::Ui) {
@@ -227,7 +249,7 @@ fn link_blocks(
     model: &Model,
     ui: &mut egui::Ui,
     decimals: usize,
-    symbolic: Option<&SymbolicChain>,
+    symbolic: Option<&SymbolicTables>,
     hiding: &mut Hiding,
 ) -> Option<usize> {
     let convention = match model.robot().convention {
@@ -246,10 +268,10 @@ fn link_blocks(
             JointKind::Revolute => "θ",
             JointKind::Prismatic => "d",
         };
-        if let Some(chain) = symbolic {
+        if let Some((a, t)) =
+            symbolic.and_then(|s| s.link_transforms.get(i).zip(s.base_from_frames.get(i)))
+        {
             let title = trf(model, Key::LinkTitle, &[&(i + 1), &joint.name, &variable]);
-            let a = &chain.link_transforms[i];
-            let t = &chain.base_from_frames[i];
             let hot = (joint_under, highlighted);
             let over_a =
                 symbolic_unless_hidden(ui, hiding, (MatrixId::Link(i + 1), &title, lang), a, hot);

@@ -4,77 +4,39 @@
 //! matrix) highlighted, each matrix copyable as LaTeX. A fold of the panel apart from the
 //! numbers: its entries are text, built once per robot.
 
-use armlab_core::symbolic::{EntryText, Expr, SymbolicChain, SymbolicMatrix, symbolic_chain};
-use armlab_core::symbolic_jacobian::{SymbolicJacobian, in_tool_frame, symbolic_jacobian};
+use std::rc::Rc;
+
+use armlab_core::symbolic::EntryText;
+use armlab_core::symbolic_tables::{SymbolicTable, SymbolicTables};
 use armlab_text::{Key, Lang, fill, text};
 
+use crate::app::platform::symbolic::{Tables, symbolic_tables};
 use crate::app::widgets::style;
 
-/// The symbolic chain and Jacobians (base frame, tool frame) of the robot last shown,
-/// kept until the robot changes.
+/// The symbolic tables of the robot last shown, kept until the robot changes.
 #[derive(Debug, Clone, Default)]
 pub struct SymbolicCache {
     made_for: Option<u64>,
-    built: Option<(SymbolicChain, [SymbolicJacobian; 2])>,
+    built: Option<Rc<SymbolicTables>>,
 }
 
 impl SymbolicCache {
-    /// The chain and the Jacobians in the base and the tool frame of the robot with this
-    /// change count (built once per robot: a few milliseconds for seven joints).
-    pub fn chain(
-        &mut self,
-        robot: &armlab_core::Robot,
-        robot_changes: u64,
-    ) -> &(SymbolicChain, [SymbolicJacobian; 2]) {
+    /// The tables of the robot with this change count: made once per robot (a few
+    /// milliseconds for seven joints); in the page by the lazily loaded module, so they
+    /// may still be loading or have failed to.
+    pub fn tables(&mut self, robot: &armlab_core::Robot, robot_changes: u64) -> Tables {
         if self.made_for != Some(robot_changes) {
             self.made_for = Some(robot_changes);
             self.built = None;
         }
-        self.built.get_or_insert_with(|| {
-            let chain = symbolic_chain(robot);
-            let base = symbolic_jacobian(robot, &chain);
-            let tool = in_tool_frame(robot, &chain, &base);
-            (chain, [base, tool])
-        })
-    }
-}
-
-/// A symbolic matrix the panel shows: a homogeneous transform or a Jacobian.
-#[derive(Debug, Clone, Copy)]
-pub enum Symbolic<'a> {
-    /// A_i or T_0i (4 × 4).
-    Transform(&'a SymbolicMatrix),
-    /// J (6 × n).
-    Jacobian(&'a SymbolicJacobian),
-}
-
-impl<'a> Symbolic<'a> {
-    fn rows(&self) -> usize {
-        match self {
-            Symbolic::Transform(_) => 4,
-            Symbolic::Jacobian(_) => 6,
+        if let Some(built) = &self.built {
+            return Tables::Ready(built.clone());
         }
-    }
-
-    fn cols(&self) -> usize {
-        match self {
-            Symbolic::Transform(_) => 4,
-            Symbolic::Jacobian(j) => j.columns.len(),
+        let tables = symbolic_tables(robot);
+        if let Tables::Ready(built) = &tables {
+            self.built = Some(built.clone());
         }
-    }
-
-    fn entry(&self, r: usize, c: usize) -> &'a Expr {
-        match self {
-            Symbolic::Transform(m) => &m.entries[r][c],
-            Symbolic::Jacobian(j) => j.entry(r, c),
-        }
-    }
-
-    fn latex(&self) -> String {
-        match self {
-            Symbolic::Transform(m) => m.latex(),
-            Symbolic::Jacobian(j) => j.latex(),
-        }
+        tables
     }
 }
 
@@ -85,7 +47,7 @@ pub fn symbolic_block(
     ui: &mut egui::Ui,
     lang: Lang,
     title: &str,
-    m: Symbolic<'_>,
+    m: &SymbolicTable,
     joint: Option<usize>,
     highlighted: bool,
 ) -> bool {
@@ -106,7 +68,7 @@ pub fn symbolic_block(
                     .on_hover_text(text(lang, Key::CopyAsLatex))
                     .clicked()
                 {
-                    ui.ctx().copy_text(m.latex());
+                    ui.ctx().copy_text(m.latex.clone());
                 }
             });
             symbolic_body(ui, lang, title, m, joint);
@@ -120,12 +82,12 @@ pub fn symbolic_block(
 const GAP: f32 = 14.0;
 
 /// Each entry's text as drawn, column by column, and whether it is the "too long" note.
-fn entry_texts(lang: Lang, m: Symbolic<'_>) -> Vec<(String, bool)> {
-    (0..m.cols())
-        .flat_map(move |c| (0..m.rows()).map(move |r| m.entry(r, c)))
-        .map(|entry| match entry.text() {
-            EntryText::Shown { plain, .. } => (plain.to_string(), false),
-            EntryText::TooLong { terms } => (fill(lang, Key::SymbolicTooLong, &[&terms]), true),
+fn entry_texts(lang: Lang, m: &SymbolicTable) -> Vec<(String, bool)> {
+    (0..m.cols)
+        .flat_map(move |c| (0..m.rows).filter_map(move |r| m.entry(r, c)))
+        .map(|entry| match &entry.text {
+            EntryText::Shown { plain, .. } => (plain.clone(), false),
+            EntryText::TooLong { terms } => (fill(lang, Key::SymbolicTooLong, &[terms]), true),
         })
         .collect()
 }
@@ -149,11 +111,11 @@ fn symbolic_body(
     ui: &mut egui::Ui,
     lang: Lang,
     title: &str,
-    m: Symbolic<'_>,
+    m: &SymbolicTable,
     joint: Option<usize>,
 ) {
     let texts = entry_texts(lang, m);
-    let rows = m.rows();
+    let rows = m.rows;
     let full = egui::TextStyle::Monospace.resolve(ui.style());
     let room = style::room(ui);
     let mut best: Option<(egui::FontId, Vec<std::ops::Range<usize>>)> = None;
@@ -180,7 +142,7 @@ fn symbolic_body(
     let Some((font, blocks)) = best else {
         return;
     };
-    let hot = |c: usize, r: usize| joint.is_some_and(|j| m.entry(r, c).depends_on(j));
+    let hot = |c: usize, r: usize| joint.is_some_and(|j| m.depends_on(r, c, j));
     let cells = Cells {
         texts: &texts,
         rows,

@@ -1,6 +1,7 @@
 //! The lazily loaded modules: the URDF module (fetched by the visit's first URDF file or
-//! download) and the collision check's use of it (dist/urdf/ holds the collision library;
-//! the page's own wasm does not), with its state and retry.
+//! download), the collision check's use of it (dist/urdf/ holds the collision library;
+//! the page's own wasm does not), with its state and retry, and the symbolic matrices it
+//! makes (the page's own wasm holds none of the symbolic algebra).
 
 use std::cell::{Cell, RefCell};
 
@@ -8,6 +9,9 @@ use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
 use super::{js_error_text, wake};
+use crate::app::platform::symbolic::Tables;
+use armlab_core::symbolic::EntryText;
+use armlab_core::symbolic_tables::SymbolicTables;
 
 thread_local! {
     /// The URDF module's import: started by the first URDF file or download, kept for the
@@ -17,6 +21,8 @@ thread_local! {
     static MODULE_FAILURES: Cell<u32> = const { Cell::new(0) };
     /// The collision check's side of the module: its `collide_parts` once loaded.
     static COLLIDE: RefCell<CollideModule> = const { RefCell::new(CollideModule::Idle) };
+    /// The symbolic tables of the robot last asked for (its robot file) and where they are.
+    static SYMBOLIC: RefCell<Option<(String, Tables)>> = const { RefCell::new(None) };
 }
 
 /// The URDF module's glue, beside the page (tools/setup.sh, `build_urdf_module`).
@@ -171,4 +177,70 @@ pub fn retry_collision_module() {
             *c = CollideModule::Idle;
         }
     });
+}
+
+/// The symbolic tables of `robot`, from the module: the first call for a robot starts
+/// making them (and loading the module) and answers [`Tables::Loading`], as every call does
+/// until the answer is there.
+pub fn symbolic_tables(robot: &armlab_core::Robot) -> Tables {
+    let file = armlab_core::robot_to_json(robot);
+    let known = SYMBOLIC.with(|s| match &*s.borrow() {
+        Some((made_for, tables)) if *made_for == file => Some(tables.clone()),
+        _ => None,
+    });
+    if let Some(tables) = known {
+        return tables;
+    }
+    SYMBOLIC.with(|s| *s.borrow_mut() = Some((file.clone(), Tables::Loading)));
+    wasm_bindgen_futures::spawn_local(async move {
+        let answer = match urdf_module(|| ()).await {
+            Ok(module) => call_urdf_module(&module, "symbolic_tables", &[&file]).and_then(|text| {
+                SymbolicTables::from_text(&text).ok_or_else(|| "unreadable tables".to_string())
+            }),
+            Err(e) => Err(e),
+        };
+        let tables = match answer {
+            Ok(tables) => Tables::Ready(std::rc::Rc::new(tables)),
+            Err(e) => Tables::Failed(e),
+        };
+        SYMBOLIC.with(|s| {
+            // The robot may have changed meanwhile: its own request is under way.
+            if let Some((made_for, state)) = &mut *s.borrow_mut()
+                && *made_for == file
+            {
+                *state = tables;
+            }
+        });
+        wake();
+    });
+    Tables::Loading
+}
+
+/// After a failure: the next call asks the module again.
+pub fn retry_symbolic_tables() {
+    SYMBOLIC.with(|s| {
+        let mut s = s.borrow_mut();
+        if matches!(&*s, Some((_, Tables::Failed(_)))) {
+            *s = None;
+        }
+    });
+}
+
+/// The symbolic tables' state for the test hook (see `platform::symbolic`).
+pub fn symbolic_state_text() -> String {
+    SYMBOLIC.with(|s| match &*s.borrow() {
+        None => "idle".to_string(),
+        Some((_, Tables::Loading)) => "loading".to_string(),
+        Some((_, Tables::Failed(why))) => format!("failed: {why}"),
+        Some((_, Tables::Ready(tables))) => {
+            let last = tables.base_from_frames.last();
+            let position: Vec<&str> = (0..3)
+                .filter_map(|r| match &last?.entry(r, 3)?.text {
+                    EntryText::Shown { plain, .. } => Some(plain.as_str()),
+                    EntryText::TooLong { .. } => Some("…"),
+                })
+                .collect();
+            format!("ready: {}", position.join(" | "))
+        }
+    })
 }
