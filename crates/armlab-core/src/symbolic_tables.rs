@@ -96,8 +96,8 @@ const TABLE: char = '\u{1e}';
 impl SymbolicTables {
     /// The tables as text: each table's rows, columns and LaTeX, then per entry its joints,
     /// its plain text and its LaTeX (a too long entry: no text, and its term count), the
-    /// fields apart by [`FIELD`]; the tables (A_i, T_0i, J in the base frame, J in the tool
-    /// frame) apart by [`TABLE`].
+    /// fields apart by the unit separator (U+001F); the tables (A_i, T_0i, J in the base
+    /// frame, J in the tool frame) apart by the record separator (U+001E).
     pub fn to_text(&self) -> String {
         let tables = self.link_transforms.iter().chain(&self.base_from_frames);
         let tables = tables.chain([&self.jacobian_base, &self.jacobian_tool]);
