@@ -125,6 +125,12 @@ pub fn in_tool_frame(
 }
 
 #[cfg(test)]
+// On wasm the tests are wasm_bindgen_tests (run in Node like the other core tests), which
+// clippy does not treat as tests.
+#[cfg_attr(
+    target_arch = "wasm32",
+    allow(clippy::unwrap_used, clippy::expect_used)
+)]
 mod tests {
     use super::*;
     use crate::fk::ForwardKinematics;
@@ -132,6 +138,8 @@ mod tests {
     use crate::presets::preset;
     use crate::rng::SplitMix64;
     use crate::symbolic::symbolic_chain;
+    #[cfg(target_arch = "wasm32")]
+    use wasm_bindgen_test::wasm_bindgen_test as test;
 
     /// Joint values spread over each joint's limits.
     fn some_q(robot: &Robot, rng: &mut SplitMix64) -> Vec<f64> {

@@ -193,8 +193,16 @@ pub fn symbolic_tables(robot: &Robot) -> SymbolicTables {
 }
 
 #[cfg(test)]
+// On wasm the tests are wasm_bindgen_tests (run in Node like the other core tests), which
+// clippy does not treat as tests.
+#[cfg_attr(
+    target_arch = "wasm32",
+    allow(clippy::unwrap_used, clippy::expect_used)
+)]
 mod tests {
     use super::*;
+    #[cfg(target_arch = "wasm32")]
+    use wasm_bindgen_test::wasm_bindgen_test as test;
 
     /// Each table entry says what the expression says: its text, its joints (one by one)
     /// and the matrix's LaTeX.
