@@ -1,4 +1,4 @@
-//! The DH editor that keeps the arm, the DH-table exercise, predict then reveal, and robot files with keep-out boxes.
+//! The DH editor that keeps the arm, its cells and column heads, the A_i formula, the frames' names, the DH-table exercise (its framing, labels and checks), predict then reveal, and robot files with keep-out boxes.
 
 use super::*;
 
