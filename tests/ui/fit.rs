@@ -312,13 +312,7 @@ fn on_a_projector_the_replay_of_a_solve_fits_its_column() {
 #[test]
 fn at_1366x768_the_symbolic_t04_to_t06_show_whole_in_their_column() {
     let mut h = harness_at("#robot=ur10", [1366.0, 768.0]);
-    for fold in ["Tool orientation", "Jacobian"] {
-        h.get_by_label(fold).click();
-        h.run_steps(2);
-    }
-    h.get_by_label("symbolic").click();
-    h.run_steps(2);
-    let panel = h.get_by_label("symbolic").rect().center();
+    let panel = show_symbolic(&mut h);
     let view = h.state().viewport().rect().expect("a view");
     let right = 1366.0 - armlab::app::panels::layout::EDGE_TAB_WIDTH;
     for title in ["T_04", "T_05", "T_06"] {

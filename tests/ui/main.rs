@@ -184,6 +184,18 @@ fn click_at(h: &mut Harness<'_, ArmLabApp>, at: egui::Pos2) {
     }
 }
 
+/// Folds the tool orientation and the Jacobian and ticks "symbolic": the symbolic
+/// matrices come into sight. Returns a point over the Matrices panel to scroll it.
+fn show_symbolic(h: &mut Harness<'_, ArmLabApp>) -> egui::Pos2 {
+    for fold in ["Tool orientation", "Jacobian"] {
+        h.get_by_label(fold).click();
+        h.run_steps(2);
+    }
+    h.get_by_label("symbolic").click();
+    h.run_steps(2);
+    h.get_by_label("symbolic").rect().center()
+}
+
 fn type_into_cell(h: &mut Harness<'_, ArmLabApp>, index: usize, text: &str) {
     let cells: Vec<_> = h.query_all_by_role(Role::TextInput).collect();
     cells[index].focus();

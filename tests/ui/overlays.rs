@@ -167,16 +167,9 @@ fn every_ur10_branch_is_listed_and_a_click_on_its_ghost_moves_the_arm_there() {
 #[test]
 fn the_rrr_symbolic_t03_reads_like_the_lecture_and_highlights_the_hovered_joint() {
     let mut h = harness("#robot=rrr&panels=joints,matrices");
-    // The orientation and the Jacobian folded: the symbolic matrices come into sight.
-    for fold in ["Tool orientation", "Jacobian"] {
-        h.get_by_label(fold).click();
-        h.run_steps(2);
-    }
-    h.get_by_label("symbolic").click();
-    h.run_steps(2);
+    let panel = show_symbolic(&mut h);
     // T_03 is below the fold, where blocks are not laid out: the panel is scrolled to it,
     // as a person would, and back to the top.
-    let panel = h.get_by_label("symbolic").rect().center();
     assert!(
         h.query_by_label("c1(222.1 c2 + 136.2 c23)").is_none(),
         "T_03 out of sight is not laid out"
