@@ -405,15 +405,10 @@ impl Sentence for Verdict {
     }
 }
 
-/// An angle of a table cell as the table shows it: whole degrees in (−180°, 180°].
+/// An angle of a table cell in degrees in (−180°, 180°], to the table's 0.01 as its lengths.
 fn degrees(radians: f64) -> String {
-    let mut d = radians.to_degrees().round() as i64 % 360;
-    if d > 180 {
-        d -= 360;
-    } else if d <= -180 {
-        d += 360;
-    }
-    format!("{d}°")
+    let d = armlab_core::angles::wrap_to_pi(radians).to_degrees();
+    format!("{}°", cell_length(d))
 }
 
 /// A length of a table cell to the table's 0.01: a solved length carries rounding noise.
