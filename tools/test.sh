@@ -48,7 +48,7 @@ same_count() { # same_count NATIVE WASM WHAT: the wasm run of a suite passed as 
 
 # The library crates (everything but the app and the JS package): they build without the
 # GUI, natively and as wasm; their tests run both ways in equal numbers.
-LIBS=(-p armlab-core -p armlab-text -p armlab-session -p armlab-api -p armlab-urdf -p armlab-bench)
+LIBS=(-p armlab-core -p armlab-text -p armlab-session -p armlab-api -p armlab-urdf -p armlab-bench -p armlab-room)
 
 run fmt cargo fmt --all --check
 run clippy-native cargo clippy --workspace --all-targets --features armlab-js/urdf,armlab-bench/frame -- -D warnings
@@ -58,7 +58,7 @@ run clippy-wasm-libs cargo clippy --target wasm32-unknown-unknown "${LIBS[@]}" -
 # The manifests keep the boundaries (crates/armlab-core/Cargo.toml names no GUI, web or
 # text crate); this checks it a second time, on what cargo resolves and on the sources.
 step "the core has no GUI, web or text dependency; no library has a GUI or web one"
-for lib in armlab-core armlab-text armlab-session armlab-api armlab-urdf armlab-bench; do
+for lib in armlab-core armlab-text armlab-session armlab-api armlab-urdf armlab-bench armlab-room; do
   # The tree first, so that a failing cargo tree fails here instead of matching nothing.
   tree="$(cargo tree -p "$lib" -e normal --prefix none)"
   if grep -E '^(egui|eframe|wgpu|web-sys|wasm-bindgen|js-sys)[ -]' <<<"$tree"; then
@@ -129,7 +129,7 @@ add ui
 at "install wasm-bindgen-cli (in the background)"
 await_background wasm-bindgen
 run libs-wasm cargo test --profile wasm-test "${LIBS[@]}" --tests --target wasm32-unknown-unknown
-same_count libs-native libs-wasm "the libraries' tests (core, text, session, JSON API, URDF, benchmarks)"
+same_count libs-native libs-wasm "the libraries' tests (core, text, session, JSON API, URDF, benchmarks, lecture-room protocol)"
 add libs-wasm
 
 say "the JS API in Node"
