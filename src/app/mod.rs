@@ -25,6 +25,7 @@ pub mod hook;
 pub mod page;
 pub mod panels;
 pub mod platform;
+pub mod room;
 pub mod screen_points;
 pub mod state;
 pub mod view3d;
@@ -32,10 +33,11 @@ pub mod widgets;
 
 use armlab_session::session::Session;
 use armlab_session::settings::PanelKind;
-use panels::{ik, joints, layout, matrices, motion, robot, shell, top_bar};
+use panels::{class, ik, joints, layout, matrices, motion, robot, shell, top_bar};
 use platform::clock;
 use platform::clock::FrameTime;
 use screen_points::ScreenPoints;
+use state::classroom::{ClassLink, Classroom, split_class_link};
 use state::model::{Message, Model};
 use state::trf;
 use widgets::style;
@@ -72,6 +74,12 @@ pub struct ArmLabApp {
     timing: FrameTime,
     frame_ms: std::collections::VecDeque<FrameTime>,
     frame: u64,
+    /// The lecture room as this page takes part in it.
+    classroom: Classroom,
+    /// The lecture room's bar and windows.
+    class_panel: class::ClassPanel,
+    /// A link's `class=` part waiting for the page to handle it.
+    class_link: Option<ClassLink>,
     /// Where the native app keeps the last session (set by `main`; none in tests).
     #[cfg(not(target_arch = "wasm32"))]
     session_file: Option<std::path::PathBuf>,
@@ -102,10 +110,13 @@ impl ArmLabApp {
         app.viewport = view3d::Viewport::new(cc.wgpu_render_state.as_ref());
         app.touch = preferences.touch;
         app.model.set_lang(preferences.lang);
-        if link.trim_start_matches('#').trim().is_empty() {
+        // A link with only a class part (`#class=…`) opens the last session in the class.
+        let (class, link) = split_class_link(link);
+        app.class_link = class;
+        if link.is_empty() {
             app.open_stored(stored.unwrap_or_default());
         } else {
-            app.open_hash(link);
+            app.open_hash(&link);
         }
         app
     }
@@ -130,6 +141,9 @@ impl ArmLabApp {
             timing: FrameTime::default(),
             frame_ms: std::collections::VecDeque::new(),
             frame: 0,
+            classroom: Classroom::default(),
+            class_panel: class::ClassPanel::default(),
+            class_link: None,
             #[cfg(not(target_arch = "wasm32"))]
             session_file: None,
         }
@@ -137,8 +151,14 @@ impl ArmLabApp {
 
     /// Opens a URL hash; on garbage, shows the reason and falls back to the default
     /// robot. An empty hash changes nothing. The reason reads in the language the link
-    /// names (`lang=`), when it names one the app has.
+    /// names (`lang=`), when it names one the app has. A `class=` part waits for the page
+    /// ([`ArmLabApp::take_class_link`]); the rest opens.
     pub fn open_hash(&mut self, hash: &str) {
+        let (class, rest) = split_class_link(hash);
+        if class.is_some() {
+            self.class_link = class;
+        }
+        let hash = rest.as_str();
         match Session::from_hash(hash) {
             Ok(Some(session)) => self.model.open(session),
             Ok(None) => {}
@@ -250,6 +270,21 @@ impl ArmLabApp {
         &self.frame_ms
     }
 
+    /// The lecture room as this page takes part in it.
+    pub fn classroom(&self) -> &Classroom {
+        &self.classroom
+    }
+
+    /// The lecture room, to feed it what the server said (the page, tests).
+    pub fn classroom_mut(&mut self) -> &mut Classroom {
+        &mut self.classroom
+    }
+
+    /// A link's `class=` part the page has not handled yet.
+    pub fn take_class_link(&mut self) -> Option<ClassLink> {
+        self.class_link.take()
+    }
+
     /// Where the native app keeps the last session when it closes.
     #[cfg(not(target_arch = "wasm32"))]
     pub fn set_session_file(&mut self, path: Option<std::path::PathBuf>) {
@@ -289,6 +324,8 @@ impl ArmLabApp {
         self.points.clear();
         let ctx = ui.ctx().clone();
         self.touch |= ctx.input(|i| i.any_touches());
+        #[cfg(target_arch = "wasm32")]
+        page::pump_room(self, &ctx);
         let screen = screen(&ctx);
         style::install(&ctx, self.model.settings().presentation, self.touch, screen);
         let plan = layout::plan(
@@ -304,6 +341,8 @@ impl ArmLabApp {
             if let Some(action) = top_bar::ui(&mut self.model, ui, narrow, &mut self.points) {
                 self.viewport.apply(action, ui.ctx());
             }
+            self.class_panel
+                .bar(&mut self.classroom, &mut self.model, ui, &mut self.points);
         });
         match plan.mode {
             layout::Mode::Wide => {
@@ -332,6 +371,8 @@ impl ArmLabApp {
                     &mut self.timing,
                 );
             });
+        self.class_panel
+            .windows(&mut self.classroom, &mut self.model, &ctx, &mut self.points);
         #[cfg(not(target_arch = "wasm32"))]
         self.panels.robot.show_file_dialog(&mut self.model, &ctx);
         // Last, once every text of the frame has its glyphs in the font atlas.

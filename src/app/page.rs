@@ -6,7 +6,7 @@
 use wasm_bindgen::JsCast;
 
 use crate::app::platform::clock::now_ms;
-use crate::app::platform::web::{self, hook, storage};
+use crate::app::platform::web::{self, hook, room, storage};
 use crate::app::{ArmLabApp, Preferences};
 
 /// Starts the app on `#armlab_canvas`; replaces the loading text by the app, or by a
@@ -55,6 +55,7 @@ pub fn start() {
                 web::set_message("", false);
                 hook::install(&window);
                 storage::install_hashchange(&window);
+                room::probe(&window);
             }
             Err(e) => {
                 let detail = e.as_string().unwrap_or_else(|| format!("{e:?}"));
@@ -96,7 +97,7 @@ fn browser_preferences(window: &web_sys::Window) -> Preferences {
 /// [`storage::store`] describes (the hash is built only when it may be written).
 pub fn store_hash(app: &ArmLabApp, ctx: &egui::Context) {
     storage::store(
-        || app.hash(),
+        || app.link_in_room(),
         || app.stored_session(),
         app.model().robot_changes(),
         ctx,
@@ -114,6 +115,7 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
         app.open_hash(&hash);
     }
     let app = &*app;
+    hook::publish_classroom(app.classroom_json());
     hook::publish(
         ctx,
         || app.state_json(),
@@ -123,4 +125,45 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
         app.frame_times().back().copied(),
         start,
     );
+}
+
+/// The lecture room, each frame before the panels: a link's `class=` part once the page
+/// knows whether a classroom server serves it, the connection kept as the room wants it,
+/// the server's messages applied, and the lecturer's state and every waiting message sent.
+pub fn pump_room(app: &mut ArmLabApp, ctx: &egui::Context) {
+    if !app.classroom().available() && room::available() {
+        app.classroom_mut().set_available(true);
+    }
+    if room::answered()
+        && let Some(link) = app.take_class_link()
+    {
+        app.open_class_link(link, room::token);
+    }
+    let classroom = app.classroom();
+    let wanted = classroom.wants_connection().then(|| classroom.generation());
+    let (events, wait) = room::keep(wanted);
+    for event in events {
+        match event {
+            room::SocketEvent::Opened => {
+                let state = app.room_state();
+                app.classroom_mut().on_open(state);
+            }
+            room::SocketEvent::Text(text) => {
+                let Ok(message) = armlab_room::decode_server(&text) else {
+                    continue;
+                };
+                if let Some(effect) = app.classroom_mut().receive(message) {
+                    app.apply_room_effect(effect, room::keep_token);
+                }
+            }
+            room::SocketEvent::Closed => app.classroom_mut().on_close(),
+        }
+    }
+    let wait = wait.or_else(|| app.tick_room(now_ms()));
+    for message in app.classroom_mut().take_outbox() {
+        room::send(&message.to_json());
+    }
+    if let Some(ms) = wait {
+        ctx.request_repaint_after(std::time::Duration::from_secs_f64(ms / 1e3));
+    }
 }

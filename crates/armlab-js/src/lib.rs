@@ -299,6 +299,18 @@ fn symbolic_tables_json(robot: &str) -> Result<String, String> {
     Ok(armlab_core::symbolic_tables::symbolic_tables(&robot).to_text())
 }
 
+/// For the lecture room's join window (the page loads this module when a lecturer's
+/// page shows it): the QR code of `text` (the join link) as lines of `1` (dark) and `0`
+/// (light) modules (`armlab_room::QrModules::to_text`); "" when the text is too long for
+/// a QR code. Feature `urdf`.
+#[cfg(feature = "urdf")]
+#[wasm_bindgen(skip_typescript)]
+pub fn qr_code(text: String) -> String {
+    armlab_room::QrModules::encode(&text)
+        .map(|code| code.to_text())
+        .unwrap_or_default()
+}
+
 /// For the page's collision check (the page loads this module only once checks are on):
 /// a request of numbers (a `Float64Array` or an array of numbers) as
 /// `kinematics::collision_wire` writes it (the posed parts, the floor switch and the

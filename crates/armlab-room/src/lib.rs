@@ -42,6 +42,7 @@
 mod decode;
 mod ids;
 mod message;
+mod qr;
 
 pub use decode::{
     DecodeError, Field, MAX_CLIENT_BYTES, MAX_SERVER_BYTES, decode_client, decode_server,
@@ -54,3 +55,4 @@ pub use message::{
     MAX_NICKNAME_CHARS, MAX_NUMBER, MAX_OPTIONS, MAX_POINT_METRES, MAX_PROMPT_CHARS,
     MAX_UNIT_CHARS, Question, Refusal, ServerMessage, State,
 };
+pub use qr::QrModules;

@@ -358,7 +358,7 @@ fn fine_rail(ui: &egui::Ui, model: &Model) -> f32 {
 
 /// A joint's value as its slider shows it: the factor from the model's unit, the suffix
 /// and the decimals (none: egui's own).
-fn shown(model: &Model, joint: &Joint) -> (f64, String, Option<usize>) {
+pub(crate) fn shown(model: &Model, joint: &Joint) -> (f64, String, Option<usize>) {
     match joint.kind {
         JointKind::Revolute if model.settings().degrees => {
             (180.0 / std::f64::consts::PI, "°".into(), Some(1))

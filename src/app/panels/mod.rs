@@ -2,6 +2,7 @@
 //! for changes, the folds each panel holds, and the layout that places the panels for the
 //! screen.
 
+pub mod class;
 pub mod convention;
 pub mod exercise;
 #[cfg(not(target_arch = "wasm32"))]

@@ -3,6 +3,7 @@
 //! is tested without a window.
 
 pub mod branches;
+pub mod classroom;
 pub mod model;
 pub mod motion_lab;
 pub mod notebook;

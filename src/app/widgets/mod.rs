@@ -7,5 +7,6 @@ pub mod draft;
 pub mod math;
 pub mod numbers;
 pub mod plot;
+pub mod qr;
 pub mod style;
 pub mod toggles;

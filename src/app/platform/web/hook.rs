@@ -34,6 +34,8 @@ thread_local! {
     static FRAMES: RefCell<Vec<FrameTime>> = const { RefCell::new(Vec::new()) };
     /// Set by `window.armlab.panicForTest()`: the next frame panics.
     static PANIC_REQUESTED: Cell<bool> = const { Cell::new(false) };
+    /// `window.armlab.classroom()`'s JSON, as the last frame wrote it.
+    static CLASSROOM: RefCell<String> = const { RefCell::new(String::new()) };
     /// `performance.now()` at the first drawn frame.
     static FIRST_FRAME: RefCell<Option<f64>> = const { RefCell::new(None) };
 }
@@ -92,6 +94,11 @@ pub fn publish(
     }
 }
 
+/// Publishes the lecture room's state for `window.armlab.classroom()`.
+pub fn publish_classroom(json: String) {
+    CLASSROOM.with(|c| *c.borrow_mut() = json);
+}
+
 /// Sets `window.armlab` (docs/test-hook.md lists its functions).
 pub fn install(window: &web_sys::Window) {
     let obj = js_sys::Object::new();
@@ -113,6 +120,8 @@ pub fn install(window: &web_sys::Window) {
         FIRST_FRAME.with(|f| f.borrow().map_or(JsValue::NULL, JsValue::from))
     });
     set_field(&obj, "firstFrameAt", &first.into_js_value());
+    let classroom = Closure::<dyn Fn() -> String>::new(|| CLASSROOM.with(|c| c.borrow().clone()));
+    set_field(&obj, "classroom", &classroom.into_js_value());
     // The wasm memory's size in bytes (for the soak test: it only grows, in steps).
     let memory = Closure::<dyn Fn() -> JsValue>::new(|| {
         js_sys::Reflect::get(&wasm_bindgen::memory(), &"buffer".into())

@@ -6,11 +6,13 @@
 //! - [`storage`]: the address bar and localStorage.
 //! - [`hook`]: `window.armlab`, the browser tests' hook.
 //! - [`files`]: downloads, the file chooser, dropped files.
-//! - [`modules`]: the lazily loaded modules (URDF, collisions).
+//! - [`modules`]: the lazily loaded modules (URDF, collisions, symbolic matrices, QR codes).
+//! - [`room`]: the lecture room's connection to a classroom server.
 
 pub mod files;
 pub mod hook;
 pub mod modules;
+pub mod room;
 pub mod storage;
 
 use std::cell::{Cell, RefCell};

@@ -1,7 +1,8 @@
 //! The lazily loaded modules: the URDF module (fetched by the visit's first URDF file or
 //! download), the collision check's use of it (dist/urdf/ holds the collision library;
-//! the page's own wasm does not), with its state and retry, and the symbolic matrices it
-//! makes (the page's own wasm holds none of the symbolic algebra).
+//! the page's own wasm does not), with its state and retry, and the symbolic matrices and
+//! the join link's QR code it makes (the page's own wasm holds neither the symbolic
+//! algebra nor a QR encoder).
 
 use std::cell::{Cell, RefCell};
 
@@ -10,8 +11,11 @@ use wasm_bindgen::prelude::*;
 
 use super::{js_error_text, wake};
 use crate::app::platform::symbolic::Tables;
+use std::rc::Rc;
+
 use armlab_core::symbolic::EntryText;
 use armlab_core::symbolic_tables::SymbolicTables;
+use armlab_room::QrModules;
 
 thread_local! {
     /// The URDF module's import: started by the first URDF file or download, kept for the
@@ -23,6 +27,9 @@ thread_local! {
     static COLLIDE: RefCell<CollideModule> = const { RefCell::new(CollideModule::Idle) };
     /// The symbolic tables of the robot last asked for (its robot file) and where they are.
     static SYMBOLIC: RefCell<Option<(String, Tables)>> = const { RefCell::new(None) };
+    /// The QR code of the text last asked for: `None` inside while it is being made, or
+    /// when it could not be.
+    static QR: RefCell<Option<(String, Option<Rc<QrModules>>)>> = const { RefCell::new(None) };
 }
 
 /// The URDF module's glue, beside the page (tools/setup.sh, `build_urdf_module`).
@@ -214,6 +221,37 @@ pub fn symbolic_tables(robot: &armlab_core::Robot) -> Tables {
         wake();
     });
     Tables::Loading
+}
+
+/// The QR code of `text`, from the module: the first call for a text starts making it
+/// (and loading the module) and answers `None`, as every call does until it is there. A
+/// text too long for a QR code, or a module that failed, stays `None` for that text.
+pub fn qr_code(text: &str) -> Option<Rc<QrModules>> {
+    let known = QR.with(|q| match &*q.borrow() {
+        Some((made_for, code)) if made_for == text => Some(code.clone()),
+        _ => None,
+    });
+    if let Some(code) = known {
+        return code;
+    }
+    let text = text.to_string();
+    QR.with(|q| *q.borrow_mut() = Some((text.clone(), None)));
+    wasm_bindgen_futures::spawn_local(async move {
+        let code = match urdf_module(|| ()).await {
+            Ok(module) => call_urdf_module(&module, "qr_code", &[&text]).ok(),
+            Err(_) => None,
+        };
+        let code = code.and_then(|c| QrModules::from_text(&c)).map(Rc::new);
+        QR.with(|q| {
+            if let Some((made_for, state)) = &mut *q.borrow_mut()
+                && *made_for == text
+            {
+                *state = code;
+            }
+        });
+        wake();
+    });
+    None
 }
 
 /// After a failure: the next call asks the module again.

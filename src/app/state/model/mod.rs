@@ -27,6 +27,7 @@ mod display;
 mod drag;
 mod exercise;
 mod explore;
+mod follow;
 
 pub use drag::{Replay, Rescue};
 pub use exercise::ExerciseState;
