@@ -360,6 +360,8 @@ impl ArmLabApp {
         // No fill: the 3D view's picture covers the whole panel (and without a renderer the
         // view fills it itself). A fill under it would be a screen of pixels drawn for
         // nothing in every frame: about a fifth of the page's drawing with software WebGL.
+        let predictions = self.room_predictions();
+        self.viewport.set_predictions(predictions);
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
             .show(ui, |ui| {

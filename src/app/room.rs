@@ -3,7 +3,7 @@
 //! was refused), and a link's `class=` part. The socket is the page's
 //! (`crate::app::page`); the room's logic is [`crate::app::state::classroom`].
 
-use armlab_room::{Refusal, State};
+use armlab_room::{Answer, Question, Refusal, State};
 use armlab_session::session::Session;
 use armlab_session::settings::CameraPose;
 use armlab_text::Key;
@@ -12,6 +12,7 @@ use crate::app::ArmLabApp;
 use crate::app::state::classroom::{ClassLink, Classroom, Effect, Role};
 use crate::app::state::model::{Message, Model};
 use crate::app::state::tr;
+use crate::app::view3d::predictions::Predictions;
 
 /// The digits a camera keeps in the room's states (as a link writes it).
 const CAMERA_DECIMALS: usize = 4;
@@ -94,6 +95,24 @@ impl ArmLabApp {
             "revealed": room.truth().is_some(),
         })
         .to_string()
+    }
+
+    /// The room's predicted tool points in the robot's units, with the truth once
+    /// revealed: empty unless the open question is a point question.
+    pub fn room_predictions(&self) -> Predictions {
+        let room = &self.classroom;
+        if !matches!(room.question(), Some(Question::Point { .. })) {
+            return Predictions::default();
+        }
+        let metres = self.model.robot().length_unit.in_metres();
+        let point = |answer: &Answer| match answer {
+            Answer::Point { at } => Some(at.map(|v| v / metres)),
+            _ => None,
+        };
+        Predictions {
+            points: room.answers().iter().filter_map(point).collect(),
+            truth: room.truth().as_ref().and_then(point),
+        }
     }
 
     /// The link as the address bar shows it: in a class, its code first, so that a reload

@@ -33,6 +33,7 @@ const SCREENS: [([f32; 2], f32); 6] = [
 #[path = "../app_harness/mod.rs"]
 mod app_harness;
 mod basics;
+mod classroom;
 mod exercise;
 mod fit;
 mod motion;

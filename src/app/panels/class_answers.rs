@@ -7,7 +7,7 @@ use armlab_text::Key;
 
 use super::{Asked, ClassPanel};
 use crate::app::screen_points::ScreenPoints;
-use crate::app::state::classroom::{Classroom, Role};
+use crate::app::state::classroom::{Classroom, Role, mean_and_spread};
 use crate::app::state::model::Model;
 use crate::app::state::{tr, trf};
 use crate::app::widgets::style;
@@ -271,25 +271,6 @@ fn bars(ui: &mut egui::Ui, options: &[String], counts: &[usize], right: Option<u
             ui.end_row();
         }
     });
-}
-
-/// The mean of points and their spread: the root-mean-square distance from the mean.
-pub fn mean_and_spread(points: &[[f64; 3]]) -> Option<([f64; 3], f64)> {
-    if points.is_empty() {
-        return None;
-    }
-    let n = points.len() as f64;
-    let mut mean = [0.0; 3];
-    for p in points {
-        for k in 0..3 {
-            mean[k] += p[k] / n;
-        }
-    }
-    let squares: f64 = points
-        .iter()
-        .map(|p| (0..3).map(|k| (p[k] - mean[k]).powi(2)).sum::<f64>())
-        .sum();
-    Some((mean, (squares / n).sqrt()))
 }
 
 /// A point in metres as text.

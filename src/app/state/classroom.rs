@@ -469,6 +469,25 @@ pub fn shown_code(code: &str) -> String {
     }
 }
 
+/// The mean of points and their spread: the root-mean-square distance from the mean.
+pub fn mean_and_spread(points: &[[f64; 3]]) -> Option<([f64; 3], f64)> {
+    if points.is_empty() {
+        return None;
+    }
+    let n = points.len() as f64;
+    let mut mean = [0.0; 3];
+    for p in points {
+        for k in 0..3 {
+            mean[k] += p[k] / n;
+        }
+    }
+    let squares: f64 = points
+        .iter()
+        .map(|p| (0..3).map(|k| (p[k] - mean[k]).powi(2)).sum::<f64>())
+        .sum();
+    Some((mean, (squares / n).sqrt()))
+}
+
 /// Whether `message` says who a page is (sent once per connection).
 fn is_hello(message: &ClientMessage) -> bool {
     matches!(

@@ -17,6 +17,7 @@ pub mod marker;
 mod motion;
 pub mod overlay;
 pub mod paths;
+pub mod predictions;
 pub mod scene;
 pub mod workspace;
 
@@ -81,6 +82,8 @@ pub struct Viewport {
     /// own path from the press, never by egui's delta from wherever the pointer was
     /// last seen (a click with no move before it would jump by that distance).
     pointer: Option<egui::Pos2>,
+    /// The room's predicted tool points, drawn while a point question is open.
+    predictions: predictions::Predictions,
 }
 
 /// A press released within this distance (points) of where it began is a click.
@@ -106,6 +109,7 @@ impl Viewport {
             press: None,
             labels: Vec::new(),
             pointer: None,
+            predictions: predictions::Predictions::default(),
         }
     }
 
@@ -123,6 +127,11 @@ impl Viewport {
     /// renderer).
     pub fn scene_passes(&self) -> u64 {
         self.renderer.as_ref().map_or(0, SceneRenderer::passes)
+    }
+
+    /// Sets the room's predicted tool points to draw (none outside a point question).
+    pub fn set_predictions(&mut self, predictions: predictions::Predictions) {
+        self.predictions = predictions;
     }
 
     /// The view's rectangle last frame (egui points).
@@ -515,6 +524,7 @@ impl Viewport {
             convention::instances(model, model.robot().reach(), &mut scene.instances);
         }
         ghosts::instances(model, &mut scene.instances);
+        predictions::instances(&self.predictions, model.robot().reach(), &mut scene.instances);
         motion::trail_lines(model, &mut scene.lines);
         motion::keep_out_instances(model, &mut scene.instances);
         paths::scene_parts(model, &mut scene.lines, &mut scene.instances);
