@@ -20,6 +20,9 @@ use tower_http::services::ServeDir;
 /// the protocol's limit and this one a message is read, dropped and counted.
 pub const MAX_FRAME_BYTES: usize = 1024 * 1024;
 
+/// The read buffer of a WebSocket.
+const SOCKET_BUFFER_BYTES: usize = 4096;
+
 /// The routes, with the page served from `dist` when the server has one.
 pub fn router(server: Arc<Server>) -> Router {
     let dist = server.config.dist.clone();
@@ -76,7 +79,12 @@ async fn ws(
     State(server): State<Arc<Server>>,
 ) -> Response {
     let ip = client_ip(&server, addr, &headers);
+    // Small buffers: tungstenite's defaults (128 KiB each way) would cost a lecture of
+    // 1,000 students a quarter of a gigabyte; its messages are a few hundred bytes, and
+    // each is flushed as it is sent.
     upgrade
+        .read_buffer_size(SOCKET_BUFFER_BYTES)
+        .write_buffer_size(0)
         .max_message_size(MAX_FRAME_BYTES)
         .max_frame_size(MAX_FRAME_BYTES.max(MAX_CLIENT_BYTES))
         .on_upgrade(move |socket| Connection::new(server, ip).run(socket))
