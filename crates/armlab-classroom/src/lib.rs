@@ -16,6 +16,7 @@ pub mod server;
 pub use config::Config;
 pub use server::Server;
 
+use axum::serve::ListenerExt;
 use std::net::SocketAddr;
 use std::sync::Arc;
 use tokio::task::JoinHandle;
@@ -64,6 +65,11 @@ pub async fn start(config: Config) -> std::io::Result<Running> {
     };
     let listener = tokio::net::TcpListener::bind((config.listen, config.port)).await?;
     let addr = listener.local_addr()?;
+    // Each message goes out at once: Nagle's algorithm would hold a state back until the
+    // previous one is acknowledged (up to 40 ms of delayed ACK on Linux).
+    let listener = listener.tap_io(|tcp| {
+        let _ = tcp.set_nodelay(true);
+    });
     let sweep = config.sweep;
     let server = Arc::new(Server::new(config, bus.clone(), instance));
     let app = http::router(server.clone()).into_make_service_with_connect_info::<SocketAddr>();

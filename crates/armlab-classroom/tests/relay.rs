@@ -284,8 +284,9 @@ async fn a_second_lecturer_device_follows_the_first() {
     running.stop();
 }
 
-#[tokio::test]
-async fn after_a_restart_the_lecturers_resume_recreates_the_class() {
+/// A class on a first server with its lecturer's state and a student; then the server
+/// stops. Returns the class's code and token.
+async fn a_class_then_a_stop() -> (String, String) {
     let first = server(config()).await;
     let (mut lecturer, code, token) = lecturer(&first).await;
     lecturer
@@ -307,7 +308,12 @@ async fn after_a_restart_the_lecturers_resume_recreates_the_class() {
         s.closed().await && lecturer.closed().await,
         "the stopped server closes its sockets"
     );
+    (code, token)
+}
 
+#[tokio::test]
+async fn after_a_restart_the_lecturers_resume_recreates_the_class() {
+    let (code, token) = a_class_then_a_stop().await;
     let second = server(config()).await;
     let (_, unknown) = student(&second.ws_url(), &code).await;
     assert_eq!(

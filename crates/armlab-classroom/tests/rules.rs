@@ -77,7 +77,7 @@ async fn oversized_and_malformed_messages_are_dropped_and_the_connection_lives()
             ),
             DropReason::TooLarge,
         ),
-        ("{".to_owned(), DropReason::Malformed),
+        ("\u{7b}".to_owned(), DropReason::Malformed),
         (
             r#"{"type":"Create","admin":true}"#.to_owned(),
             DropReason::Malformed,

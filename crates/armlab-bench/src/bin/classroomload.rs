@@ -112,7 +112,7 @@ type Socket =
 
 async fn connect(url: &str) -> Socket {
     for _ in 0..50 {
-        if let Ok((ws, _)) = tokio_tungstenite::connect_async(url).await {
+        if let Ok((ws, _)) = tokio_tungstenite::connect_async_with_config(url, None, true).await {
             return ws;
         }
         tokio::time::sleep(Duration::from_millis(100)).await;
@@ -123,7 +123,7 @@ async fn connect(url: &str) -> Socket {
 /// A state's number straight from the frame's text: the students' side must not be the
 /// bottleneck it measures (decoding 20,000 messages a second on the same 2 cores).
 fn state_seq(text: &str) -> Option<u32> {
-    if !text.starts_with(r#"{"type":"State""#) {
+    if !text.starts_with("\u{7b}\"type\":\"State\"") {
         return None;
     }
     let digits = text.rsplit("seq=").next()?;
@@ -266,6 +266,20 @@ async fn main() {
     drop(child);
 }
 
+/// The lecturer's drag: `seconds × rate` states at `rate` a second; when each was sent.
+async fn send_states(args: &Args, lecturer: &mut Socket) -> Vec<Instant> {
+    let updates = (args.seconds * args.rate) as u32;
+    let mut sent = Vec::with_capacity(updates as usize);
+    let mut tick = tokio::time::interval(Duration::from_secs_f64(1.0 / args.rate));
+    for seq in 0..updates {
+        tick.tick().await;
+        sent.push(Instant::now());
+        let message = ClientMessage::State { state: link(seq) }.to_json();
+        let _ = lecturer.send(Message::text(message)).await;
+    }
+    sent
+}
+
 async fn run_and_report(
     args: &Args,
     mut lecturer: Socket,
@@ -275,17 +289,9 @@ async fn run_and_report(
     usage_before: Option<(u64, u64)>,
     join_secs: f64,
 ) {
-    let updates = (args.seconds * args.rate) as u32;
-    let period = Duration::from_secs_f64(1.0 / args.rate);
-    let mut sent = Vec::with_capacity(updates as usize);
-    let mut tick = tokio::time::interval(period);
     let start = Instant::now();
-    for seq in 0..updates {
-        tick.tick().await;
-        sent.push(Instant::now());
-        let message = ClientMessage::State { state: link(seq) }.to_json();
-        let _ = lecturer.send(Message::text(message)).await;
-    }
+    let sent = send_states(args, &mut lecturer).await;
+    let updates = sent.len();
     tokio::time::sleep(Duration::from_secs(1)).await;
     let wall = start.elapsed().as_secs_f64();
     let usage_after = pid.and_then(proc_usage);
@@ -304,6 +310,7 @@ async fn run_and_report(
     }
     let delivered: usize = received.iter().map(Vec::len).sum();
     let (ms, missing) = latencies(&sent, &received);
+    // /proc counts CPU time in clock ticks of 1/100 s (USER_HZ on Linux).
     let cpu = match (usage_before, usage_after) {
         (Some((t0, _)), Some((t1, _))) => {
             serde_json::json!((t1 - t0) as f64 / 100.0 / wall * 100.0)
