@@ -93,6 +93,10 @@ apt_unattended() {
   [ "$(id -u)" = 0 ] || sudo -n true 2>/dev/null
 }
 
+# The Debian packages the tests need: Vulkan on the CPU (lavapipe) for the UI tests, the
+# browser for the page's tests, Redis for the classroom server's two-instance test.
+DEBIAN_TEST_PACKAGES=(mesa-vulkan-drivers chromium redis-server)
+
 APT_UPDATED=0
 ensure_apt() {
   local missing=()

@@ -23,10 +23,10 @@ ensure_npm
 in_background wasm-bindgen ensure_wasm_bindgen
 in_background trunk ensure_trunk
 if apt_unattended; then
-  in_background apt ensure_apt mesa-vulkan-drivers chromium
+  in_background apt ensure_apt "${DEBIAN_TEST_PACKAGES[@]}"
 else
-  at "install Debian packages (mesa-vulkan-drivers, chromium)"
-  ensure_apt mesa-vulkan-drivers chromium
+  at "install Debian packages (${DEBIAN_TEST_PACKAGES[*]})"
+  ensure_apt "${DEBIAN_TEST_PACKAGES[@]}"
 fi
 
 snapshots_hash() { # the snapshot images and their contents (new files count too)
@@ -51,7 +51,7 @@ same_count() { # same_count NATIVE WASM WHAT: the wasm run of a suite passed as 
 LIBS=(-p armlab-core -p armlab-text -p armlab-session -p armlab-api -p armlab-urdf -p armlab-bench -p armlab-room)
 
 run fmt cargo fmt --all --check
-run clippy-native cargo clippy --workspace --all-targets --features armlab-js/urdf,armlab-bench/frame -- -D warnings
+run clippy-native cargo clippy --workspace --all-targets --features armlab-js/urdf,armlab-bench/frame,armlab-bench/classroom -- -D warnings
 run clippy-wasm-app cargo clippy --target wasm32-unknown-unknown -p armlab --lib --bins --tests -- -D warnings
 run clippy-wasm-libs cargo clippy --target wasm32-unknown-unknown "${LIBS[@]}" -p armlab-js --features armlab-js/urdf --lib --tests -- -D warnings
 
@@ -121,8 +121,13 @@ add libs-native
 run libs-doc cargo test "${LIBS[@]}" --doc
 add libs-doc
 
-at "install Debian packages (mesa-vulkan-drivers, chromium; in the background)"
+at "install Debian packages (${DEBIAN_TEST_PACKAGES[*]}; in the background)"
 await_background apt
+# The classroom server (not a library: tokio and axum, natively only): its relay, rules
+# and Redis tests on in-process servers (redis-server from Debian), and the fuzz of its
+# message decoding (1,000,000 messages).
+run classroom cargo test -p armlab-classroom
+add classroom
 run ui cargo test -p armlab --lib --test ui --test ui_finnish
 add ui
 

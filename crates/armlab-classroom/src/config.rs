@@ -1,0 +1,93 @@
+//! The server's settings: from the command line, with the durations and limits a test
+//! shortens.
+
+use std::net::{IpAddr, Ipv4Addr};
+use std::path::PathBuf;
+use std::time::Duration;
+
+/// How the server runs.
+#[derive(Clone, Debug)]
+pub struct Config {
+    /// The address to listen on (`127.0.0.1` unless `--listen`; `0.0.0.0` behind a proxy).
+    pub listen: IpAddr,
+    /// The port (`--port`, 8080 by default; 0 picks a free one).
+    pub port: u16,
+    /// The built page to serve at `/` (`--dist`), if any.
+    pub dist: Option<PathBuf>,
+    /// Redis to share classes with other instances (`--redis redis://HOST:PORT`).
+    pub redis: Option<String>,
+    /// A class without a lecturer connected for this long ends (1 h).
+    pub expiry: Duration,
+    /// How often expired classes are looked for (and Redis keys of live ones renewed).
+    pub sweep: Duration,
+    /// Messages a second a lecturer may send (the burst is one second's worth).
+    pub lecturer_rate: f64,
+    /// Messages a second a student (or a connection not yet in a class) may send.
+    pub student_rate: f64,
+    /// Failed joins (unknown code, wrong token) one address may make in a burst…
+    pub join_failures: f64,
+    /// …and how many more it earns a second.
+    pub join_refill: f64,
+    /// The most classes one instance holds.
+    pub max_classes: usize,
+    /// Whether to take the client's address from `X-Forwarded-For` (`--behind-proxy`:
+    /// only when a reverse proxy that sets it is the only way in).
+    pub behind_proxy: bool,
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Self {
+            listen: IpAddr::V4(Ipv4Addr::LOCALHOST),
+            port: 8080,
+            dist: None,
+            redis: None,
+            expiry: Duration::from_secs(3600),
+            sweep: Duration::from_secs(30),
+            lecturer_rate: 30.0,
+            student_rate: 5.0,
+            join_failures: 20.0,
+            join_refill: 0.5,
+            max_classes: 10_000,
+            behind_proxy: false,
+        }
+    }
+}
+
+/// The command line's usage line.
+pub const USAGE: &str = "usage: armlab-classroom [--listen ADDR] [--port P] [--dist DIR] [--redis redis://HOST:PORT] [--behind-proxy] [--expiry-secs S]";
+
+impl Config {
+    /// The settings from command-line arguments (without the program's name).
+    pub fn from_args(args: impl IntoIterator<Item = String>) -> Result<Self, String> {
+        let mut config = Self::default();
+        let mut args = args.into_iter();
+        while let Some(arg) = args.next() {
+            let mut value = |name: &str| args.next().ok_or_else(|| format!("{name} needs a value"));
+            match arg.as_str() {
+                "--listen" => {
+                    let v = value("--listen")?;
+                    config.listen = v
+                        .parse()
+                        .map_err(|_| format!("--listen {v}: not an IP address"))?;
+                }
+                "--port" => {
+                    let v = value("--port")?;
+                    config.port = v.parse().map_err(|_| format!("--port {v}: not a port"))?;
+                }
+                "--dist" => config.dist = Some(PathBuf::from(value("--dist")?)),
+                "--redis" => config.redis = Some(value("--redis")?),
+                "--expiry-secs" => {
+                    let v = value("--expiry-secs")?;
+                    let secs: u64 = v
+                        .parse()
+                        .map_err(|_| format!("--expiry-secs {v}: not a number"))?;
+                    config.expiry = Duration::from_secs(secs);
+                }
+                "--behind-proxy" => config.behind_proxy = true,
+                other => return Err(format!("unknown argument {other}\n{USAGE}")),
+            }
+        }
+        Ok(config)
+    }
+}
