@@ -149,7 +149,7 @@ pub fn pump_room(app: &mut ArmLabApp, ctx: &egui::Context) {
                 app.classroom_mut().on_open(state);
             }
             room::SocketEvent::Text(text) => {
-                let Ok(message) = armlab_room::decode_server(&text) else {
+                let Ok(message) = armlab_room::read_server(&text) else {
                     continue;
                 };
                 if let Some(effect) = app.classroom_mut().receive(message) {

@@ -4,6 +4,7 @@
 
 use armlab::app::ArmLabApp;
 use armlab_room::{Answer, ClientMessage, Question, ServerMessage, State};
+use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 
@@ -50,12 +51,17 @@ fn the_lecturer_starts_a_class_shows_its_code_and_reveals_det_j_beside_the_answe
     arrive(&mut h, ServerMessage::Count { students: 3 });
     // The join window opened with the code large enough for the back of a lecture hall.
     let code = h.get_by_label("K7QH-3MXP").rect();
-    assert!(code.height() >= 50.0, "the code is {:.0} points tall", code.height());
+    assert!(
+        code.height() >= 50.0,
+        "the code is {:.0} points tall",
+        code.height()
+    );
     h.get_by_label("3 students");
     h.snapshot("class_lecturer_1024x768");
-    h.get_by_label("Join link").click();
+    h.get_by_role_and_label(Role::Button, "Join link").click();
     h.run_steps(2);
-    // The lecturer's page sent what it shows.
+    // The lecturer's page sends what it shows (the page ticks the room each frame).
+    h.state_mut().tick_room(1e6);
     assert!(sent(&mut h).iter().any(|m| matches!(m, ClientMessage::State { state } if state.link.starts_with("robot=ur10&q=0.1,-1.2"))));
     h.get_by_label("Ask the room").click();
     h.run_steps(2);
@@ -65,7 +71,9 @@ fn the_lecturer_starts_a_class_shows_its_code_and_reveals_det_j_beside_the_answe
         [ClientMessage::Ask { question }] => question.id(),
         other => panic!("sent {other:?}"),
     };
-    let values = [0.1, 0.12, -0.3].map(|value| Answer::Number { value }).to_vec();
+    let values = [0.1, 0.12, -0.3]
+        .map(|value| Answer::Number { value })
+        .to_vec();
     arrive(
         &mut h,
         ServerMessage::Answers {
@@ -80,7 +88,12 @@ fn the_lecturer_starts_a_class_shows_its_code_and_reveals_det_j_beside_the_answe
     let jacobian = h.state().model().jacobian().clone();
     let det = nalgebra::Matrix6::from_iterator(jacobian.iter().copied()).determinant();
     match &sent(&mut h)[..] {
-        [ClientMessage::Reveal { question, truth: Answer::Number { value } }] => {
+        [
+            ClientMessage::Reveal {
+                question,
+                truth: Answer::Number { value },
+            },
+        ] => {
             assert_eq!(*question, id);
             assert!((value - det).abs() < 1e-12, "{value} against det J {det}");
         }
@@ -111,8 +124,16 @@ fn a_phone_follows_the_lecturer_explores_and_answers_a_point_question() {
     h.get_by_label("Following the lecturer");
     h.get_by_label("Explore on my own").click();
     h.run_steps(2);
-    arrive(&mut h, ServerMessage::State { state: lecturer(0.7) });
-    assert!((h.state().model().q()[0] - 0.5).abs() < 1e-9, "the student explores");
+    arrive(
+        &mut h,
+        ServerMessage::State {
+            state: lecturer(0.7),
+        },
+    );
+    assert!(
+        (h.state().model().q()[0] - 0.5).abs() < 1e-9,
+        "the student explores"
+    );
     h.get_by_label("Follow again").click();
     h.run_steps(2);
     assert!((h.state().model().q()[0] - 0.7).abs() < 1e-9);
@@ -131,7 +152,12 @@ fn a_phone_follows_the_lecturer_explores_and_answers_a_point_question() {
     let target = h.state().model().target().translation.vector;
     let metres = h.state().model().robot().length_unit.in_metres();
     match &sent(&mut h)[..] {
-        [ClientMessage::Answer { question: 4, value: Answer::Point { at } }] => {
+        [
+            ClientMessage::Answer {
+                question: 4,
+                value: Answer::Point { at },
+            },
+        ] => {
             for k in 0..3 {
                 assert!((at[k] - target[k] * metres).abs() < 1e-12);
             }

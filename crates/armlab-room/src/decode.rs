@@ -71,7 +71,7 @@ impl fmt::Display for DecodeError {
 
 impl std::error::Error for DecodeError {}
 
-fn malformed(e: &serde_json::Error) -> DecodeError {
+pub(crate) fn malformed(e: &serde_json::Error) -> DecodeError {
     DecodeError::Malformed {
         line: e.line(),
         column: e.column(),
@@ -128,7 +128,7 @@ fn clean_client(message: ClientMessage) -> Result<ClientMessage, DecodeError> {
     })
 }
 
-fn clean_server(message: ServerMessage) -> Result<ServerMessage, DecodeError> {
+pub(crate) fn clean_server(message: ServerMessage) -> Result<ServerMessage, DecodeError> {
     let answers = |values: Vec<Answer>| -> Result<Vec<Answer>, DecodeError> {
         values.into_iter().map(clean_answer).collect()
     };

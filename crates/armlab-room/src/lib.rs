@@ -42,6 +42,7 @@
 mod decode;
 mod ids;
 mod message;
+mod page;
 mod qr;
 
 pub use decode::{
@@ -55,4 +56,5 @@ pub use message::{
     MAX_NICKNAME_CHARS, MAX_NUMBER, MAX_OPTIONS, MAX_POINT_METRES, MAX_PROMPT_CHARS,
     MAX_UNIT_CHARS, Question, Refusal, ServerMessage, State,
 };
+pub use page::read_server;
 pub use qr::QrModules;

@@ -215,6 +215,27 @@ pub enum DropReason {
     NotOpen,
 }
 
+/// A list of kinds, each named as the JSON writes it (the page's reader finds a kind by
+/// its name; a test checks the names against serde's).
+macro_rules! named {
+    ($type:ident: $($variant:ident),* $(,)?) => {
+        impl $type {
+            /// Every kind.
+            pub const ALL: [$type; [$(stringify!($variant)),*].len()] = [$($type::$variant),*];
+
+            /// The kind's name in the JSON.
+            pub fn name(self) -> &'static str {
+                match self {
+                    $($type::$variant => stringify!($variant),)*
+                }
+            }
+        }
+    };
+}
+
+named!(Refusal: UnknownCode, BadCode, WrongToken, CodeTaken, TooManyAttempts, Full, AlreadyInClass);
+named!(DropReason: TooLarge, Malformed, Invalid, NotAllowed, RateLimited, NotOpen);
+
 /// What the server sends a page.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "type", deny_unknown_fields)]

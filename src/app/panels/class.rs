@@ -157,19 +157,21 @@ impl ClassPanel {
             return;
         }
         let mut open = true;
-        egui::Window::new(tr(model, Key::AskRoom))
-            .id(egui::Id::unique("class-question"))
-            .open(&mut open)
-            .anchor(egui::Align2::CENTER_BOTTOM, egui::vec2(0.0, -12.0))
-            .resizable(false)
-            .collapsible(true)
-            .show(ctx, |ui| {
-                ui.label(egui::RichText::new(prompt(&question)).strong());
-                match room.role() {
-                    Role::Lecturer { .. } => self.results(room, model, ui, &question, points),
-                    _ => self.answering(room, model, ui, &question, points),
-                }
-            });
+        // Above the narrow layout's tab bar on a phone.
+        let lift = if ctx.content_rect().width() < 600.0 {
+            64.0
+        } else {
+            12.0
+        };
+        let anchor = (egui::Align2::CENTER_BOTTOM, egui::vec2(0.0, -lift));
+        let title = [tr(model, Key::AskRoom), tr(model, Key::RoomClose)];
+        card(ctx, "class-question", anchor, title, &mut open, |ui| {
+            ui.label(egui::RichText::new(prompt(&question)).strong());
+            match room.role() {
+                Role::Lecturer { .. } => self.results(room, model, ui, &question, points),
+                _ => self.answering(room, model, ui, &question, points),
+            }
+        });
         if !open {
             self.closed = Some(question.id());
         }
@@ -179,21 +181,44 @@ impl ClassPanel {
     fn join_window(&mut self, model: &Model, ctx: &egui::Context, code: &str) {
         let link = crate::app::platform::share_link(&format!("class={code}"));
         let mut open = self.join_open;
-        egui::Window::new(tr(model, Key::ClassJoinDetails))
-            .id(egui::Id::unique("class-join"))
-            .open(&mut open)
-            .anchor(egui::Align2::CENTER_CENTER, egui::Vec2::ZERO)
-            .resizable(false)
-            .collapsible(false)
-            .show(ctx, |ui| {
-                let page = link.split('#').next().unwrap_or_default();
-                ui.label(trf(model, Key::ClassJoinAt, &[&page]));
-                ui.label(egui::RichText::new(shown_code(code)).size(56.0).strong());
-                ui.label(egui::RichText::new(&link).monospace());
-                crate::app::widgets::qr::show(ui, &link);
-            });
+        let anchor = (egui::Align2::CENTER_CENTER, egui::Vec2::ZERO);
+        let title = [tr(model, Key::ClassJoinDetails), tr(model, Key::RoomClose)];
+        card(ctx, "class-join", anchor, title, &mut open, |ui| {
+            let page = link.split('#').next().unwrap_or_default();
+            ui.label(trf(model, Key::ClassJoinAt, &[&page]));
+            ui.label(egui::RichText::new(shown_code(code)).size(56.0).strong());
+            ui.label(egui::RichText::new(&link).monospace());
+            crate::app::widgets::qr::show(ui, &link);
+        });
         self.join_open = open;
     }
+}
+
+/// A card over the view at `anchor` (an alignment and offset), with its title and a close
+/// button (`close` its word) that clears `open`: a window without egui's window machinery (moving,
+/// resizing, collapsing), which the page would otherwise carry for these two alone.
+fn card(
+    ctx: &egui::Context,
+    id: &str,
+    anchor: (egui::Align2, egui::Vec2),
+    [title, close]: [&str; 2],
+    open: &mut bool,
+    add: impl FnOnce(&mut egui::Ui),
+) {
+    egui::Area::new(egui::Id::unique(id))
+        .anchor(anchor.0, anchor.1)
+        .order(egui::Order::Foreground)
+        .show(ctx, |ui| {
+            egui::Frame::popup(ui.style()).show(ui, |ui| {
+                ui.horizontal(|ui| {
+                    ui.strong(title);
+                    if ui.small_button(close).clicked() {
+                        *open = false;
+                    }
+                });
+                add(ui);
+            });
+        });
 }
 
 /// "Connecting…" while the connection is down.

@@ -524,7 +524,11 @@ impl Viewport {
             convention::instances(model, model.robot().reach(), &mut scene.instances);
         }
         ghosts::instances(model, &mut scene.instances);
-        predictions::instances(&self.predictions, model.robot().reach(), &mut scene.instances);
+        predictions::instances(
+            &self.predictions,
+            model.robot().reach(),
+            &mut scene.instances,
+        );
         motion::trail_lines(model, &mut scene.lines);
         motion::keep_out_instances(model, &mut scene.instances);
         paths::scene_parts(model, &mut scene.lines, &mut scene.instances);

@@ -29,17 +29,36 @@ pub fn instances(predictions: &Predictions, reach: f64, out: &mut Vec<Instance>)
     let point = Vector3::repeat(reach * POINT);
     let colour = style::INFO.to_array();
     for p in &predictions.points {
-        out.push(instance(Shape::Sphere, &Point3::from(*p), &rot, point, colour));
+        out.push(instance(
+            Shape::Sphere,
+            &Point3::from(*p),
+            &rot,
+            point,
+            colour,
+        ));
     }
-    if let Some((mean, spread)) = crate::app::state::classroom::mean_and_spread(&predictions.points) {
+    if let Some((mean, spread)) = crate::app::state::classroom::mean_and_spread(&predictions.points)
+    {
         let mean = Point3::from(mean);
         out.push(instance(Shape::Sphere, &mean, &rot, point * 1.8, colour));
         let [r, g, b, _] = colour;
         let diameter = Vector3::repeat(2.0 * spread);
-        out.push(instance(Shape::Sphere, &mean, &rot, diameter, [r, g, b, SPREAD_ALPHA]));
+        out.push(instance(
+            Shape::Sphere,
+            &mean,
+            &rot,
+            diameter,
+            [r, g, b, SPREAD_ALPHA],
+        ));
     }
     if let Some(truth) = predictions.truth {
         let reached = style::REACHED.to_array();
-        out.push(instance(Shape::Sphere, &Point3::from(truth), &rot, point * 1.8, reached));
+        out.push(instance(
+            Shape::Sphere,
+            &Point3::from(truth),
+            &rot,
+            point * 1.8,
+            reached,
+        ));
     }
 }
