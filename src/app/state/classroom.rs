@@ -15,6 +15,9 @@ use armlab_room::{is_token, normalize_code};
 
 /// The shortest time between two states the lecturer's page sends (about 20 a second).
 pub const SEND_INTERVAL_MS: f64 = 50.0;
+/// How long a student who was in the class waits before asking to join again when the
+/// server does not know it (restarted, and the lecturer's page has not re-created it yet).
+pub const REJOIN_MS: f64 = 1500.0;
 
 /// What this page is in the room.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -82,6 +85,11 @@ pub struct Classroom {
     /// A point question took this student off the lecturer's state to drag the target:
     /// the reveal (or the next question) brings them back.
     predicting: bool,
+    /// This student's page was in the class on this connection or an earlier one.
+    joined: bool,
+    /// A join was refused for a class this student was in: when to ask again (ms; `None`
+    /// until the next tick sets it).
+    rejoin: Option<Option<f64>>,
     /// The last state sent and when (ms).
     sent: Option<(State, f64)>,
     outbox: Vec<ClientMessage>,
@@ -258,7 +266,13 @@ impl Classroom {
     /// is at least [`SEND_INTERVAL_MS`] old at `now_ms`. Returns how long to wait before a
     /// changed state may go (the page asks for a frame then), if one waits.
     pub fn tick(&mut self, now_ms: f64, state: impl FnOnce() -> State) -> Option<f64> {
-        if !self.connected || !matches!(self.role(), Role::Lecturer { .. }) {
+        if !self.connected {
+            return None;
+        }
+        if let Some(at) = self.rejoin {
+            return self.rejoin_at(now_ms, at);
+        }
+        if !matches!(self.role(), Role::Lecturer { .. }) {
             return None;
         }
         if let Some((_, at)) = &self.sent {
@@ -275,6 +289,25 @@ impl Classroom {
             state: state.clone(),
         });
         self.sent = Some((state, now_ms));
+        None
+    }
+
+    /// A student's page waiting to join again: asks at `at` (set [`REJOIN_MS`] after the
+    /// refusal's first tick); how long until then.
+    fn rejoin_at(&mut self, now_ms: f64, at: Option<f64>) -> Option<f64> {
+        let at = at.unwrap_or(now_ms + REJOIN_MS);
+        if now_ms < at {
+            self.rejoin = Some(Some(at));
+            return Some(at - now_ms);
+        }
+        self.rejoin = None;
+        if let Role::Student { code } = self.role() {
+            let code = code.clone();
+            self.outbox.push(ClientMessage::Join {
+                code,
+                nickname: None,
+            });
+        }
         None
     }
 
@@ -329,6 +362,8 @@ impl Classroom {
                 return Some(Effect::Keep { code, token });
             }
             ServerMessage::Joined { state, question } => {
+                self.joined = true;
+                self.rejoin = None;
                 if let Some(state) = state {
                     self.latest = Some(state);
                 }
@@ -338,6 +373,10 @@ impl Classroom {
                 };
             }
             ServerMessage::State { state } => return self.lecturer_state(state),
+            // A restarted server knows the class again once the lecturer's page is back.
+            ServerMessage::Refused {
+                reason: Refusal::UnknownCode,
+            } if self.joined => self.rejoin = Some(None),
             ServerMessage::Refused { reason } => {
                 self.leave();
                 return Some(Effect::Refused(reason));

@@ -282,3 +282,44 @@ fn a_point_question_frees_the_target_until_the_reveal() {
     assert_eq!(effect, Some(Effect::Follow(state("q=2"))));
     assert!(room.following());
 }
+
+#[test]
+fn a_student_refused_after_a_restart_asks_again_until_the_class_is_back() {
+    let mut room = Classroom::default();
+    room.join("K7QH3MXP".into(), false);
+    room.on_open(state(""));
+    room.take_outbox();
+    room.receive(ServerMessage::Joined {
+        state: Some(state("q=1")),
+        question: None,
+    });
+    // The server restarts: the student's page is first back, before the lecturer's.
+    room.on_close();
+    room.on_open(state(""));
+    room.take_outbox();
+    let refused = ServerMessage::Refused {
+        reason: Refusal::UnknownCode,
+    };
+    assert_eq!(
+        room.receive(refused.clone()),
+        None,
+        "no sentence, no leaving"
+    );
+    assert!(matches!(room.role(), Role::Student { .. }));
+    assert_eq!(room.tick(0.0, || state("")), Some(REJOIN_MS));
+    assert!(room.take_outbox().is_empty());
+    assert_eq!(room.tick(REJOIN_MS, || state("")), None);
+    assert!(matches!(
+        &room.take_outbox()[..],
+        [ClientMessage::Join { .. }]
+    ));
+    // A first join that is refused leaves with the sentence.
+    let mut fresh = Classroom::default();
+    fresh.join("K7QH3MXP".into(), false);
+    fresh.on_open(state(""));
+    assert_eq!(
+        fresh.receive(refused),
+        Some(Effect::Refused(Refusal::UnknownCode))
+    );
+    assert_eq!(*fresh.role(), Role::None);
+}
