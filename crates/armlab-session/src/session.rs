@@ -100,6 +100,8 @@ impl Session {
     }
 
     /// The URL hash (without `#`).
+    // Never inlined: the page calls it from several places, and one copy is smaller.
+    #[inline(never)]
     pub fn to_hash(&self) -> String {
         let mut parts = Vec::new();
         match &self.source {
@@ -144,6 +146,8 @@ impl Session {
     }
 
     /// Reads a URL hash (with or without `#`). An empty hash gives `Ok(None)`.
+    // Never inlined: the page calls it from several places, and one copy is smaller.
+    #[inline(never)]
     pub fn from_hash(hash: &str) -> Result<Option<Session>, LinkError> {
         let hash = hash.trim().trim_start_matches('#');
         if hash.is_empty() {
