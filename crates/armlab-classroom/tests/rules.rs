@@ -35,6 +35,8 @@ async fn a_students_commands_are_dropped_counted_and_not_forwarded() {
         );
     }
     assert_eq!(running.server.stats.dropped(DropReason::NotAllowed), 4);
+    let (_, stats) = crate::support::get(&running, "/classroom/stats").await;
+    assert!(stats.contains(r#""NotAllowed":4"#), "{stats}");
     assert_eq!(other.drain(Duration::from_millis(300)).await, []);
     let heard = lecturer.drain(Duration::from_millis(300)).await;
     assert!(
