@@ -436,3 +436,56 @@ async fn the_server_says_hello_and_serves_the_page() {
     running.stop();
     let _ = std::fs::remove_dir_all(dist);
 }
+
+#[tokio::test]
+async fn with_a_secret_file_only_the_classs_lecturer_recreates_it_after_a_restart() {
+    let file = std::env::temp_dir().join(format!("armlab-classroom-secret-{}", std::process::id()));
+    let _ = std::fs::remove_file(&file);
+    let kept = || armlab_classroom::Config {
+        secret_file: Some(file.clone()),
+        ..config()
+    };
+    let first = server(kept()).await;
+    let (_lecturer, code, token) = lecturer(&first).await;
+    first.stop();
+    let secret = std::fs::read(&file).expect("the secret file was made");
+    assert_eq!(secret.len(), 32);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let mode = std::fs::metadata(&file)
+            .expect("metadata")
+            .permissions()
+            .mode();
+        assert_eq!(mode & 0o777, 0o600, "readable by its owner only");
+    }
+    let second = server(kept()).await;
+    // A student knows the code: the first Resume after the restart is not enough.
+    let mut thief = Client::connect(&second.ws_url()).await;
+    let stolen = ClientMessage::Resume {
+        code: code.clone(),
+        token: "a".repeat(32),
+        state: state(9),
+    };
+    thief.send(&stolen).await;
+    assert_eq!(
+        thief.recv().await,
+        ServerMessage::Refused {
+            reason: Refusal::WrongToken
+        }
+    );
+    assert_eq!(second.server.class_count(), 0);
+    let mut lecturer = Client::connect(&second.ws_url()).await;
+    let resume = ClientMessage::Resume {
+        code: code.clone(),
+        token: token.clone(),
+        state: state(3),
+    };
+    lecturer.send(&resume).await;
+    assert_eq!(
+        lecturer.recv().await,
+        ServerMessage::Created { code, token }
+    );
+    second.stop();
+    let _ = std::fs::remove_file(&file);
+}
