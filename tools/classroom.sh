@@ -28,5 +28,8 @@ if page_is_stale; then
 fi
 say "building the classroom server (release)"
 cargo build --release -p armlab-classroom
+# The key the lecturers' tokens are derived from, kept across restarts: after one, only a
+# class's own lecturer can re-create it.
+SECRET="${XDG_STATE_HOME:-$HOME/.local/state}/armlab/classroom.secret"
 say "serving page and relay on http://127.0.0.1:$PORT (Ctrl-C stops)"
-exec "$CARGO_TARGET_DIR/release/armlab-classroom" --port "$PORT" --dist "$ROOT/dist" "${ARGS[@]}"
+exec "$CARGO_TARGET_DIR/release/armlab-classroom" --port "$PORT" --dist "$ROOT/dist" --secret-file "$SECRET" "${ARGS[@]}"

@@ -123,6 +123,32 @@ pub fn token_hash(token: &str) -> String {
         .collect()
 }
 
+/// HMAC-SHA-256 (RFC 2104) of `message` under a 32-byte key.
+pub fn hmac_sha256(key: &[u8; 32], message: &[u8]) -> [u8; 32] {
+    let (mut inner_pad, mut outer_pad) = ([0x36u8; 64], [0x5cu8; 64]);
+    for (i, k) in key.iter().enumerate() {
+        inner_pad[i] ^= k;
+        outer_pad[i] ^= k;
+    }
+    let inner = Sha256::new()
+        .chain_update(inner_pad)
+        .chain_update(message)
+        .finalize();
+    Sha256::new()
+        .chain_update(outer_pad)
+        .chain_update(inner)
+        .finalize()
+        .into()
+}
+
+/// The lecturer token of class `code` under `secret`: the HMAC's first 128 bits in hex.
+pub fn derived_token(secret: &[u8; 32], code: &str) -> String {
+    hmac_sha256(secret, code.as_bytes())[..16]
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
 impl Class {
     /// A class with no lecturer connected yet (its expiry clock runs from now).
     pub fn new(code: String, token_hash: String) -> Self {
@@ -304,5 +330,26 @@ impl Class {
     /// Whether the class has ended.
     pub fn ended(&self) -> bool {
         self.inner().ended
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hmac_matches_rfc_4231() {
+        // Test case 2: key "Jefe" (zero-padded, as HMAC pads every short key).
+        let mut key = [0u8; 32];
+        key[..4].copy_from_slice(b"Jefe");
+        let mac = hmac_sha256(&key, b"what do ya want for nothing?");
+        let hex: String = mac.iter().map(|b| format!("{b:02x}")).collect();
+        assert_eq!(
+            hex,
+            "5bdcc146bf60754e6a042426089575c75a003f089d2739839dec58b964ec3843"
+        );
+        let token = derived_token(&key, "ABCD2345");
+        assert!(armlab_room::is_token(&token));
+        assert_ne!(token, derived_token(&key, "ABCD2346"));
     }
 }

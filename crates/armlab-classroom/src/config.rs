@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 /// How the server runs.
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 pub struct Config {
     /// The address to listen on (`127.0.0.1` unless `--listen`; `0.0.0.0` behind a proxy).
     pub listen: IpAddr,
@@ -33,6 +33,28 @@ pub struct Config {
     /// Whether to take the client's address from `X-Forwarded-For` (`--behind-proxy`:
     /// only when a reverse proxy that sets it is the only way in).
     pub behind_proxy: bool,
+    /// The key lecturer tokens are derived from (`--secret-file`: read, or made and kept
+    /// there). With one, a token is the HMAC of its class's code, so after a restart only
+    /// the class's own lecturer can re-create it; without one, tokens are random and the
+    /// first `Resume` of a code lost in a restart takes it.
+    pub secret: Option<[u8; 32]>,
+    /// Where the secret is kept (loaded by [`start`](crate::start)).
+    pub secret_file: Option<PathBuf>,
+}
+
+impl std::fmt::Debug for Config {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        // Every setting but the secret's bytes.
+        f.debug_struct("Config")
+            .field("listen", &self.listen)
+            .field("port", &self.port)
+            .field("dist", &self.dist)
+            .field("redis", &self.redis)
+            .field("expiry", &self.expiry)
+            .field("secret", &self.secret.map(|_| "set"))
+            .field("secret_file", &self.secret_file)
+            .finish_non_exhaustive()
+    }
 }
 
 impl Default for Config {
@@ -50,12 +72,42 @@ impl Default for Config {
             join_refill: 0.5,
             max_classes: 10_000,
             behind_proxy: false,
+            secret: None,
+            secret_file: None,
         }
     }
 }
 
 /// The command line's usage line.
-pub const USAGE: &str = "usage: armlab-classroom [--listen ADDR] [--port P] [--dist DIR] [--redis redis://HOST:PORT] [--behind-proxy] [--expiry-secs S]";
+pub const USAGE: &str = "usage: armlab-classroom [--listen ADDR] [--port P] [--dist DIR] [--redis redis://HOST:PORT] [--behind-proxy] [--secret-file PATH] [--expiry-secs S]";
+
+/// The secret in `path`, or a new one written there (readable by its owner only).
+pub fn load_or_create_secret(path: &std::path::Path) -> std::io::Result<[u8; 32]> {
+    match std::fs::read(path) {
+        Ok(bytes) => bytes
+            .get(..32)
+            .and_then(|b| b.try_into().ok())
+            .ok_or_else(|| {
+                std::io::Error::other(format!(
+                    "{}: a secret file holds 32 bytes or more",
+                    path.display()
+                ))
+            }),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            let secret = crate::server::random_bytes::<32>();
+            if let Some(dir) = path.parent() {
+                std::fs::create_dir_all(dir)?;
+            }
+            let mut options = std::fs::OpenOptions::new();
+            options.write(true).create_new(true);
+            #[cfg(unix)]
+            std::os::unix::fs::OpenOptionsExt::mode(&mut options, 0o600);
+            std::io::Write::write_all(&mut options.open(path)?, &secret)?;
+            Ok(secret)
+        }
+        Err(e) => Err(e),
+    }
+}
 
 impl Config {
     /// The settings from command-line arguments (without the program's name).
@@ -85,6 +137,9 @@ impl Config {
                     config.expiry = Duration::from_secs(secs);
                 }
                 "--behind-proxy" => config.behind_proxy = true,
+                "--secret-file" => {
+                    config.secret_file = Some(PathBuf::from(value("--secret-file")?))
+                }
                 other => return Err(format!("unknown argument {other}\n{USAGE}")),
             }
         }

@@ -36,6 +36,7 @@ enum Wake {
     Event(Result<Event, broadcast::error::RecvError>),
     Count(Option<u32>),
     Answers(Option<u64>),
+    AnswersDue,
     Shutdown,
 }
 
@@ -55,6 +56,17 @@ async fn changed<T: Clone>(rx: &mut Option<watch::Receiver<T>>) -> Option<T> {
     }
 }
 
+async fn until(at: Option<tokio::time::Instant>) {
+    match at {
+        Some(at) => tokio::time::sleep_until(at).await,
+        None => std::future::pending().await,
+    }
+}
+
+/// The least time between two `Answers` to the lecturer: 300 students answering within a
+/// second make ten updates of the projector's chart, not 300 (each with every answer).
+const ANSWERS_INTERVAL: Duration = Duration::from_millis(100);
+
 async fn event(
     rx: &mut Option<broadcast::Receiver<Event>>,
 ) -> Result<Event, broadcast::error::RecvError> {
@@ -73,6 +85,8 @@ pub struct Connection {
     role: Role,
     subs: Subs,
     rate_replied: Option<Instant>,
+    answers_sent: Option<tokio::time::Instant>,
+    answers_due: Option<tokio::time::Instant>,
 }
 
 impl Connection {
@@ -88,6 +102,8 @@ impl Connection {
             role: Role::Visitor,
             subs: Subs::default(),
             rate_replied: None,
+            answers_sent: None,
+            answers_due: None,
         }
     }
 
@@ -102,6 +118,7 @@ impl Connection {
                 event = event(&mut self.subs.events) => Wake::Event(event),
                 count = changed(&mut self.subs.count) => Wake::Count(count),
                 answers = changed(&mut self.subs.answers) => Wake::Answers(answers),
+                () = until(self.answers_due) => Wake::AnswersDue,
                 _ = shutdown.changed() => Wake::Shutdown,
             };
             let out = match wake {
@@ -113,6 +130,10 @@ impl Connection {
                 Wake::Event(event) => self.on_event(event),
                 Wake::Count(count) => self.on_count(count),
                 Wake::Answers(answers) => self.on_answers(answers),
+                Wake::AnswersDue => {
+                    self.answers_due = None;
+                    self.answers_now()
+                }
             };
             for out in out {
                 let text = match out {
@@ -380,9 +401,22 @@ impl Connection {
             self.subs.answers = None;
             return Vec::new();
         }
+        let now = tokio::time::Instant::now();
+        match self.answers_sent {
+            Some(sent) if now < sent + ANSWERS_INTERVAL => {
+                self.answers_due.get_or_insert(sent + ANSWERS_INTERVAL);
+                Vec::new()
+            }
+            _ => self.answers_now(),
+        }
+    }
+
+    /// The answers so far, to the lecturer.
+    fn answers_now(&mut self) -> Vec<Out> {
         let Role::Lecturer(class) = &self.role else {
             return Vec::new();
         };
+        self.answers_sent = Some(tokio::time::Instant::now());
         match class.answers() {
             Some((question, values)) => {
                 let count = u32::try_from(values.len()).unwrap_or(u32::MAX);

@@ -53,7 +53,12 @@ impl Running {
 
 /// Starts a server with `config` (binding its address and port, connecting to Redis when
 /// it names one) and returns once it listens.
-pub async fn start(config: Config) -> std::io::Result<Running> {
+pub async fn start(mut config: Config) -> std::io::Result<Running> {
+    if config.secret.is_none()
+        && let Some(path) = &config.secret_file
+    {
+        config.secret = Some(config::load_or_create_secret(path)?);
+    }
     let instance = u64::from_le_bytes(server::random_bytes::<8>());
     let bus = match &config.redis {
         Some(url) => Some(

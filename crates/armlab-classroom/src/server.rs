@@ -2,10 +2,10 @@
 //! join (through Redis when the class lives on another instance), end, expire.
 
 use crate::bus::{Bus, BusEvent};
-use crate::class::{Class, Stamped, token_hash};
+use crate::class::{Class, Stamped, derived_token, token_hash};
 use crate::config::Config;
 use crate::limit::JoinLimiter;
-use armlab_room::{CODE_ALPHABET, CODE_LEN, DropReason, Refusal, ServerMessage};
+use armlab_room::{CODE_ALPHABET, CODE_LEN, DropReason, Refusal, ServerMessage, tokens_equal};
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
@@ -198,7 +198,11 @@ impl Server {
             return Err(Refusal::Full);
         }
         for _ in 0..16 {
-            let (code, token) = (new_code(), new_token());
+            let code = new_code();
+            let token = match &self.config.secret {
+                Some(secret) => derived_token(secret, &code),
+                None => new_token(),
+            };
             let hash = token_hash(&token);
             if self.class(&code).is_some() {
                 continue;
@@ -255,12 +259,18 @@ impl Server {
                 match &self.bus {
                     Some(bus) => match bus.lookup(code).await {
                         Some(held) => self.mirror(bus, code, held).await?,
-                        None if bus.register(code, &hash, self.config.expiry).await => {
+                        None => {
+                            self.may_recreate(code, token)?;
+                            if !bus.register(code, &hash, self.config.expiry).await {
+                                return Err(Refusal::CodeTaken);
+                            }
                             self.recreate(code, hash)?
                         }
-                        None => return Err(Refusal::CodeTaken),
                     },
-                    None => self.recreate(code, hash)?,
+                    None => {
+                        self.may_recreate(code, token)?;
+                        self.recreate(code, hash)?
+                    }
                 }
             }
         };
@@ -268,6 +278,17 @@ impl Server {
             return Err(Refusal::WrongToken);
         }
         Ok(class)
+    }
+
+    /// Whether class `code`, lost in a restart, may be re-created with `token`: with a
+    /// secret only for the token derived from it, without one for any.
+    fn may_recreate(&self, code: &str, token: &str) -> Result<(), Refusal> {
+        match &self.config.secret {
+            Some(secret) if !tokens_equal(token, &derived_token(secret, code)) => {
+                Err(Refusal::WrongToken)
+            }
+            _ => Ok(()),
+        }
     }
 
     fn recreate(&self, code: &str, hash: String) -> Result<Arc<Class>, Refusal> {

@@ -362,3 +362,130 @@ async fn after_a_restart_the_lecturers_resume_recreates_the_class() {
     );
     second.stop();
 }
+
+#[tokio::test]
+async fn the_lecturer_gets_the_answers_coalesced() {
+    let running = server(config()).await;
+    let (mut lecturer, code, _) = lecturer(&running).await;
+    let question = Question::Point {
+        id: 2,
+        prompt: "Where will the tool be?".into(),
+    };
+    lecturer.send(&ClientMessage::Ask { question }).await;
+    let mut students = Vec::new();
+    for _ in 0..40 {
+        students.push(student(&running.ws_url(), &code).await.0);
+    }
+    lecturer
+        .recv_until(|m| (*m == ServerMessage::Count { students: 40 }).then_some(()))
+        .await;
+    // One answer every 10 ms: 40 in 0.4 s.
+    for (i, s) in students.iter_mut().enumerate() {
+        let at = [0.01 * i as f64, 0.2, 0.5];
+        s.send(&ClientMessage::Answer {
+            question: 2,
+            value: Answer::Point { at },
+        })
+        .await;
+        tokio::time::sleep(Duration::from_millis(10)).await;
+    }
+    let mut updates = 0;
+    lecturer
+        .recv_until(|m| match m {
+            ServerMessage::Answers { count, .. } => {
+                updates += 1;
+                (*count == 40).then_some(())
+            }
+            _ => None,
+        })
+        .await;
+    assert!(
+        (2..=16).contains(&updates),
+        "40 answers in 0.4 s: {updates} updates, at most one per 100 ms"
+    );
+    running.stop();
+}
+
+#[tokio::test]
+async fn the_server_says_hello_and_serves_the_page() {
+    let dist = std::env::temp_dir().join(format!("armlab-classroom-dist-{}", std::process::id()));
+    std::fs::create_dir_all(&dist).expect("a temporary folder");
+    std::fs::write(dist.join("index.html"), "<title>ArmLab</title>").expect("written");
+    let running = server(armlab_classroom::Config {
+        dist: Some(dist.clone()),
+        ..config()
+    })
+    .await;
+    let (status, hello) = get(&running, "/classroom/hello").await;
+    let hello: serde_json::Value = serde_json::from_str(&hello).expect("JSON");
+    assert_eq!(
+        (status, &hello["classroom"]),
+        (200, &serde_json::json!(true))
+    );
+    assert_eq!(
+        get(&running, "/").await,
+        (200, "<title>ArmLab</title>".to_owned())
+    );
+    assert_eq!(get(&running, "/missing.js").await.0, 404);
+    let (status, stats) = get(&running, "/classroom/stats").await;
+    let stats: serde_json::Value = serde_json::from_str(&stats).expect("JSON");
+    assert_eq!(
+        (status, &stats["classes"], &stats["dropped"]["NotAllowed"]),
+        (200, &0.into(), &0.into())
+    );
+    running.stop();
+    let _ = std::fs::remove_dir_all(dist);
+}
+
+#[tokio::test]
+async fn with_a_secret_file_only_the_classs_lecturer_recreates_it_after_a_restart() {
+    let file = std::env::temp_dir().join(format!("armlab-classroom-secret-{}", std::process::id()));
+    let _ = std::fs::remove_file(&file);
+    let kept = || armlab_classroom::Config {
+        secret_file: Some(file.clone()),
+        ..config()
+    };
+    let first = server(kept()).await;
+    let (_lecturer, code, token) = lecturer(&first).await;
+    first.stop();
+    let secret = std::fs::read(&file).expect("the secret file was made");
+    assert_eq!(secret.len(), 32);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let mode = std::fs::metadata(&file)
+            .expect("metadata")
+            .permissions()
+            .mode();
+        assert_eq!(mode & 0o777, 0o600, "readable by its owner only");
+    }
+    let second = server(kept()).await;
+    // A student knows the code: the first Resume after the restart is not enough.
+    let mut thief = Client::connect(&second.ws_url()).await;
+    let stolen = ClientMessage::Resume {
+        code: code.clone(),
+        token: "a".repeat(32),
+        state: state(9),
+    };
+    thief.send(&stolen).await;
+    assert_eq!(
+        thief.recv().await,
+        ServerMessage::Refused {
+            reason: Refusal::WrongToken
+        }
+    );
+    assert_eq!(second.server.class_count(), 0);
+    let mut lecturer = Client::connect(&second.ws_url()).await;
+    let resume = ClientMessage::Resume {
+        code: code.clone(),
+        token: token.clone(),
+        state: state(3),
+    };
+    lecturer.send(&resume).await;
+    assert_eq!(
+        lecturer.recv().await,
+        ServerMessage::Created { code, token }
+    );
+    second.stop();
+    let _ = std::fs::remove_file(&file);
+}

@@ -16,7 +16,7 @@
 //! | `Reveal {question, truth}` | lecturer | `Revealed {question, truth, values}` to everyone |
 //! | `End` | lecturer | `Ended` to everyone; the class is gone |
 //! | `Join {code, nickname}` | student | `Joined {state, question}` (the current state at once) or `Refused {reason}` |
-//! | `Answer {question, value}` | student | nothing to the student; `Answers {question, values, count}` to the lecturer (coalesced) |
+//! | `Answer {question, value}` | student | nothing to the student; `Answers {question, values, count}` to the lecturer (coalesced: at most ten a second) |
 //!
 //! Server → clients ([`ServerMessage`]), decoded by the page with [`decode_server`]:
 //! `Created`, `Joined`, `Refused {reason}`, `State {state}`, `Count {students}`,
