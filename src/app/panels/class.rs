@@ -116,9 +116,8 @@ impl ClassPanel {
         code: &str,
         points: &mut ScreenPoints,
     ) {
-        ui.label(egui::RichText::new(trf(model, Key::ClassTitle, &[&shown_code(code)])).strong());
+        title(room, model, ui, code);
         ui.label(trf(model, Key::ClassStudents, &[&room.students()]));
-        connecting(room, model, ui);
         let join = ui.toggle_value(&mut self.join_open, tr(model, Key::ClassJoinDetails));
         points.insert("class-join-link", join.rect.center());
         let ask = ui.menu_button(tr(model, Key::AskRoom), |ui| {
@@ -221,8 +220,9 @@ fn card(
         });
 }
 
-/// "Connecting…" while the connection is down.
-fn connecting(room: &Classroom, model: &Model, ui: &mut egui::Ui) {
+/// The class's code, and "Connecting…" while the connection is down.
+fn title(room: &Classroom, model: &Model, ui: &mut egui::Ui, code: &str) {
+    ui.label(egui::RichText::new(trf(model, Key::ClassTitle, &[&shown_code(code)])).strong());
     if !room.connected() {
         ui.colored_label(style::WARNING, tr(model, Key::ClassConnecting));
     }
@@ -236,8 +236,7 @@ fn student_bar(
     code: &str,
     points: &mut ScreenPoints,
 ) {
-    ui.label(egui::RichText::new(trf(model, Key::ClassTitle, &[&shown_code(code)])).strong());
-    connecting(room, model, ui);
+    title(room, model, ui, code);
     if room.following() {
         ui.label(tr(model, Key::ClassFollowing));
         let explore = ui.button(tr(model, Key::ClassExplore));
