@@ -3,7 +3,7 @@
 // a browser context of its own (its own localStorage, as on separate devices). Students
 // follow, one explores and follows again, a question is answered by all three and shown on
 // the lecturer's page, the server stops and restarts and every page comes back, and the
-// lecturer closes the tab and reopens it with control kept.
+// lecturer closes the tab and reopens it with control kept; a student's network drops for 30 s.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawn } from 'node:child_process';
@@ -94,10 +94,38 @@ async function qUntil(page, q, what) {
   throw new Error(`waited for ${what}: q = ${JSON.stringify(s?.q)}, not ${JSON.stringify(q)}`);
 }
 
-/** Opens `hash` on a page served by the classroom server, in a context of its own. */
-async function open(hash) {
+/**
+ * A loopback TCP relay to the classroom server: a student's network, which `drop()` cuts
+ * (every connection closed, new ones refused) until `restore()`. Chromium's offline
+ * emulation leaves an open WebSocket open, as a real network drop does not.
+ */
+async function network() {
+  const sockets = new Set();
+  let down = false;
+  const relay = net.createServer((client) => {
+    if (down) { client.destroy(); return; }
+    const upstream = net.connect(port, '127.0.0.1');
+    for (const [a, b] of [[client, upstream], [upstream, client]]) {
+      sockets.add(a);
+      a.pipe(b);
+      a.on('error', () => b.destroy());
+      a.on('close', () => { sockets.delete(a); b.destroy(); });
+    }
+  });
+  await new Promise((resolve) => relay.listen(0, '127.0.0.1', resolve));
+  return {
+    port: relay.address().port,
+    drop() { down = true; for (const s of sockets) s.destroy(); },
+    restore() { down = false; },
+    close() { relay.close(); for (const s of sockets) s.destroy(); },
+  };
+}
+
+/** Opens `hash` on a page served by the classroom server (through `via`, a port of a
+ * relay to it), in a context of its own. */
+async function open(hash, via = port) {
   const opened = await newPage(browser, { view: VIEW });
-  await opened.page.goto(`http://127.0.0.1:${port}/${hash}`, { waitUntil: 'domcontentloaded' });
+  await opened.page.goto(`http://127.0.0.1:${via}/${hash}`, { waitUntil: 'domcontentloaded' });
   await ready(opened.page);
   return opened;
 }
@@ -108,11 +136,13 @@ async function show(page, q) {
   await settle(page);
 }
 
-test('students follow the lecturer, explore, follow again, answer, and come back after a server restart', async () => {
+test('students follow, explore, follow again and answer; every page comes back after a server restart, a student after 30 s offline, the lecturer after reopening the tab', async () => {
   const lecturer = await open('#class=new');
   const made = await roomUntil(lecturer.page, (r) => r.role === 'lecturer' && r.code && r.connected, 'the class to be created');
+  // The third student's network can be cut.
+  const wifi = await network();
   const students = [];
-  for (let i = 0; i < 3; i++) students.push(await open(`#class=${made.code}`));
+  for (let i = 0; i < 3; i++) students.push(await open(`#class=${made.code}`, i === 2 ? wifi.port : port));
   for (const s of students) {
     const joined = await roomUntil(s.page, (r) => r.role === 'student' && r.connected && r.following, 'a student to join');
     assert.equal(joined.code, made.code);
@@ -165,6 +195,18 @@ test('students follow the lecturer, explore, follow again, answer, and come back
   await show(lecturer.page, q3);
   for (const s of students) await qUntil(s.page, q3, 'a student to follow after the restart');
 
+  // A student's network drops for 30 s: the page says so, the others go on, and it
+  // follows again once the network is back.
+  wifi.drop();
+  await roomUntil(students[2].page, (r) => !r.connected, 'the offline student to notice', 20);
+  const qOffline = [0.4, -0.1, 0.2, 0.1, 0.3, 0.1];
+  await show(lecturer.page, qOffline);
+  await qUntil(students[0].page, qOffline, 'an online student to follow meanwhile');
+  await students[2].page.waitForTimeout(30000 - 2000);
+  wifi.restore();
+  await roomUntil(students[2].page, (r) => r.connected && r.following, 'the student to come back', 30);
+  await qUntil(students[2].page, qOffline, 'the student back online to show the state it missed');
+
   // The lecturer closes the tab and opens the class again: the token kept in the browser
   // gives control back.
   const reopened = await lecturer.ctx.newPage();
@@ -175,5 +217,6 @@ test('students follow the lecturer, explore, follow again, answer, and come back
   const q4 = [0.2, -0.2, 0.3, 0.0, 0.2, 0.0];
   await show(reopened, q4);
   for (const s of students) await qUntil(s.page, q4, 'a student to follow the reopened lecturer');
+  wifi.close();
   for (const p of [lecturer, ...students]) assert.deepEqual(p.errors.filter((e) => !/WebSocket/.test(e)), []);
 });
