@@ -165,3 +165,62 @@ fn a_phone_follows_the_lecturer_explores_and_answers_a_point_question() {
         other => panic!("sent {other:?}"),
     }
 }
+
+#[test]
+fn the_projector_draws_each_prediction_and_their_spread_in_the_robots_units() {
+    let mut h = room_page("robot=ur10", [1366.0, 768.0]);
+    h.state_mut()
+        .classroom_mut()
+        .resume("K7QH3MXP".into(), TOKEN.into());
+    let state = h.state().room_state();
+    h.state_mut().classroom_mut().on_open(state);
+    h.run_steps(2);
+    let before = view_colours(&mut h);
+    h.get_by_label("Ask the room").click();
+    h.run_steps(2);
+    h.get_by_label("Where will the tool be?").click();
+    h.run_steps(2);
+    let id = h
+        .state()
+        .classroom()
+        .question()
+        .map(Question::id)
+        .expect("asked");
+    // Three predictions around the UR10's tool (metres on the wire, millimetres drawn).
+    let tool = h.state().model().fk().tool_position() / 1000.0;
+    let values = [-0.2, 0.0, 0.2]
+        .map(|dx| Answer::Point {
+            at: [tool.x + dx, tool.y, tool.z],
+        })
+        .to_vec();
+    arrive(
+        &mut h,
+        ServerMessage::Answers {
+            question: id,
+            values,
+            count: 3,
+        },
+    );
+    let drawn = h.state().room_predictions();
+    assert_eq!(drawn.points.len(), 3);
+    assert!((drawn.points[2][0] - (tool.x + 0.2) * 1000.0).abs() < 1e-6);
+    // The view now shows the predictions' colour where it had none.
+    let after = view_colours(&mut h);
+    assert!(
+        after > before + 60,
+        "{after} pixels of the predictions' magenta, {before} before"
+    );
+}
+
+/// How many of the 3D view's pixels are near the predictions' magenta (shaded).
+fn view_colours(h: &mut Harness<'_, ArmLabApp>) -> usize {
+    let [r, g, b, _] = armlab::app::view3d::predictions::COLOUR;
+    super::view_pixels(h)
+        .chunks(4)
+        .filter(|p| {
+            (i32::from(p[0]) - i32::from(r)).abs() < 40
+                && (i32::from(p[1]) - i32::from(g)).abs() < 40
+                && (i32::from(p[2]) - i32::from(b)).abs() < 40
+        })
+        .count()
+}

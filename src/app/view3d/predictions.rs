@@ -1,5 +1,5 @@
 //! The room's predictions of where the tool will be, on the lecturer's view (and on a
-//! student's once revealed): each answer a small sphere, their mean a larger one inside a
+//! student's once revealed): each answer a small magenta sphere, their mean a larger one inside a
 //! translucent sphere whose radius is the spread (the root-mean-square distance from the
 //! mean), and the truth, once revealed, in the reached colour.
 
@@ -18,16 +18,19 @@ pub struct Predictions {
     pub truth: Option<[f64; 3]>,
 }
 
+/// The predictions' colour: magenta, apart from the arm's blues, the target's reach
+/// colours and the axes' red, green and blue.
+pub const COLOUR: [u8; 4] = [235, 90, 235, 255];
 /// A prediction's sphere, as a share of the arm's reach.
-const POINT: f64 = 0.025;
+const POINT: f64 = 0.04;
 /// The spread's sphere: see-through.
-const SPREAD_ALPHA: u8 = 60;
+const SPREAD_ALPHA: u8 = 70;
 
 /// The predictions as spheres for an arm of `reach`.
 pub fn instances(predictions: &Predictions, reach: f64, out: &mut Vec<Instance>) {
     let rot = Rotation3::identity();
     let point = Vector3::repeat(reach * POINT);
-    let colour = style::INFO.to_array();
+    let colour = COLOUR;
     for p in &predictions.points {
         out.push(instance(
             Shape::Sphere,
