@@ -324,8 +324,7 @@ impl ArmLabApp {
         self.points.clear();
         let ctx = ui.ctx().clone();
         self.touch |= ctx.input(|i| i.any_touches());
-        #[cfg(target_arch = "wasm32")]
-        page::pump_room(self, &ctx);
+        self.room_frame(&ctx);
         let screen = screen(&ctx);
         style::install(&ctx, self.model.settings().presentation, self.touch, screen);
         let plan = layout::plan(
@@ -360,8 +359,6 @@ impl ArmLabApp {
         // No fill: the 3D view's picture covers the whole panel (and without a renderer the
         // view fills it itself). A fill under it would be a screen of pixels drawn for
         // nothing in every frame: about a fifth of the page's drawing with software WebGL.
-        let predictions = self.room_predictions();
-        self.viewport.set_predictions(predictions);
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
             .show(ui, |ui| {

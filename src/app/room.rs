@@ -18,6 +18,19 @@ use crate::app::view3d::predictions::Predictions;
 const CAMERA_DECIMALS: usize = 4;
 
 impl ArmLabApp {
+    /// The room's part of a frame, before the panels: the page's messages (in the page),
+    /// the entries a student's page hides, the predictions the view draws.
+    pub(crate) fn room_frame(&mut self, ctx: &egui::Context) {
+        #[cfg(target_arch = "wasm32")]
+        crate::app::page::pump_room(self, ctx);
+        #[cfg(not(target_arch = "wasm32"))]
+        let _ = ctx;
+        let student = matches!(self.classroom.role(), Role::Student { .. });
+        self.model.set_room_hides(student);
+        let predictions = self.room_predictions();
+        self.viewport.set_predictions(predictions);
+    }
+
     /// What the lecturer's page shows, as the students' pages follow it.
     pub fn room_state(&self) -> State {
         room_state(&self.model)

@@ -224,3 +224,34 @@ fn view_colours(h: &mut Harness<'_, ArmLabApp>) -> usize {
         })
         .count()
 }
+
+#[test]
+fn a_students_page_hides_the_entries_the_lecturer_hid_without_presentation_mode() {
+    let mut h = room_page("robot=ur10", [1366.0, 768.0]);
+    h.state_mut().classroom_mut().join("K7QH3MXP".into(), false);
+    let state = h.state().room_state();
+    h.state_mut().classroom_mut().on_open(state);
+    // The lecturer, in presentation mode, hid the tool's x (the link's `hide=`).
+    let mut lecturer = armlab::app::ArmLabApp::with_session(
+        armlab_session::session::Session::for_preset("ur10").expect("a preset"),
+    );
+    lecturer.model_mut().set_presentation(true);
+    lecturer.open_hash(&format!("{}&hide=Tn.14", lecturer.hash()));
+    assert_eq!(
+        lecturer.model().settings().hidden.len(),
+        1,
+        "the link hides one entry"
+    );
+    let link = lecturer.room_state().link;
+    arrive(
+        &mut h,
+        ServerMessage::Joined {
+            state: Some(State { link, camera: None }),
+            question: None,
+        },
+    );
+    assert!(!h.state().model().settings().presentation);
+    assert!(h.state().model().hides_entries());
+    // The student's page shows it as a "?" to predict, then reveal.
+    assert_eq!(h.query_all_by_label("?").count(), 1);
+}

@@ -203,10 +203,13 @@ impl MatricesPanel {
     /// Presentation mode's row (choose what to hide, how many are hidden, hide again) and
     /// this frame's view of the hidden set.
     pub(super) fn hiding(&mut self, model: &Model, ui: &mut egui::Ui) -> Hiding {
-        let on = model.settings().presentation;
+        let on = model.hides_entries();
+        // Choosing is the lecturer's (presentation mode); a student's page in a class
+        // only hides and reveals.
+        let presenting = model.settings().presentation;
         let hidden = model.settings().hidden.clone();
         self.revealed.retain(|h| hidden.contains(*h));
-        if on {
+        if presenting {
             crate::app::widgets::style::wrapped(ui, |ui| {
                 ui.toggle_value(&mut self.choosing, tr(model, Key::HideMode))
                     .on_hover_text(tr(model, Key::HideModeHint));
@@ -224,7 +227,7 @@ impl MatricesPanel {
         }
         Hiding {
             on,
-            choosing: on && self.choosing,
+            choosing: presenting && self.choosing,
             hidden,
             revealed: std::mem::take(&mut self.revealed),
             toggled: Vec::new(),

@@ -5,6 +5,20 @@ use armlab_session::session::Session;
 use super::Model;
 
 impl Model {
+    /// Whether the matrices hide the entries chosen for predicting ([`Settings::hidden`]):
+    /// in presentation mode, and on a student's page in a lecture room (whose layout is
+    /// the student's own).
+    ///
+    /// [`Settings::hidden`]: armlab_session::settings::Settings::hidden
+    pub fn hides_entries(&self) -> bool {
+        self.settings.presentation || self.room_hides
+    }
+
+    /// Hides the chosen entries as presentation mode does (a student's page in a class).
+    pub fn set_room_hides(&mut self, on: bool) {
+        self.room_hides = on;
+    }
+
     /// Shows the lecturer's `session` as a following student's page: the robot, joints,
     /// target, task, method, display settings, overlays, presentation's hidden entries,
     /// waypoints and, when it names one, the camera. The student's own language, layout

@@ -166,6 +166,9 @@ pub struct Model {
     ik: IkStatus,
     solver: IkSolver,
     hover: Option<(usize, HoverSource)>,
+    /// A student's page in a lecture room hides the entries the lecturer hid, as
+    /// presentation mode does (`follow.rs`).
+    room_hides: bool,
     hovered_column: Option<(usize, HoverSource)>,
     joint_speeds: Vec<f64>,
     branches: Option<Branches>,
@@ -210,6 +213,7 @@ impl Model {
             ik: IkStatus::default(),
             solver: IkSolver::new(),
             hover: None,
+            room_hides: false,
             hovered_column: None,
             joint_speeds: Vec::new(),
             branches: None,
