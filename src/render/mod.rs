@@ -519,18 +519,7 @@ impl SceneRenderer {
         };
         self.scene_bytes(&globals, scene.background, &ranges);
         let changed = self.next != self.drawn;
-        if changed && self.software && !self.drawn.is_empty() {
-            self.changed_at = Some(now);
-        }
-        let sharpen_in = self
-            .changed_at
-            .map(|t| REST_S - (now - t))
-            .filter(|s| *s > 0.0);
-        let quality = if sharpen_in.is_some() {
-            Quality::Moving
-        } else {
-            Quality::Full
-        };
+        let (quality, sharpen_in) = self.quality(changed, now);
         let texture = match quality {
             Quality::Full => full,
             Quality::Moving => self.ensure_moving(render_state, moving_size(size)),
@@ -562,6 +551,25 @@ impl SceneRenderer {
             texture,
             sharpen_in,
         }
+    }
+
+    /// This frame's picture quality, and the seconds until a moving picture is due to
+    /// be sharpened: on a software renderer a scene that changed after the first picture
+    /// moves until it has rested for [`REST_S`].
+    fn quality(&mut self, changed: bool, now: f64) -> (Quality, Option<f64>) {
+        if changed && self.software && !self.drawn.is_empty() {
+            self.changed_at = Some(now);
+        }
+        let sharpen_in = self
+            .changed_at
+            .map(|t| REST_S - (now - t))
+            .filter(|s| *s > 0.0);
+        let quality = if sharpen_in.is_some() {
+            Quality::Moving
+        } else {
+            Quality::Full
+        };
+        (quality, sharpen_in)
     }
 
     /// Everything the render pass of `scene` reads, as bytes, into `next`.
