@@ -66,6 +66,7 @@ pub fn state_json(app: &ArmLabApp) -> String {
         "dragging": app.viewport().dragging(),
         "frame": app.frame(),
         "rendered": app.viewport().rendered(),
+        "moving_picture": app.viewport().moving_picture(),
         "solutions": model.branches().map(|b| b.rows.iter().map(|r| r.q.clone()).collect::<Vec<_>>()),
         "workspace_samples": model.workspace().map(|c| c.len()),
         "directions_reachable": model.directions().map(|d| d.near.iter().filter(|n| **n).count()),

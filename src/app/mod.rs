@@ -219,6 +219,11 @@ impl ArmLabApp {
         &self.viewport
     }
 
+    /// The 3D view, to change (tests).
+    pub fn viewport_mut(&mut self) -> &mut view3d::Viewport {
+        &mut self.viewport
+    }
+
     /// The robot panel (its DH editor and file dialog).
     pub fn robot_panel(&self) -> &robot::RobotPanel {
         &self.panels.robot

@@ -8,6 +8,7 @@
 
 pub mod camera;
 pub mod mesh;
+mod targets;
 
 use eframe::egui_wgpu::RenderState;
 use eframe::wgpu;
@@ -117,12 +118,8 @@ struct GpuMesh {
     count: u32,
 }
 
-struct Targets {
-    size: [u32; 2],
-    msaa: Option<wgpu::TextureView>,
-    depth: wgpu::TextureView,
-    resolved: wgpu::TextureView,
-}
+pub use targets::Drawn;
+use targets::{Quality, REST_S, Targets, make_targets, moving_size, show_texture};
 
 const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth24Plus;
@@ -130,6 +127,7 @@ const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth24Plus;
 /// Owns the pipelines, meshes and offscreen targets.
 pub struct SceneRenderer {
     pipelines: Pipelines,
+    globals_layout: wgpu::BindGroupLayout,
     globals: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     meshes: Vec<GpuMesh>,
@@ -140,6 +138,15 @@ pub struct SceneRenderer {
     sample_count: u32,
     targets: Option<Targets>,
     texture_id: Option<egui::TextureId>,
+    /// The pipelines, targets and texture of the moving picture, made on its first use.
+    moving: Option<(Pipelines, Option<Targets>, egui::TextureId)>,
+    /// Whether the adapter is a CPU (SwiftShader, llvmpipe/lavapipe): there every pixel
+    /// and every MSAA sample is the CPU's work, so a moving scene is drawn with fewer.
+    software: bool,
+    /// The quality of the picture last drawn, and when (egui's time, s) the scene last
+    /// changed after a first picture.
+    drawn_quality: Quality,
+    changed_at: Option<f64>,
     raw_instances: Vec<InstanceRaw>,
     raw_lines: Vec<LineVertex>,
     /// Everything the render pass of the picture in the texture read, as bytes (empty
@@ -397,6 +404,7 @@ impl SceneRenderer {
             ),
             line_buffer: vertex_buffer(device, line_capacity * std::mem::size_of::<LineVertex>()),
             pipelines,
+            globals_layout: globals.layout,
             globals: globals.buffer,
             bind_group: globals.bind_group,
             meshes: upload_meshes(device),
@@ -405,6 +413,13 @@ impl SceneRenderer {
             sample_count,
             targets: None,
             texture_id: None,
+            moving: None,
+            // The page only: natively the UI tests draw on lavapipe, a CPU adapter too,
+            // and show what a GPU shows (`adapt_to_software` turns it on there).
+            software: cfg!(target_arch = "wasm32")
+                && render_state.adapter.get_info().device_type == wgpu::DeviceType::Cpu,
+            drawn_quality: Quality::Full,
+            changed_at: None,
             raw_instances: Vec::new(),
             raw_lines: Vec::new(),
             drawn: Vec::new(),
@@ -424,81 +439,72 @@ impl SceneRenderer {
         self.sample_count > 1
     }
 
+    /// Draws moving scenes as on a software renderer (fewer pixels and samples until
+    /// the scene rests), whatever the adapter.
+    pub fn adapt_to_software(&mut self) {
+        self.software = true;
+    }
+
+    /// Whether the picture last drawn is a moving one (a software renderer's fast picture
+    /// while the scene changes), not the full-quality one.
+    pub fn moving(&self) -> bool {
+        self.drawn_quality == Quality::Moving
+    }
+
     fn ensure_targets(&mut self, render_state: &RenderState, size: [u32; 2]) -> egui::TextureId {
-        let device = &render_state.device;
         let size = [size[0].clamp(1, 8192), size[1].clamp(1, 8192)];
         let stale = self.targets.as_ref().is_none_or(|t| t.size != size);
         if stale {
-            let extent = wgpu::Extent3d {
-                width: size[0],
-                height: size[1],
-                depth_or_array_layers: 1,
-            };
-            let texture = |label: &str, format, samples, usage| {
-                device
-                    .create_texture(&wgpu::TextureDescriptor {
-                        label: Some(label),
-                        size: extent,
-                        mip_level_count: 1,
-                        sample_count: samples,
-                        dimension: wgpu::TextureDimension::D2,
-                        format,
-                        usage,
-                        view_formats: &[],
-                    })
-                    .create_view(&wgpu::TextureViewDescriptor::default())
-            };
-            let attach = wgpu::TextureUsages::RENDER_ATTACHMENT;
-            let resolved = texture(
-                "armlab scene",
-                COLOR_FORMAT,
-                1,
-                attach | wgpu::TextureUsages::TEXTURE_BINDING,
-            );
-            let msaa = (self.sample_count > 1)
-                .then(|| texture("armlab scene msaa", COLOR_FORMAT, self.sample_count, attach));
-            let depth = texture("armlab depth", DEPTH_FORMAT, self.sample_count, attach);
-            let mut renderer = render_state.renderer.write();
-            match self.texture_id {
-                Some(id) => renderer.update_egui_texture_from_wgpu_texture(
-                    device,
-                    &resolved,
-                    wgpu::FilterMode::Linear,
-                    id,
-                ),
-                None => {
-                    self.texture_id = Some(renderer.register_native_texture(
-                        device,
-                        &resolved,
-                        wgpu::FilterMode::Linear,
-                    ));
-                }
-            }
+            let targets = make_targets(&render_state.device, size, self.sample_count);
+            self.texture_id = Some(show_texture(render_state, &targets, self.texture_id));
             self.drawn.clear();
-            self.targets = Some(Targets {
-                size,
-                msaa,
-                depth,
-                resolved,
-            });
+            self.changed_at = None;
+            self.targets = Some(targets);
         }
         self.texture_id.unwrap_or_default()
     }
 
-    /// Draws `scene` at `size` pixels and returns the egui texture that holds the picture.
+    /// The moving picture's pipelines (one sample) and targets at `size` (a share of the
+    /// view's), made when first needed or when the size changed.
+    fn ensure_moving(&mut self, render_state: &RenderState, size: [u32; 2]) -> egui::TextureId {
+        let device = &render_state.device;
+        let size = [size[0].clamp(1, 8192), size[1].clamp(1, 8192)];
+        let layout = &self.globals_layout;
+        let moving = self.moving.get_or_insert_with(|| {
+            let pipelines = Pipelines::new(device, layout, 1);
+            let targets = make_targets(device, size, 1);
+            let id = show_texture(render_state, &targets, None);
+            (pipelines, Some(targets), id)
+        });
+        if moving.1.as_ref().is_none_or(|t| t.size != size) {
+            let targets = make_targets(device, size, 1);
+            moving.2 = show_texture(render_state, &targets, Some(moving.2));
+            moving.1 = Some(targets);
+        }
+        moving.2
+    }
+
+    /// Draws `scene` at `size` pixels at egui's time `now` (s) and returns the egui
+    /// texture that holds the picture.
     ///
     /// A scene whose pass would read exactly what the picture in the texture was drawn
     /// from is not drawn again. egui repaints twice more after every input event (and
     /// for its own animations), so two frames in three of a drag or a hover change nothing
     /// in the 3D view; on WebGL2 each pass is GL calls on the main thread, and without a
     /// GPU the pixels are the CPU's work too.
+    ///
+    /// On a software renderer, a scene that changed after the first picture (an orbit, a
+    /// drag, the arm moving) is drawn without MSAA at half the width and height (a
+    /// sixteenth of the samples) until it has rested for [`REST_S`]: then the
+    /// full-quality picture, the same as on a GPU, is drawn once and kept.
     pub fn render(
         &mut self,
         render_state: &RenderState,
         size: [u32; 2],
         scene: &Scene,
-    ) -> egui::TextureId {
-        let texture_id = self.ensure_targets(render_state, size);
+        now: f64,
+    ) -> Drawn {
+        let full = self.ensure_targets(render_state, size);
         let ranges = self.group_instances(scene);
         self.line_vertices(scene);
         let globals = Globals {
@@ -511,22 +517,23 @@ impl SceneRenderer {
             ],
             eye: [scene.eye[0], scene.eye[1], scene.eye[2], 1.0],
         };
-        self.next.clear();
-        self.next.extend_from_slice(bytemuck::bytes_of(&globals));
-        self.next.extend_from_slice(&scene.background);
-        for range in &ranges {
-            let (start, end) = (range.instances.start, range.instances.end);
-            let words = [u32::from(range.on_top), range.mesh as u32, start, end];
-            self.next.extend_from_slice(bytemuck::bytes_of(&words));
+        self.scene_bytes(&globals, scene.background, &ranges);
+        let changed = self.next != self.drawn;
+        let (quality, sharpen_in) = self.quality(changed, now);
+        let texture = match quality {
+            Quality::Full => full,
+            Quality::Moving => self.ensure_moving(render_state, moving_size(size)),
+        };
+        if !changed && quality == self.drawn_quality {
+            return Drawn {
+                texture,
+                sharpen_in,
+            };
         }
-        self.next
-            .extend_from_slice(bytemuck::cast_slice(&self.raw_instances));
-        self.next
-            .extend_from_slice(bytemuck::cast_slice(&self.raw_lines));
-        if self.next == self.drawn {
-            return texture_id;
+        if changed {
+            std::mem::swap(&mut self.next, &mut self.drawn);
         }
-        std::mem::swap(&mut self.next, &mut self.drawn);
+        self.drawn_quality = quality;
         self.passes += 1;
         self.upload(render_state);
         render_state
@@ -538,9 +545,47 @@ impl SceneRenderer {
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("armlab scene"),
                 });
-        self.encode_pass(&mut encoder, scene.background, &ranges);
+        self.encode_pass(&mut encoder, scene.background, &ranges, quality);
         render_state.queue.submit(Some(encoder.finish()));
-        texture_id
+        Drawn {
+            texture,
+            sharpen_in,
+        }
+    }
+
+    /// This frame's picture quality, and the seconds until a moving picture is due to
+    /// be sharpened: on a software renderer a scene that changed after the first picture
+    /// moves until it has rested for [`REST_S`].
+    fn quality(&mut self, changed: bool, now: f64) -> (Quality, Option<f64>) {
+        if changed && self.software && !self.drawn.is_empty() {
+            self.changed_at = Some(now);
+        }
+        let sharpen_in = self
+            .changed_at
+            .map(|t| REST_S - (now - t))
+            .filter(|s| *s > 0.0);
+        let quality = if sharpen_in.is_some() {
+            Quality::Moving
+        } else {
+            Quality::Full
+        };
+        (quality, sharpen_in)
+    }
+
+    /// Everything the render pass of `scene` reads, as bytes, into `next`.
+    fn scene_bytes(&mut self, globals: &Globals, background: [u8; 3], ranges: &[DrawRange]) {
+        self.next.clear();
+        self.next.extend_from_slice(bytemuck::bytes_of(globals));
+        self.next.extend_from_slice(&background);
+        for range in ranges {
+            let (start, end) = (range.instances.start, range.instances.end);
+            let words = [u32::from(range.on_top), range.mesh as u32, start, end];
+            self.next.extend_from_slice(bytemuck::bytes_of(&words));
+        }
+        self.next
+            .extend_from_slice(bytemuck::cast_slice(&self.raw_instances));
+        self.next
+            .extend_from_slice(bytemuck::cast_slice(&self.raw_lines));
     }
 
     /// Lists the scene's instances grouped by shape, on-top ones last; returns the draw
@@ -621,8 +666,14 @@ impl SceneRenderer {
         encoder: &mut wgpu::CommandEncoder,
         background: [u8; 3],
         ranges: &[DrawRange],
+        quality: Quality,
     ) {
-        let Some(targets) = &self.targets else {
+        let (pipelines, targets) = match (quality, &self.moving) {
+            (Quality::Full, _) => (&self.pipelines, &self.targets),
+            (Quality::Moving, Some((pipelines, targets, _))) => (pipelines, targets),
+            (Quality::Moving, None) => return,
+        };
+        let Some(targets) = targets else {
             return;
         };
         // The target holds sRGB-encoded values: the clear colour goes in as it is.
@@ -661,16 +712,16 @@ impl SceneRenderer {
         });
         pass.set_bind_group(0, &self.bind_group, &[]);
         if !self.raw_lines.is_empty() {
-            pass.set_pipeline(&self.pipelines.line);
+            pass.set_pipeline(&pipelines.line);
             pass.set_vertex_buffer(0, self.line_buffer.slice(..));
             pass.draw(0..self.raw_lines.len() as u32, 0..1);
         }
         pass.set_vertex_buffer(1, self.instance_buffer.slice(..));
         for range in ranges {
             pass.set_pipeline(if range.on_top {
-                &self.pipelines.mesh_on_top
+                &pipelines.mesh_on_top
             } else {
-                &self.pipelines.mesh
+                &pipelines.mesh
             });
             let mesh = &self.meshes[range.mesh];
             pass.set_vertex_buffer(0, mesh.vertices.slice(..));

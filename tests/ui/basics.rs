@@ -290,6 +290,54 @@ fn the_view_draws_a_pass_only_when_its_scene_changes_and_never_shows_a_stale_arm
 }
 
 #[test]
+fn on_a_software_renderer_a_moving_scene_is_drawn_fast_and_the_resting_one_sharp() {
+    let q = vec![0.4, -1.1, 1.3, -1.6, -1.4, 0.2];
+    let mut h = harness("#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2");
+    h.state_mut().viewport_mut().adapt_to_software();
+    h.run_steps(2);
+    // The first picture is the full-quality one: a page that opens shows it sharp.
+    assert!(!h.state().viewport().moving_picture());
+    let sharp = view_pixels(&mut h);
+    // The arm moves away and back within one step (a quarter second): the scene
+    // changed, so the picture is the fast one, of the same arm.
+    h.state_mut()
+        .model_mut()
+        .set_q(vec![0.9, -1.1, 1.3, -1.6, -1.4, 0.2]);
+    h.run_steps(1);
+    h.state_mut().model_mut().set_q(q);
+    h.run_steps(1);
+    assert!(
+        h.state().viewport().moving_picture(),
+        "a changing scene is drawn as a moving picture"
+    );
+    let moving = view_pixels(&mut h);
+    assert_eq!(moving.len(), sharp.len());
+    let differ = sharp
+        .chunks(4)
+        .zip(moving.chunks(4))
+        .filter(|(a, b)| a.iter().zip(b.iter()).any(|(x, y)| x.abs_diff(*y) > 24))
+        .count();
+    let pixels = sharp.len() / 4;
+    // Half the width and height, no MSAA: the edges differ, the arm and the floor do not.
+    assert!(
+        differ > 50,
+        "the moving picture has fewer pixels: {differ} differ"
+    );
+    assert!(
+        differ < pixels / 20,
+        "the moving picture shows the same arm: {differ} of {pixels} pixels differ"
+    );
+    // At rest (past 0.3 s without a change) the full-quality picture returns, pixel for
+    // pixel, and stays.
+    h.run_steps(2);
+    assert!(!h.state().viewport().moving_picture());
+    assert!(
+        view_pixels(&mut h) == sharp,
+        "the resting picture is the sharp one"
+    );
+}
+
+#[test]
 fn metrover_snapshot_with_its_part_sizes() {
     let mut h = harness("#robot=metrover&q=0.5,0.9,0.6,0.3,0.2&task=position");
     h.run_steps(2);

@@ -5,9 +5,10 @@
 // wasm-bindgen glue ("Failed to minify JS: RequiredTokenNotFound(Identifier)", on its
 // `export default`), which then ships as written: about 2.6 kB gzip more of the first load.
 // esbuild (npm, pinned in web/package-lock.json) minifies it here instead, keeping it an ES
-// module with the same exports. Trunk has already written index.html with a Subresource
-// Integrity hash (sha384) for the glue it preloads, so that hash is written anew for the
-// minified file; a browser refuses a preload whose hash does not match.
+// module with the same exports. Where trunk has written index.html with a Subresource
+// Integrity hash (sha384) for the glue it preloads, that hash is written anew for the
+// minified file: a browser refuses a preload whose hash does not match. (index.html asks
+// for none, data-integrity="none": the files are the page's own, from its own origin.)
 //
 // Only release builds (TRUNK_PROFILE=release): `trunk serve` keeps readable glue.
 // Run by hand on a built folder: TRUNK_PROFILE=release TRUNK_STAGING_DIR=dist node web/build/minify-build.mjs

@@ -6,15 +6,32 @@
 import http from 'node:http';
 import fs from 'node:fs';
 import path from 'node:path';
+import zlib from 'node:zlib';
 import { chromium } from 'playwright-core';
 
 const types = {
-  '.html': 'text/html', '.js': 'text/javascript', '.wasm': 'application/wasm', '.css': 'text/css',
+  '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.wasm': 'application/wasm', '.css': 'text/css',
   '.json': 'application/json', '.png': 'image/png', '.svg': 'image/svg+xml',
 };
 
-/** Serves the folder `dist` on a free loopback port; returns the server and its URL. */
-export async function serveDist(dist) {
+/**
+ * Serves the folder `dist` on a free loopback port; returns the server and its URL. With
+ * `encoding` 'gzip' or 'br' it compresses each answer, where the request accepts it, as a
+ * host does: 'gzip' as GitHub Pages and Apache's mod_deflate (level 9 here, the page's
+ * budget figure), 'br' as Apache's mod_brotli (quality 11 here: a host compressing on the
+ * fly uses less, a host serving files compressed ahead, the same). Compressed once per file.
+ */
+export async function serveDist(dist, { encoding } = {}) {
+  const packed = new Map();
+  const pack = (file, data) => {
+    const key = `${encoding} ${file}`;
+    if (!packed.has(key)) {
+      packed.set(key, encoding === 'br'
+        ? zlib.brotliCompressSync(data, { params: { [zlib.constants.BROTLI_PARAM_QUALITY]: 11 } })
+        : zlib.gzipSync(data, { level: 9 }));
+    }
+    return packed.get(key);
+  };
   const server = http.createServer((req, res) => {
     const url = new URL(req.url, 'http://localhost');
     let file = path.join(dist, decodeURIComponent(url.pathname));
@@ -22,7 +39,13 @@ export async function serveDist(dist) {
     if (file.endsWith('/')) file = path.join(file, 'index.html');
     fs.readFile(file, (err, data) => {
       if (err) { res.writeHead(404); res.end(); return; }
-      res.writeHead(200, { 'content-type': types[path.extname(file)] ?? 'application/octet-stream' });
+      const headers = { 'content-type': types[path.extname(file)] ?? 'application/octet-stream' };
+      if (encoding && (req.headers['accept-encoding'] ?? '').includes(encoding)) {
+        headers['content-encoding'] = encoding;
+        headers.vary = 'Accept-Encoding';
+        data = pack(file, data);
+      }
+      res.writeHead(200, headers);
       res.end(data);
     });
   });

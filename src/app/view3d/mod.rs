@@ -134,6 +134,20 @@ impl Viewport {
         self.predictions = predictions;
     }
 
+    /// Whether the 3D picture shown is a moving one: drawn by a software renderer while
+    /// the scene changes, with fewer pixels and samples than at rest.
+    pub fn moving_picture(&self) -> bool {
+        self.renderer.as_ref().is_some_and(SceneRenderer::moving)
+    }
+
+    /// Draws moving scenes as on a software renderer, whatever the adapter (the page
+    /// does so by itself on SwiftShader).
+    pub fn adapt_to_software(&mut self) {
+        if let Some(renderer) = self.renderer.as_mut() {
+            renderer.adapt_to_software();
+        }
+    }
+
     /// The view's rectangle last frame (egui points).
     pub fn rect(&self) -> Option<Rect> {
         self.rect
@@ -540,11 +554,15 @@ impl Viewport {
         }
         self.grid_step = step;
         let t1 = clock::now_ms();
-        let texture = renderer.render(rs, px_size, &scene);
+        let drawn = renderer.render(rs, px_size, &scene, ui.input(|i| i.time));
         timing.scene_ms += t1 - t0;
         timing.render_ms += clock::now_ms() - t1;
+        if let Some(s) = drawn.sharpen_in {
+            ui.ctx()
+                .request_repaint_after(std::time::Duration::from_secs_f64(s));
+        }
         painter.image(
-            texture,
+            drawn.texture,
             rect,
             Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0)),
             Color32::WHITE,
