@@ -45,6 +45,7 @@ pub fn start() {
                 canvas,
                 options,
                 Box::new(move |cc| {
+                    web::a11y::install(&cc.egui_ctx);
                     let app = ArmLabApp::new_with(cc, &link, Some(&stored), preferences);
                     Ok(Box::new(app))
                 }),

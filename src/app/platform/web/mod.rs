@@ -7,7 +7,9 @@
 //! - [`hook`]: `window.armlab`, the browser tests' hook.
 //! - [`files`]: downloads, the file chooser, dropped files.
 //! - [`modules`]: the lazily loaded modules (URDF, collisions).
+//! - [`a11y`]: the accessibility tree mirrored into the page for screen readers.
 
+pub mod a11y;
 pub mod files;
 pub mod hook;
 pub mod modules;
