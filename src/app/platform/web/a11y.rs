@@ -233,14 +233,34 @@ impl Mirror {
         {
             let _ = self.root.append_child(&root.el);
         }
-        let focus =
+        self.focus =
             Some(update.focus).filter(|f| self.nodes.get(f).is_some_and(|m| m.el.tab_index() >= 0));
-        if focus == self.focus {
-            return None;
-        }
-        self.focus = focus;
-        let el = self.nodes.get(&focus?)?.el.clone();
-        focus_in_mirror().then_some(el)
+        self.focus_target()
+    }
+
+    /// Where the DOM focus should go so that it follows egui's: the focused widget's
+    /// element when the DOM focus is in the mirror, or on the canvas and the widget is no
+    /// text field (eframe gives those its own text input); back to the canvas when egui's
+    /// focus left the widgets.
+    fn focus_target(&self) -> Option<web_sys::HtmlElement> {
+        let active = web_sys::window()?.document()?.active_element()?;
+        let in_mirror = active.closest("#armlab_a11y").ok().flatten().is_some();
+        let on_canvas = active.id() == "armlab_canvas";
+        let target = match self.focus.and_then(|f| self.nodes.get(&f)) {
+            Some(m)
+                if in_mirror
+                    || (on_canvas && m.el.get_attribute("role").as_deref() != Some("textbox")) =>
+            {
+                m.el.clone()
+            }
+            None if in_mirror => active
+                .owner_document()?
+                .get_element_by_id("armlab_canvas")?
+                .dyn_into()
+                .ok()?,
+            _ => return None,
+        };
+        (*target != active).then_some(target)
     }
 }
 
@@ -255,6 +275,7 @@ fn new_element(id: NodeId) -> web_sys::HtmlElement {
         .and_then(|e| e.dyn_into::<web_sys::HtmlElement>().ok())
         .expect("a div is an HtmlElement");
     let _ = el.set_attribute("data-n", &id.0.to_string());
+    el.set_id(&format!("a11y{}", id.0));
     el
 }
 
@@ -265,6 +286,8 @@ fn hashes(node: &Node, scale: f32) -> (u64, u64) {
     node.label().hash(&mut h);
     node.value().hash(&mut h);
     node.description().hash(&mut h);
+    node.labelled_by().iter().for_each(|n| n.0.hash(&mut h));
+    (node.row_count(), node.column_count()).hash(&mut h);
     for v in [
         node.numeric_value(),
         node.min_numeric_value(),
@@ -293,7 +316,7 @@ fn px(node: &Node, scale: f32) -> [i32; 4] {
 /// The ARIA role of an AccessKit role; `None` for a plain container or text.
 fn aria_role(role: Role) -> Option<&'static str> {
     Some(match role {
-        Role::Button | Role::DefaultButton => "button",
+        Role::Button | Role::DefaultButton | Role::DisclosureTriangle => "button",
         Role::CheckBox => "checkbox",
         Role::RadioButton => "radio",
         Role::Slider => "slider",
@@ -324,7 +347,14 @@ fn aria_role(role: Role) -> Option<&'static str> {
 
 /// Writes node's role, name, value, state and place into its element.
 fn show(el: &web_sys::HtmlElement, node: &Node, scale: f32) {
-    let role = aria_role(node.role());
+    // A matrix stays a label in egui's tree (the UI tests read it so) with its rows and
+    // columns counted: here it becomes a table.
+    let matrix = node.row_count().is_some() && node.column_count().is_some();
+    let role = if matrix {
+        Some("table")
+    } else {
+        aria_role(node.role())
+    };
     let name = node.label().unwrap_or_default();
     let set = |k: &str, v: Option<&str>| {
         let _ = match v {
@@ -333,16 +363,43 @@ fn show(el: &web_sys::HtmlElement, node: &Node, scale: f32) {
         };
     };
     set("role", role);
-    if role.is_some() {
+    if matrix {
+        table(el, node);
+    } else if role.is_some() {
         set("aria-label", Some(name).filter(|n| !n.is_empty()));
-        // A plain text node's words are its text; a control's children stay its own.
-    } else if node.role() == Role::Label && node.children().is_empty() {
-        el.set_text_content(Some(if name.is_empty() {
-            node.value().unwrap_or_default()
-        } else {
-            name
-        }));
+        let by: Vec<String> = node
+            .labelled_by()
+            .iter()
+            .map(|n| format!("a11y{}", n.0))
+            .collect();
+        let by = Some(by.join(" ")).filter(|b| !b.is_empty() && name.is_empty());
+        set("aria-labelledby", by.as_deref());
+    } else if node.children().is_empty() {
+        // A plain text node's words are its text (egui keeps a label's words as its value).
+        el.set_text_content(node.value().or(node.label()));
     }
+    states(el, node, role);
+    if node.supports_action(Action::Focus) {
+        el.set_tab_index(0);
+    } else {
+        let _ = el.remove_attribute("tabindex");
+    }
+    let [x, y, w, h] = px(node, scale);
+    el.style()
+        .set_css_text(&format!("left:{x}px;top:{y}px;width:{w}px;height:{h}px"));
+}
+
+/// Sets (or, given `None`, removes) an attribute.
+fn set(el: &web_sys::Element, k: &str, v: Option<&str>) {
+    let _ = match v {
+        Some(v) => el.set_attribute(k, v),
+        None => el.remove_attribute(k),
+    };
+}
+
+/// Writes node's value and states (checked, pressed, expanded, selected, disabled).
+fn states(el: &web_sys::HtmlElement, node: &Node, role: Option<&str>) {
+    let set = |k: &str, v: Option<&str>| set(el, k, v);
     let num = |v: Option<f64>| v.map(|v| format!("{v}"));
     let ranged = matches!(role, Some("slider" | "spinbutton" | "progressbar"));
     set(
@@ -357,15 +414,10 @@ fn show(el: &web_sys::HtmlElement, node: &Node, scale: f32) {
         "aria-valuemax",
         num(node.max_numeric_value()).filter(|_| ranged).as_deref(),
     );
-    let value_text = node.value().filter(|_| ranged || role == Some("textbox"));
-    set(
-        if ranged {
-            "aria-valuetext"
-        } else {
-            "aria-description"
-        },
-        value_text,
-    );
+    set("aria-valuetext", node.value().filter(|_| ranged));
+    if role == Some("textbox") {
+        el.set_text_content(node.value());
+    }
     let checked = node.toggled().map(|t| match t {
         Toggled::True => "true",
         Toggled::False => "false",
@@ -389,12 +441,33 @@ fn show(el: &web_sys::HtmlElement, node: &Node, scale: f32) {
         selected.map(|s| if s { "true" } else { "false" }),
     );
     set("aria-disabled", node.is_disabled().then_some("true"));
-    if node.supports_action(Action::Focus) {
-        el.set_tab_index(0);
-    } else {
-        let _ = el.remove_attribute("tabindex");
+}
+
+/// A matrix as a table: its caption (the node's description), and its entries from its
+/// text (a label's value), the matrix as plain text, row by row (`row_count` ×
+/// `column_count` numbers).
+fn table(el: &web_sys::HtmlElement, node: &Node) {
+    let (rows, columns) = (
+        node.row_count().unwrap_or(0),
+        node.column_count().unwrap_or(0),
+    );
+    let text = node.value().or(node.label()).unwrap_or_default();
+    let entries: Vec<&str> = text.split_whitespace().collect();
+    let caption = node.description().unwrap_or_default();
+    let _ = el.set_attribute("aria-label", caption);
+    if rows == 0 || entries.len() != rows * columns {
+        el.set_text_content(Some(text));
+        return;
     }
-    let [x, y, w, h] = px(node, scale);
-    el.style()
-        .set_css_text(&format!("left:{x}px;top:{y}px;width:{w}px;height:{h}px"));
+    let mut html = String::new();
+    for row in entries.chunks(columns) {
+        html.push_str("<div role=row>");
+        for entry in row {
+            html.push_str("<div role=cell>");
+            html.push_str(entry);
+            html.push_str("</div>");
+        }
+        html.push_str("</div>");
+    }
+    el.set_inner_html(&html);
 }
