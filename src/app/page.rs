@@ -115,6 +115,14 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
         app.open_hash(&hash);
     }
     let app = &*app;
+    let lang = app.model().settings().lang;
+    let canvas = (
+        armlab_text::text(lang, armlab_text::Key::CanvasName),
+        armlab_text::text(lang, armlab_text::Key::CanvasDescription),
+    );
+    web::a11y::describe(ctx, canvas, || {
+        crate::app::state::view_words::view_words(app.model())
+    });
     hook::publish(
         ctx,
         || app.state_json(),

@@ -39,6 +39,9 @@ thread_local! {
     static MIRROR: RefCell<Option<Mirror>> = const { RefCell::new(None) };
     /// Events from the page for egui's next pass (action requests, keys).
     static EVENTS: RefCell<Vec<egui::Event>> = const { RefCell::new(Vec::new()) };
+    /// The live region: its element, what it said last and when (ms), and the canvas's
+    /// name it was given.
+    static LIVE: RefCell<Option<(web_sys::HtmlElement, String, f64, &'static str)>> = const { RefCell::new(None) };
 }
 
 /// The egui plugin that feeds the mirror from each pass's tree and the page's requests
@@ -74,8 +77,17 @@ impl egui::Plugin for Plugin {
 
 /// Starts the mirror: egui builds its AccessKit tree from now on, and the page gets the
 /// mirror's container (`#armlab_a11y`) with its listeners.
+///
+/// A page that set `window.armlabNoMirror` before the app started goes without (the
+/// frame-time benchmark compares the two).
 pub fn install(ctx: &egui::Context) {
-    let Some(doc) = web_sys::window().and_then(|w| w.document()) else {
+    let Some(window) = web_sys::window() else {
+        return;
+    };
+    if js_sys::Reflect::get(&window, &"armlabNoMirror".into()).is_ok_and(|v| v.is_truthy()) {
+        return;
+    }
+    let Some(doc) = window.document() else {
         return;
     };
     let Some(root) = doc
@@ -86,6 +98,16 @@ pub fn install(ctx: &egui::Context) {
         return;
     };
     root.set_id("armlab_a11y");
+    if let Some(live) = doc
+        .create_element("div")
+        .ok()
+        .and_then(|e| e.dyn_into::<web_sys::HtmlElement>().ok())
+    {
+        live.set_id("armlab_live");
+        let _ = live.set_attribute("role", "status");
+        let _ = root.append_child(&live);
+        LIVE.with(|l| *l.borrow_mut() = Some((live, String::new(), f64::NEG_INFINITY, "")));
+    }
     let Some(body) = doc.body() else {
         return;
     };
@@ -106,6 +128,48 @@ pub fn install(ctx: &egui::Context) {
     });
     ctx.enable_accesskit();
     ctx.add_plugin(Plugin);
+}
+
+/// The least time between two sentences of the live region, so that a drag is not read
+/// out frame by frame.
+const LIVE_EVERY_MS: f64 = 1000.0;
+
+/// Keeps the live region saying what the 3D view shows: `words` is asked for at most once
+/// a second and written only when it changed (a screen reader reads each change out).
+/// The canvas gets `name` and `description` (in the interface's language).
+pub fn describe(
+    ctx: &egui::Context,
+    (name, description): (&'static str, &str),
+    words: impl FnOnce() -> String,
+) {
+    LIVE.with(|l| {
+        let mut l = l.borrow_mut();
+        let Some((live, said, at, named)) = l.as_mut() else {
+            return;
+        };
+        if !std::ptr::eq(*named, name)
+            && let Some(canvas) = live
+                .owner_document()
+                .and_then(|d| d.get_element_by_id("armlab_canvas"))
+        {
+            let _ = canvas.set_attribute("role", "img");
+            let _ = canvas.set_attribute("aria-label", name);
+            let _ = canvas.set_attribute("aria-description", description);
+            *named = name;
+        }
+        let now = crate::app::platform::clock::now_ms();
+        if now - *at < LIVE_EVERY_MS {
+            // A change within the second is said when it ends.
+            ctx.request_repaint_after(std::time::Duration::from_millis(LIVE_EVERY_MS as u64));
+            return;
+        }
+        let text = words();
+        if text != *said {
+            live.set_text_content(Some(&text));
+            *said = text;
+            *at = now;
+        }
+    });
 }
 
 /// Adds a listener for the page's lifetime.
