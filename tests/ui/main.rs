@@ -35,6 +35,7 @@ mod app_harness;
 mod basics;
 mod exercise;
 mod fit;
+mod keyboard;
 mod motion;
 mod overlays;
 mod panels;
