@@ -45,6 +45,7 @@ pub fn start() {
                 canvas,
                 options,
                 Box::new(move |cc| {
+                    web::a11y::install(&cc.egui_ctx);
                     let app = ArmLabApp::new_with(cc, &link, Some(&stored), preferences);
                     Ok(Box::new(app))
                 }),
@@ -116,6 +117,14 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
     }
     let app = &*app;
     hook::publish_classroom(app.classroom_json());
+    let lang = app.model().settings().lang;
+    let canvas = (
+        armlab_text::text(lang, armlab_text::Key::CanvasName),
+        armlab_text::text(lang, armlab_text::Key::CanvasDescription),
+    );
+    web::a11y::describe(ctx, canvas, || {
+        crate::app::state::view_words::view_words(app.model())
+    });
     hook::publish(
         ctx,
         || app.state_json(),

@@ -36,6 +36,7 @@ mod basics;
 mod classroom;
 mod exercise;
 mod fit;
+mod keyboard;
 mod motion;
 mod overlays;
 mod panels;

@@ -3,7 +3,7 @@
 // the test command). Headless Chromium draws through SwiftShader here, so compare runs
 // made one after the other on the same machine, and read no difference under ~1 ms.
 //
-//   node web/scripts/frametimes.mjs DIST_DIR [runs=3] [frames=300] [--pin] [--eager]
+//   node web/scripts/frametimes.mjs DIST_DIR [runs=3] [frames=300] [--pin] [--eager] [--no-mirror]
 //
 // Each run opens the page at 1400×860 with the arm, the target and the DH frames shown,
 // grabs the target ball and drags it in small steps, holding the button, until the app
@@ -24,6 +24,9 @@
 // compiled by the optimising compiler in the background from the start, instead of running
 // in the baseline compiler's code until it has run enough (V8's default, which no page can
 // change). Compared with a run without it, the difference is V8's warm-up, not the app's.
+// With --no-mirror, the page starts without its accessibility mirror (the DOM copy of the
+// interface for screen readers, window.armlabNoMirror): against a run without the flag, on
+// the same build, the difference is the mirror's cost.
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { serveDist, launchChromium } from '../tests/static-server.mjs';
@@ -31,7 +34,8 @@ import { serveDist, launchChromium } from '../tests/static-server.mjs';
 const args = process.argv.slice(2);
 const pin = args.includes('--pin');
 const eager = args.includes('--eager');
-const [distArg, runsArg, framesArg] = args.filter((a) => a !== '--pin' && a !== '--eager');
+const noMirror = args.includes('--no-mirror');
+const [distArg, runsArg, framesArg] = args.filter((a) => !a.startsWith('--'));
 if (!distArg) {
   console.error('usage: node web/scripts/frametimes.mjs DIST_DIR [runs] [frames] [--pin] [--eager]');
   process.exit(2);
@@ -110,6 +114,7 @@ const allCallbacks = [];
 for (let run = 1; run <= runs; run++) {
   const ctx = await browser.newContext({ viewport: VIEW, deviceScaleFactor: 1 });
   await ctx.addInitScript(timeCallbacks);
+  if (noMirror) await ctx.addInitScript(() => { window.armlabNoMirror = true; });
   const page = await ctx.newPage();
   await page.goto(`${base}#robot=ur10&q=0,-1,1.2,-1.5,-1.2,0.3&task=position`, { waitUntil: 'domcontentloaded' });
   await page.waitForFunction(() => {

@@ -408,7 +408,7 @@ fn joint_slider(
         ui.label(&symbol).on_hover_text(&joint.name)
     };
     let mut slider = egui::Slider::new(&mut v, range)
-        .suffix(suffix)
+        .suffix(suffix.clone())
         .show_value(!stacked)
         .clamping(egui::SliderClamping::Never);
     if let Some(d) = decimals {
@@ -421,7 +421,18 @@ fn joint_slider(
     if response.changed() {
         *value = v / scale;
     }
-    response.labelled_by(label.id)
+    // A screen reader says the joint's symbol and its value as shown: "θ2, −63.0°".
+    let spoken = match decimals {
+        Some(d) => format!("{v:.d$}{suffix}"),
+        None => format!("{v}{suffix}"),
+    }
+    .replace('-', "\u{2212}");
+    let response = response.labelled_by(label.id);
+    ui.ctx().accesskit_node_builder(response.id, |node| {
+        node.set_label(symbol);
+        node.set_value(spoken);
+    });
+    response
 }
 
 /// The q̇ sliders, their units once above them; returns the speeds as set.

@@ -245,6 +245,11 @@ fn section_header(kind: PanelKind, model: &Model, ui: &mut egui::Ui) -> bool {
         close = ui
             .small_button("×")
             .on_hover_text(t(model, Key::ClosePanel))
+            .accessible_name(armlab_text::fill(
+                model.settings().lang,
+                Key::ClosePanelNamed,
+                &[&t(model, title(kind))],
+            ))
             .clicked();
         ui.strong(t(model, title(kind)));
     });

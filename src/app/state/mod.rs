@@ -8,6 +8,7 @@ pub mod model;
 pub mod motion_lab;
 pub mod notebook;
 pub mod path_lab;
+pub mod view_words;
 
 use armlab_text::Key;
 use model::Model;

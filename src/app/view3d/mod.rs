@@ -12,6 +12,7 @@ pub mod exercise;
 mod frame_labels;
 mod ghosts;
 pub mod jacobian;
+pub mod keys;
 pub mod labels;
 pub mod marker;
 mod motion;
@@ -263,6 +264,9 @@ impl Viewport {
         self.rect = Some(rect);
         let axes = marker_axes(model);
         self.handle_input(model, ui, &response, &axes);
+        if keys::handle_keys(&mut self.camera, model, ui.ctx()) {
+            ui.ctx().request_repaint();
+        }
         if self.dragging() {
             // Every frame of the drag, including frames where the pointer rests: the arm
             // keeps converging (each step moves each joint by at most the per-call limit).

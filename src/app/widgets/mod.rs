@@ -2,6 +2,7 @@
 //! draft, a matrix's numbers drawn as one mesh, the hand-drawn plot, colours and text
 //! sizes.
 
+pub mod contrast;
 pub mod dh_table;
 pub mod draft;
 pub mod math;

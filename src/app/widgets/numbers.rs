@@ -111,6 +111,12 @@ pub fn number_table(
     let (rect, response) = ui.allocate_exact_size(size, egui::Sense::hover());
     if labelled {
         response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Label, true, plain()));
+        // Its rows and columns, so that a screen reader reads it as a table, entry by entry.
+        let columns = texts.len() / rows;
+        ui.ctx().accesskit_node_builder(response.id, |node| {
+            node.set_row_count(rows);
+            node.set_column_count(columns);
+        });
     }
     if !ui.is_rect_visible(rect) {
         return response;

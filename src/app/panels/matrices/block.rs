@@ -138,7 +138,12 @@ fn matrix_body(
                 let columns = (columns, labelled);
                 let plain = || to_plain(m, decimals);
                 let texts = (texts.as_slice(), m.nrows());
-                number_table(ui, texts, &plain, columns, font, advances).hovered()
+                let response = number_table(ui, texts, &plain, columns, font, advances);
+                // The matrix's name is the table's caption.
+                ui.ctx().accesskit_node_builder(response.id, |node| {
+                    node.set_description(crate::app::widgets::math::plain(title));
+                });
+                response.hovered()
             }
         };
         match fitted {

@@ -8,7 +8,9 @@
 //! - [`files`]: downloads, the file chooser, dropped files.
 //! - [`modules`]: the lazily loaded modules (URDF, collisions, symbolic matrices, QR codes).
 //! - [`room`]: the lecture room's connection to a classroom server.
+//! - [`a11y`]: the accessibility tree mirrored into the page for screen readers.
 
+pub mod a11y;
 pub mod files;
 pub mod hook;
 pub mod modules;

@@ -1,0 +1,537 @@
+//! The page for screen readers and the keyboard: egui's AccessKit tree mirrored into
+//! invisible DOM elements over the canvas (eframe's web runner drops the tree), each at its
+//! widget's place with its role, name, value and state. The browser builds its
+//! accessibility tree from them, so a screen reader finds every control.
+//!
+//! The two sides stay in step both ways: a screen reader's focus or click on an element
+//! becomes an AccessKit action request for egui, and while the DOM focus is in the mirror
+//! its keys go to egui (Tab moves egui's focus, and the DOM focus follows it to that
+//! widget's element). egui sends the whole tree every frame; an element is touched only
+//! when what it shows changed (a hash of its role, name, value, state, bounds and children).
+
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::hash::{Hash, Hasher};
+
+use egui::accesskit::{Action, ActionRequest, Node, NodeId, Role, Toggled, TreeId, TreeUpdate};
+use wasm_bindgen::JsCast;
+use wasm_bindgen::prelude::*;
+
+use super::wake;
+
+/// One mirrored node: its element, the hash of what the element shows and its children.
+struct Mirrored {
+    el: web_sys::HtmlElement,
+    shown: u64,
+    children: u64,
+    seen: u64,
+}
+
+/// The mirror's DOM side.
+struct Mirror {
+    root: web_sys::HtmlElement,
+    nodes: HashMap<NodeId, Mirrored>,
+    focus: Option<NodeId>,
+    pass: u64,
+}
+
+thread_local! {
+    static MIRROR: RefCell<Option<Mirror>> = const { RefCell::new(None) };
+    /// Events from the page for egui's next pass (action requests, keys).
+    static EVENTS: RefCell<Vec<egui::Event>> = const { RefCell::new(Vec::new()) };
+    /// The live region: its element, what it said last and when (ms), and the canvas's
+    /// name it was given.
+    static LIVE: RefCell<Option<(web_sys::HtmlElement, String, f64, &'static str)>> = const { RefCell::new(None) };
+}
+
+/// The egui plugin that feeds the mirror from each pass's tree and the page's requests
+/// back into egui.
+struct Plugin;
+
+impl egui::Plugin for Plugin {
+    fn debug_name(&self) -> &'static str {
+        "a11y mirror"
+    }
+
+    fn input_hook(&mut self, _ctx: &egui::Context, input: &mut egui::RawInput) {
+        EVENTS.with(|e| input.events.append(&mut e.borrow_mut()));
+        if focus_in_mirror() {
+            // The canvas lost the DOM focus to the mirror, yet the keys are egui's.
+            input.focused = true;
+        }
+    }
+
+    fn output_hook(&mut self, ctx: &egui::Context, output: &mut egui::FullOutput) {
+        let Some(update) = output.platform_output.accesskit_update.as_ref() else {
+            return;
+        };
+        let scale = ctx.zoom_factor();
+        let to_focus =
+            MIRROR.with(|m| m.borrow_mut().as_mut().and_then(|m| m.apply(update, scale)));
+        // Outside the borrow: focusing fires the mirror's focusin listener.
+        if let Some(el) = to_focus {
+            let _ = el.focus();
+        }
+    }
+}
+
+/// Starts the mirror: egui builds its AccessKit tree from now on, and the page gets the
+/// mirror's container (`#armlab_a11y`) with its listeners.
+///
+/// A page that set `window.armlabNoMirror` before the app started goes without (the
+/// frame-time benchmark compares the two).
+pub fn install(ctx: &egui::Context) {
+    let Some(window) = web_sys::window() else {
+        return;
+    };
+    if js_sys::Reflect::get(&window, &"armlabNoMirror".into()).is_ok_and(|v| v.is_truthy()) {
+        return;
+    }
+    let Some(doc) = window.document() else {
+        return;
+    };
+    let Some(root) = doc
+        .create_element("div")
+        .ok()
+        .and_then(|e| e.dyn_into::<web_sys::HtmlElement>().ok())
+    else {
+        return;
+    };
+    root.set_id("armlab_a11y");
+    if let Some(live) = doc
+        .create_element("div")
+        .ok()
+        .and_then(|e| e.dyn_into::<web_sys::HtmlElement>().ok())
+    {
+        live.set_id("armlab_live");
+        let _ = live.set_attribute("role", "status");
+        let _ = root.append_child(&live);
+        LIVE.with(|l| *l.borrow_mut() = Some((live, String::new(), f64::NEG_INFINITY, "")));
+    }
+    let Some(body) = doc.body() else {
+        return;
+    };
+    if body.append_child(&root).is_err() {
+        return;
+    }
+    listen(&root, "click", |e| request(e, Action::Click));
+    listen(&root, "focusin", |e| request(e, Action::Focus));
+    listen(&root, "keydown", |e| key(e, true));
+    listen(&root, "keyup", |e| key(e, false));
+    MIRROR.with(|m| {
+        *m.borrow_mut() = Some(Mirror {
+            root,
+            nodes: HashMap::new(),
+            focus: None,
+            pass: 0,
+        });
+    });
+    ctx.enable_accesskit();
+    ctx.add_plugin(Plugin);
+}
+
+/// The least time between two sentences of the live region, so that a drag is not read
+/// out frame by frame.
+const LIVE_EVERY_MS: f64 = 1000.0;
+
+/// Keeps the live region saying what the 3D view shows: `words` is asked for at most once
+/// a second and written only when it changed (a screen reader reads each change out).
+/// The canvas gets `name` and `description` (in the interface's language).
+pub fn describe(
+    ctx: &egui::Context,
+    (name, description): (&'static str, &str),
+    words: impl FnOnce() -> String,
+) {
+    LIVE.with(|l| {
+        let mut l = l.borrow_mut();
+        let Some((live, said, at, named)) = l.as_mut() else {
+            return;
+        };
+        if !std::ptr::eq(*named, name)
+            && let Some(canvas) = live
+                .owner_document()
+                .and_then(|d| d.get_element_by_id("armlab_canvas"))
+        {
+            let _ = canvas.set_attribute("role", "img");
+            let _ = canvas.set_attribute("aria-label", name);
+            let _ = canvas.set_attribute("aria-description", description);
+            *named = name;
+        }
+        let now = crate::app::platform::clock::now_ms();
+        if now - *at < LIVE_EVERY_MS {
+            // A change within the second is said when it ends.
+            ctx.request_repaint_after(std::time::Duration::from_millis(LIVE_EVERY_MS as u64));
+            return;
+        }
+        let text = words();
+        if text != *said {
+            live.set_text_content(Some(&text));
+            *said = text;
+            *at = now;
+        }
+    });
+}
+
+/// Adds a listener for the page's lifetime.
+fn listen(el: &web_sys::HtmlElement, name: &str, f: fn(web_sys::Event)) {
+    let closure = Closure::<dyn FnMut(web_sys::Event)>::new(f);
+    let _ = el.add_event_listener_with_callback(name, closure.as_ref().unchecked_ref());
+    closure.forget();
+}
+
+/// Whether the DOM focus is on one of the mirror's elements.
+fn focus_in_mirror() -> bool {
+    web_sys::window()
+        .and_then(|w| w.document())
+        .and_then(|d| d.active_element())
+        .is_some_and(|a| a.closest("#armlab_a11y").ok().flatten().is_some())
+}
+
+/// The node an event's element mirrors.
+fn target_node(e: &web_sys::Event) -> Option<NodeId> {
+    let el = e.target()?.dyn_into::<web_sys::Element>().ok()?;
+    let el = el.closest("[data-n]").ok()??;
+    el.get_attribute("data-n")?.parse().ok().map(NodeId)
+}
+
+/// Queues an action request for the node under `e` and wakes the app.
+fn request(e: web_sys::Event, action: Action) {
+    let Some(node) = target_node(&e) else {
+        return;
+    };
+    let focused = MIRROR.with(|m| m.try_borrow().ok().and_then(|m| m.as_ref()?.focus));
+    if action == Action::Focus && focused == Some(node) {
+        return;
+    }
+    push(egui::Event::AccessKitActionRequest(ActionRequest {
+        action,
+        target_tree: TreeId::ROOT,
+        target_node: node,
+        data: None,
+    }));
+}
+
+/// Queues an event for egui's next pass and wakes the app.
+fn push(event: egui::Event) {
+    EVENTS.with(|e| e.borrow_mut().push(event));
+    wake();
+}
+
+/// A key in the mirror goes to egui as if the canvas had it; its default (scrolling the
+/// page, the browser's own Tab) is kept from the page, except browser shortcuts.
+fn key(e: web_sys::Event, pressed: bool) {
+    let Some(e) = e.dyn_ref::<web_sys::KeyboardEvent>() else {
+        return;
+    };
+    let name = e.key();
+    let modifiers = egui::Modifiers {
+        alt: e.alt_key(),
+        ctrl: e.ctrl_key(),
+        shift: e.shift_key(),
+        mac_cmd: false,
+        command: e.ctrl_key() || e.meta_key(),
+    };
+    let shortcut = modifiers.command && !matches!(name.as_str(), "a" | "A" | "z" | "Z");
+    if !shortcut {
+        e.prevent_default();
+    }
+    if let Some(key) = egui::Key::from_name(&name) {
+        push(egui::Event::Key {
+            key,
+            physical_key: None,
+            pressed,
+            repeat: e.repeat(),
+            modifiers,
+        });
+    }
+    if pressed && !modifiers.command && name.chars().count() == 1 && name != " " {
+        push(egui::Event::Text(name));
+    }
+}
+
+impl Mirror {
+    /// Brings the elements in step with `update` (egui's whole tree) at `scale` CSS pixels
+    /// per point; returns the element to give the DOM focus when egui's focus moved while
+    /// the DOM focus was in the mirror.
+    fn apply(&mut self, update: &TreeUpdate, scale: f32) -> Option<web_sys::HtmlElement> {
+        self.pass += 1;
+        let pass = self.pass;
+        let mut reorder = Vec::new();
+        for (id, node) in &update.nodes {
+            let (shown, children) = hashes(node, scale);
+            let entry = self.nodes.entry(*id).or_insert_with(|| Mirrored {
+                el: new_element(*id),
+                shown: shown ^ 1,
+                children: children ^ 1,
+                seen: pass,
+            });
+            entry.seen = pass;
+            if entry.shown != shown {
+                entry.shown = shown;
+                show(&entry.el, node, scale);
+            }
+            if entry.children != children {
+                entry.children = children;
+                reorder.push((*id, node.children().to_vec()));
+            }
+        }
+        for (id, children) in reorder {
+            let Some(parent) = self.nodes.get(&id).map(|m| m.el.clone()) else {
+                continue;
+            };
+            for child in children {
+                if let Some(c) = self.nodes.get(&child) {
+                    let _ = parent.append_child(&c.el);
+                }
+            }
+        }
+        self.nodes.retain(|_, m| {
+            let keep = m.seen == pass;
+            if !keep {
+                m.el.remove();
+            }
+            keep
+        });
+        if let Some(root) = update.tree.as_ref().and_then(|t| self.nodes.get(&t.root))
+            && root.el.parent_element().is_none()
+        {
+            let _ = self.root.append_child(&root.el);
+        }
+        self.focus =
+            Some(update.focus).filter(|f| self.nodes.get(f).is_some_and(|m| m.el.tab_index() >= 0));
+        self.focus_target()
+    }
+
+    /// Where the DOM focus should go so that it follows egui's: the focused widget's
+    /// element when the DOM focus is in the mirror, or on the canvas and the widget is no
+    /// text field (eframe gives those its own text input); back to the canvas when egui's
+    /// focus left the widgets.
+    fn focus_target(&self) -> Option<web_sys::HtmlElement> {
+        let active = web_sys::window()?.document()?.active_element()?;
+        let in_mirror = active.closest("#armlab_a11y").ok().flatten().is_some();
+        let on_canvas = active.id() == "armlab_canvas";
+        let target = match self.focus.and_then(|f| self.nodes.get(&f)) {
+            Some(m)
+                if in_mirror
+                    || (on_canvas && m.el.get_attribute("role").as_deref() != Some("textbox")) =>
+            {
+                m.el.clone()
+            }
+            None if in_mirror => active
+                .owner_document()?
+                .get_element_by_id("armlab_canvas")?
+                .dyn_into()
+                .ok()?,
+            _ => return None,
+        };
+        (*target != active).then_some(target)
+    }
+}
+
+/// A new element for node `id`.
+fn new_element(id: NodeId) -> web_sys::HtmlElement {
+    let doc = web_sys::window()
+        .and_then(|w| w.document())
+        .expect("the mirror runs in a page");
+    let el = doc
+        .create_element("div")
+        .ok()
+        .and_then(|e| e.dyn_into::<web_sys::HtmlElement>().ok())
+        .expect("a div is an HtmlElement");
+    let _ = el.set_attribute("data-n", &id.0.to_string());
+    el.set_id(&format!("a11y{}", id.0));
+    el
+}
+
+/// The hashes of what node's element shows and of its children's order.
+fn hashes(node: &Node, scale: f32) -> (u64, u64) {
+    let mut h = std::hash::DefaultHasher::new();
+    (node.role() as u32).hash(&mut h);
+    node.label().hash(&mut h);
+    node.value().hash(&mut h);
+    node.description().hash(&mut h);
+    node.labelled_by().iter().for_each(|n| n.0.hash(&mut h));
+    (node.row_count(), node.column_count()).hash(&mut h);
+    for v in [
+        node.numeric_value(),
+        node.min_numeric_value(),
+        node.max_numeric_value(),
+    ] {
+        v.map(f64::to_bits).hash(&mut h);
+    }
+    node.toggled().map(|t| t as u8).hash(&mut h);
+    (node.is_expanded(), node.is_selected(), node.is_disabled()).hash(&mut h);
+    node.supports_action(Action::Focus).hash(&mut h);
+    px(node, scale).hash(&mut h);
+    let mut c = std::hash::DefaultHasher::new();
+    node.children().iter().for_each(|n| n.0.hash(&mut c));
+    (h.finish(), c.finish())
+}
+
+/// The node's bounds in whole CSS pixels: left, top, width, height.
+fn px(node: &Node, scale: f32) -> [i32; 4] {
+    node.bounds().map_or([0; 4], |b| {
+        let s = f64::from(scale);
+        let r = |v: f64| (v * s).round() as i32;
+        [r(b.x0), r(b.y0), r(b.x1 - b.x0), r(b.y1 - b.y0)]
+    })
+}
+
+/// The ARIA role of an AccessKit role; `None` for a plain container or text.
+fn aria_role(role: Role) -> Option<&'static str> {
+    Some(match role {
+        Role::Button | Role::DefaultButton | Role::DisclosureTriangle => "button",
+        Role::CheckBox => "checkbox",
+        Role::RadioButton => "radio",
+        Role::Slider => "slider",
+        Role::SpinButton => "spinbutton",
+        Role::TextInput | Role::MultilineTextInput | Role::SearchInput => "textbox",
+        Role::ComboBox => "combobox",
+        Role::Link => "link",
+        Role::Tab => "tab",
+        Role::TabList => "tablist",
+        Role::TabPanel => "tabpanel",
+        Role::Menu => "menu",
+        Role::MenuBar => "menubar",
+        Role::MenuItem => "menuitem",
+        Role::Table | Role::Grid => "table",
+        Role::Row => "row",
+        Role::Cell | Role::GridCell => "cell",
+        Role::ColumnHeader => "columnheader",
+        Role::RowHeader => "rowheader",
+        Role::Heading => "heading",
+        Role::Image => "img",
+        Role::ProgressIndicator => "progressbar",
+        Role::Window | Role::Dialog => "dialog",
+        Role::Group | Role::Pane => "group",
+        Role::Canvas => "img",
+        _ => return None,
+    })
+}
+
+/// Writes node's role, name, value, state and place into its element.
+fn show(el: &web_sys::HtmlElement, node: &Node, scale: f32) {
+    // A matrix stays a label in egui's tree (the UI tests read it so) with its rows and
+    // columns counted: here it becomes a table.
+    let matrix = node.row_count().is_some() && node.column_count().is_some();
+    let role = if matrix {
+        Some("table")
+    } else {
+        aria_role(node.role())
+    };
+    let name = node.label().unwrap_or_default();
+    let set = |k: &str, v: Option<&str>| {
+        let _ = match v {
+            Some(v) => el.set_attribute(k, v),
+            None => el.remove_attribute(k),
+        };
+    };
+    set("role", role);
+    if matrix {
+        table(el, node);
+    } else if role.is_some() {
+        set("aria-label", Some(name).filter(|n| !n.is_empty()));
+        let by: Vec<String> = node
+            .labelled_by()
+            .iter()
+            .map(|n| format!("a11y{}", n.0))
+            .collect();
+        let by = Some(by.join(" ")).filter(|b| !b.is_empty() && name.is_empty());
+        set("aria-labelledby", by.as_deref());
+    } else if node.children().is_empty() {
+        // A plain text node's words are its text (egui keeps a label's words as its value).
+        el.set_text_content(node.value().or(node.label()));
+    }
+    states(el, node, role);
+    if node.supports_action(Action::Focus) {
+        el.set_tab_index(0);
+    } else {
+        let _ = el.remove_attribute("tabindex");
+    }
+    let [x, y, w, h] = px(node, scale);
+    el.style()
+        .set_css_text(&format!("left:{x}px;top:{y}px;width:{w}px;height:{h}px"));
+}
+
+/// Sets (or, given `None`, removes) an attribute.
+fn set(el: &web_sys::Element, k: &str, v: Option<&str>) {
+    let _ = match v {
+        Some(v) => el.set_attribute(k, v),
+        None => el.remove_attribute(k),
+    };
+}
+
+/// Writes node's value and states (checked, pressed, expanded, selected, disabled).
+fn states(el: &web_sys::HtmlElement, node: &Node, role: Option<&str>) {
+    let set = |k: &str, v: Option<&str>| set(el, k, v);
+    let num = |v: Option<f64>| v.map(|v| format!("{v}"));
+    let ranged = matches!(role, Some("slider" | "spinbutton" | "progressbar"));
+    set(
+        "aria-valuenow",
+        num(node.numeric_value()).filter(|_| ranged).as_deref(),
+    );
+    set(
+        "aria-valuemin",
+        num(node.min_numeric_value()).filter(|_| ranged).as_deref(),
+    );
+    set(
+        "aria-valuemax",
+        num(node.max_numeric_value()).filter(|_| ranged).as_deref(),
+    );
+    set("aria-valuetext", node.value().filter(|_| ranged));
+    if role == Some("textbox") {
+        el.set_text_content(node.value());
+    }
+    let checked = node.toggled().map(|t| match t {
+        Toggled::True => "true",
+        Toggled::False => "false",
+        Toggled::Mixed => "mixed",
+    });
+    set(
+        if role == Some("button") {
+            "aria-pressed"
+        } else {
+            "aria-checked"
+        },
+        checked,
+    );
+    set(
+        "aria-expanded",
+        node.is_expanded().map(|e| if e { "true" } else { "false" }),
+    );
+    let selected = node.is_selected().filter(|_| role == Some("tab"));
+    set(
+        "aria-selected",
+        selected.map(|s| if s { "true" } else { "false" }),
+    );
+    set("aria-disabled", node.is_disabled().then_some("true"));
+}
+
+/// A matrix as a table: its caption (the node's description), and its entries from its
+/// text (a label's value), the matrix as plain text, row by row (`row_count` ×
+/// `column_count` numbers).
+fn table(el: &web_sys::HtmlElement, node: &Node) {
+    let (rows, columns) = (
+        node.row_count().unwrap_or(0),
+        node.column_count().unwrap_or(0),
+    );
+    let text = node.value().or(node.label()).unwrap_or_default();
+    let entries: Vec<&str> = text.split_whitespace().collect();
+    let caption = node.description().unwrap_or_default();
+    let _ = el.set_attribute("aria-label", caption);
+    if rows == 0 || entries.len() != rows * columns {
+        el.set_text_content(Some(text));
+        return;
+    }
+    let mut html = String::new();
+    for row in entries.chunks(columns) {
+        html.push_str("<div role=row>");
+        for entry in row {
+            html.push_str("<div role=cell>");
+            html.push_str(entry);
+            html.push_str("</div>");
+        }
+        html.push_str("</div>");
+    }
+    el.set_inner_html(&html);
+}

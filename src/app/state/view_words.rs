@@ -1,0 +1,133 @@
+//! The 3D view in words, for the page's live region: the robot, where the tool is,
+//! whether the target is reached (and, when a joint limit holds the arm back, which
+//! joint), the closed-form branch the arm keeps, and a singularity with the direction the
+//! tool has lost.
+
+use armlab_core::ik::{Reach, branch_of};
+use armlab_session::format::fixed;
+use armlab_text::Key;
+
+use super::branches::branch_words;
+use super::model::Model;
+use super::{tr, trf};
+
+/// What the 3D view shows, in the interface's language, as a few short sentences.
+pub fn view_words(model: &Model) -> String {
+    let tool = model.fk().tool_position();
+    let unit = model.robot().length_unit.symbol();
+    // Millimetres whole, metres to the centimetre: a number a listener takes in at once.
+    let decimals = if model.robot().reach() > 100.0 { 0 } else { 2 };
+    let [x, y, z] = [tool.x, tool.y, tool.z].map(|v| fixed(v, decimals));
+    let mut words = trf(
+        model,
+        Key::ViewWordsTool,
+        &[&model.robot().name, &x, &y, &z, &unit],
+    );
+    let reach = match model.shown_reach() {
+        Reach::Reached => tr(model, Key::ViewWordsReached).to_owned(),
+        Reach::OutOfReach => match model.rescue().and_then(|r| r.held) {
+            Some((joint, at_max)) => {
+                let side = tr(model, if at_max { Key::LimitMax } else { Key::LimitMin });
+                trf(model, Key::ViewWordsHeld, &[&(joint + 1), &side])
+            }
+            None => tr(model, Key::ViewWordsOutOfReach).to_owned(),
+        },
+        _ => String::new(),
+    };
+    for sentence in [reach, branch(model), singular(model)] {
+        if !sentence.is_empty() {
+            words.push(' ');
+            words.push_str(&sentence);
+        }
+    }
+    words
+}
+
+/// The closed-form branch the arm is in (the one it keeps, else the one of its pose), in
+/// words; empty for an arm without a closed form.
+fn branch(model: &Model) -> String {
+    model
+        .kept_branch()
+        .or_else(|| branch_of(model.robot(), model.q()).ok().flatten())
+        .map(|b| trf(model, Key::ViewWordsBranch, &[&branch_words(model, &b)]))
+        .unwrap_or_default()
+}
+
+/// The singularity and its lost direction; empty away from one.
+fn singular(model: &Model) -> String {
+    model
+        .lost_direction()
+        .map(|d| {
+            let d = [d.x, d.y, d.z].map(|v| fixed(v, 2)).join(", ");
+            trf(model, Key::ViewWordsSingular, &[&d])
+        })
+        .unwrap_or_default()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use armlab_session::session::Session;
+    use armlab_text::Lang;
+
+    fn ur10() -> Model {
+        Model::new(Session::for_preset("ur10").expect("preset"))
+    }
+
+    #[test]
+    fn a_reached_target_is_said_with_the_robot_tool_and_branch() {
+        let model = ur10();
+        let words = view_words(&model);
+        let tool = model.fk().tool_position();
+        assert!(
+            words.starts_with(&format!(
+                "{}. Tool at x {:.0}, ",
+                model.robot().name,
+                tool.x
+            )),
+            "{words}"
+        );
+        assert!(words.contains("Target reached."), "{words}");
+        assert!(words.contains("Branch: shoulder"), "{words}");
+    }
+
+    #[test]
+    fn a_target_far_away_is_out_of_reach_in_both_languages() {
+        let mut model = ur10();
+        let mut target = *model.target();
+        target.translation.vector *= 10.0;
+        model.set_target(target);
+        let words = view_words(&model);
+        assert!(words.contains("Target out of reach"), "{words}");
+        assert!(!words.contains("Target reached"), "{words}");
+        model.set_lang(Lang::Fi);
+        let words = view_words(&model);
+        assert!(
+            words.contains("Työkalu kohdassa") && words.contains("Kohde ulottumattomissa"),
+            "{words}"
+        );
+    }
+
+    #[test]
+    fn a_straight_elbow_says_its_lost_direction_and_a_bent_one_none() {
+        let mut model = Model::new(Session::for_preset("planar-2r").expect("preset"));
+        // The straight elbow: the tool cannot move along the arm, (cos 0.3, sin 0.3, 0).
+        model.set_q(vec![0.3, 0.0]);
+        let words = view_words(&model);
+        assert!(
+            words.contains("At a singularity: the tool cannot move along ("),
+            "{words}"
+        );
+        assert!(
+            words.contains("(0.96, 0.30, 0.00)") || words.contains("(-0.96, -0.30, 0.00)"),
+            "{words}"
+        );
+        assert!(
+            words.contains("Tool at x 2.87, y 0.89, z 0.00 m."),
+            "{words}"
+        );
+        model.set_q(vec![0.3, 1.0]);
+        let words = view_words(&model);
+        assert!(!words.contains("singularity"), "{words}");
+    }
+}

@@ -1,0 +1,285 @@
+// The page as a screen reader sees it: Chromium's accessibility tree (CDP
+// Accessibility.getFullAXTree) of the built page at 1366×768, which the app fills by
+// mirroring egui's AccessKit tree into unseen DOM elements over the canvas. Checks each
+// panel's controls by role and name, a joint slider's value after the joint moves by its
+// arrow keys, a button pressed through the DOM, and the keyboard alone.
+//
+// Prints the named controls per panel (not asserted beyond the minimums below).
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { browserSuite } from './browser-suite.mjs';
+import { dist, state, settle, until, point, pageOpener } from './page.mjs';
+
+const suite = browserSuite(dist);
+const { open } = pageOpener(suite, { view: { width: 1366, height: 768 } });
+
+/** Roles a person operates or reads entry by entry. */
+const CONTROLS = new Set(['button', 'slider', 'spinbutton', 'checkbox', 'combobox', 'textbox', 'radio',
+  'tab', 'link', 'menuitem', 'table']);
+
+/** The accessibility tree: every node that is not ignored, with its role, name, value,
+ * properties and the names of its section (the panel's title, the first text in it). */
+async function axTree(page) {
+  const cdp = await page.context().newCDPSession(page);
+  const { nodes } = await cdp.send('Accessibility.getFullAXTree');
+  await cdp.detach();
+  const byId = new Map(nodes.map((n) => [n.nodeId, n]));
+  const props = (n) => Object.fromEntries((n.properties ?? []).map((p) => [p.name, p.value.value]));
+  return nodes.filter((n) => !n.ignored).map((n) => ({
+    id: n.nodeId,
+    role: n.role?.value,
+    name: n.name?.value ?? '',
+    value: n.value?.value,
+    props: props(n),
+    parent: n.parentId,
+    node: n,
+    byId,
+  }));
+}
+
+const PANELS = {
+  en: ['Joints', 'Inverse kinematics', 'Robot', 'Matrices', 'Motion'],
+};
+
+/** Where a node's element is: its box's top left, in CSS pixels. */
+async function place(cdp, node) {
+  try {
+    const { model } = await cdp.send('DOM.getBoxModel', { backendNodeId: node.node.backendDOMNodeId });
+    return { x: model.content[0], y: model.content[1] };
+  } catch {
+    return null;
+  }
+}
+
+/** Named controls grouped by the panel they sit in: under the nearest panel title above
+ * them in the same column; those above every title are the top bar's and the edge tabs'. */
+async function controlsByPanel(page, tree) {
+  const cdp = await page.context().newCDPSession(page);
+  const ids = new Map(tree.map((n) => [n.id, n]));
+  const titles = [];
+  for (const n of tree) {
+    if (n.role === 'StaticText' && PANELS.en.includes(n.name)) {
+      const at = await place(cdp, ids.get(n.parent) ?? n);
+      if (at) titles.push({ name: n.name, ...at });
+    }
+  }
+  const panels = {};
+  for (const n of tree) {
+    if (!CONTROLS.has(n.role) || !n.name) continue;
+    const at = await place(cdp, n);
+    const title = at && titles
+      .filter((t) => t.y <= at.y + 1 && Math.abs(t.x - at.x) < 300)
+      .sort((a, b) => b.y - a.y)[0];
+    const panel = title?.name ?? 'top bar and edge tabs';
+    (panels[panel] ??= []).push(`${n.role} "${n.name}"${n.value !== undefined && n.value !== '' ? ` = ${n.value}` : ''}`);
+  }
+  await cdp.detach();
+  return panels;
+}
+
+/** A node's aria-valuetext, read from its DOM element (Chromium's CDP tree leaves its
+ * valuetext property empty, while the platform's accessibility API carries it). */
+async function valueText(page, node) {
+  const cdp = await page.context().newCDPSession(page);
+  const { node: dom } = await cdp.send('DOM.describeNode', { backendNodeId: node.node.backendDOMNodeId });
+  await cdp.detach();
+  const at = dom.attributes.indexOf('aria-valuetext');
+  return at >= 0 ? dom.attributes[at + 1] : undefined;
+}
+
+const find = (tree, role, name) => tree.find((n) => n.role === role && n.name === name);
+
+test('every panel\'s controls are in the accessibility tree with their roles, names and values', async () => {
+  const { page, errors } = await open('#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3');
+  const tree = await axTree(page);
+  const panels = await controlsByPanel(page, tree);
+  console.log('NAMED_CONTROLS', JSON.stringify(Object.fromEntries(Object.entries(panels).map(([k, v]) => [k, v.length]))));
+  for (const [panel, list] of Object.entries(panels)) console.log(`${panel}:\n  ${list.join('\n  ')}`);
+  // Before the mirror the tree held the canvas alone: no named control.
+  assert.ok(Object.values(panels).flat().length >= 60, 'at least 60 named controls');
+  assert.ok(panels.Joints?.length >= 12, 'six joint sliders and their value boxes');
+  for (const title of ['Inverse kinematics', 'Robot', 'Matrices']) assert.ok(panels[title]?.length >= 2, title);
+  const slider = find(tree, 'slider', 'θ2');
+  assert.ok(slider, 'the slider of joint 2 is named θ2');
+  assert.ok(Math.abs(slider.value - (-1.1 * 180 / Math.PI)) < 0.01, `its value in degrees: ${slider.value}`);
+  assert.equal(await valueText(page, slider), '−63.0°', 'and its value as shown');
+  for (const [role, name] of [['button', 'Solve'], ['button', 'Zero'], ['combobox', 'Preset'], ['combobox', 'Task'],
+    ['button', 'Matrices'], ['table', 'T06 (tool pose, mm)']]) {
+    assert.ok(find(tree, role, name), `${role} "${name}"`);
+  }
+  const fold = find(tree, 'button', 'Jacobian');
+  assert.equal(fold.props.expanded, true, 'a fold says whether it is open');
+  assert.equal(find(tree, 'button', 'DH table (editable)').props.expanded, false);
+  // The matrix is a table: 4 rows of 4 cells, entry by entry.
+  const table = find(tree, 'table', 'T06 (tool pose, mm)');
+  const rows = tree.filter((n) => n.parent === table.id && n.role === 'row');
+  assert.equal(rows.length, 4);
+  const cells = rows.map((r) => tree.filter((n) => n.parent === r.id && n.role === 'cell').map((c) => c.name));
+  assert.deepEqual(cells[3], ['0.000', '0.000', '0.000', '1.000']);
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});
+
+test('a joint slider focused through the DOM moves on the arrow keys, and its value follows', async () => {
+  const { page, errors } = await open('#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3');
+  const q0 = (await state(page)).q;
+  // A screen reader moves its focus to the slider's element: egui's focus follows.
+  await page.evaluate(() => [...document.querySelectorAll('#armlab_a11y [role=slider]')]
+    .find((e) => e.getAttribute('aria-label') === 'θ2').focus());
+  await settle(page);
+  for (let i = 0; i < 5; i++) await page.keyboard.press('ArrowRight');
+  await until(page, (st) => Math.abs(st.q[1] - q0[1]) > 1e-3, 'joint 2 to move');
+  await settle(page, 5);
+  const s = await state(page);
+  assert.ok(s.q[1] > q0[1], `θ2 grew: ${q0[1]} → ${s.q[1]}`);
+  const degrees = s.q[1] * 180 / Math.PI;
+  const slider = find(await axTree(page), 'slider', 'θ2');
+  assert.ok(Math.abs(slider.value - degrees) < 0.01, `the tree says the new value: ${slider.value} vs ${degrees}`);
+  assert.equal(await valueText(page, slider), `${degrees.toFixed(1)}°`.replace('-', '−'));
+  assert.equal(slider.props.focused, true, 'and the slider keeps the focus');
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});
+
+test('a button pressed through the DOM (a screen reader\'s click) does what the button does', async () => {
+  const { page, errors } = await open('#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3');
+  await page.evaluate(() => [...document.querySelectorAll('#armlab_a11y [role=button]')]
+    .find((e) => e.getAttribute('aria-label') === 'Zero').click());
+  const s = await until(page, (st) => st.q.every((v) => Math.abs(v) < 1e-9), 'the joints at zero');
+  assert.deepEqual(s.q, [0, 0, 0, 0, 0, 0]);
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});
+
+test('Tab from the canvas walks the controls, and the DOM focus follows egui\'s', async () => {
+  const { page, errors } = await open('#robot=ur10');
+  await page.focus('#armlab_canvas');
+  const seen = [];
+  for (let i = 0; i < 12; i++) {
+    await page.keyboard.press('Tab');
+    await settle(page, 2);
+    seen.push(await page.evaluate(() => {
+      const a = document.activeElement;
+      return a?.closest('#armlab_a11y') ? `${a.getAttribute('role')} ${a.getAttribute('aria-label') ?? a.id}` : a?.id;
+    }));
+  }
+  console.log('TAB_ORDER', JSON.stringify(seen));
+  assert.ok(seen.filter((s) => s?.startsWith('button ')).length >= 5, `Tab reached the buttons: ${seen}`);
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});
+
+test('the live region says what the view shows, once a second at most, and out of reach when the target leaves', async () => {
+  const { page, errors } = await open('#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3&task=position');
+  const live = () => page.evaluate(() => document.getElementById('armlab_live')?.textContent ?? '');
+  for (let i = 0; i < 100 && !(await live()).includes('Target reached'); i++) await settle(page, 2);
+  const said = await live();
+  assert.match(said, /^UR10\. Tool at x -?\d+, y -?\d+, z -?\d+ mm\. Target reached\. Branch: shoulder/);
+  // The tree has it as a status (a polite live region), and the canvas a name.
+  const tree = await axTree(page);
+  const status = tree.find((n) => n.role === 'status');
+  assert.ok(status, 'a status region');
+  assert.ok(tree.some((n) => n.parent === status.id && n.name === said), `the status says: ${said}`);
+  assert.ok(find(tree, 'image', 'The robot arm in 3D') || find(tree, 'img', 'The robot arm in 3D'), 'the canvas has a name');
+  // Nothing changes: nothing is said.
+  await page.evaluate(() => {
+    window.__said = [];
+    new MutationObserver(() => window.__said.push([performance.now(), document.getElementById('armlab_live').textContent]))
+      .observe(document.getElementById('armlab_live'), { childList: true, characterData: true, subtree: true });
+  });
+  await settle(page, 30);
+  assert.deepEqual(await page.evaluate(() => window.__said), [], 'silent while nothing changes');
+  // Drag the target far past the arm's reach for about three seconds.
+  const t = await point(page, 'target');
+  const view = await page.evaluate(() => window.armlab.viewRect());
+  await page.mouse.move(t.x, t.y);
+  await page.mouse.down();
+  const started = Date.now();
+  await page.mouse.move(view.x + view.width - 5, view.y + 5, { steps: 60 });
+  while (Date.now() - started < 3000) await page.mouse.move(view.x + view.width - 5 - ((Date.now() / 50) % 2), view.y + 5);
+  await page.mouse.up();
+  for (let i = 0; i < 100 && !(await live()).includes('out of reach'); i++) await settle(page, 2);
+  const changes = await page.evaluate(() => window.__said);
+  const seconds = (Date.now() - started) / 1000;
+  console.log('LIVE_REGION', JSON.stringify({ seconds, changes: changes.length, last: await live() }));
+  assert.ok(changes.length <= Math.ceil(seconds) + 1, `${changes.length} sentences in ${seconds} s`);
+  for (let i = 1; i < changes.length; i++) assert.ok(changes[i][0] - changes[i - 1][0] >= 990, 'a second apart');
+  assert.match(await live(), /Target out of reach/);
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});
+
+test('the live region and the names speak Finnish in the Finnish interface', async () => {
+  const { page, errors } = await open('#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3&lang=fi');
+  const live = () => page.evaluate(() => document.getElementById('armlab_live')?.textContent ?? '');
+  for (let i = 0; i < 100 && !(await live()).includes('Kohde saavutettu'); i++) await settle(page, 2);
+  assert.match(await live(), /^UR10\. Työkalu kohdassa x .* Kohde saavutettu\./);
+  const tree = await axTree(page);
+  assert.ok(find(tree, 'slider', 'θ2'));
+  assert.ok(tree.some((n) => n.name === 'Robottikäsivarsi 3D:nä'), 'the canvas is named in Finnish');
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});
+
+/** Presses Tab (Shift+Tab with `back`) until the control named `name` has the focus;
+ * returns the number of presses. */
+async function tabTo(page, name, { back = false, most = 120 } = {}) {
+  for (let i = 1; i <= most; i++) {
+    await page.keyboard.press(back ? 'Shift+Tab' : 'Tab');
+    await settle(page, 2);
+    const at = await page.evaluate(() => document.activeElement?.getAttribute('aria-label'));
+    if (at === name) return i;
+  }
+  throw new Error(`Tab never reached "${name}"`);
+}
+
+test('a lecture by the keyboard alone: robot, joint, target, solve, the Jacobian read entry by entry', async () => {
+  const { page, errors } = await open('#robot=ur10&task=position');
+  await page.focus('#armlab_canvas');
+  const steps = {};
+  // Choose a robot: the Preset menu, then the Puma 560.
+  steps.preset = await tabTo(page, 'Preset');
+  await page.keyboard.press('Enter');
+  await settle(page, 3);
+  steps.puma = await tabTo(page, 'Puma 560');
+  await page.keyboard.press('Enter');
+  await until(page, (s) => s.preset === 'puma560', 'the Puma 560');
+  // Move joint 2: the key 2 gives its slider the keyboard, the arrows move it.
+  await page.keyboard.press('Escape');
+  await settle(page, 2);
+  const q0 = (await state(page)).q;
+  await page.keyboard.press('2');
+  await settle(page, 2);
+  for (let i = 0; i < 4; i++) await page.keyboard.press('ArrowRight');
+  const moved = await until(page, (s) => s.q[1] > q0[1] + 1e-3, 'joint 2 to move');
+  assert.deepEqual(moved.q.filter((_, i) => i !== 1), q0.filter((_, i) => i !== 1), 'only joint 2 moved');
+  // Move the target: Escape takes the keyboard from the slider, the arrows move the target.
+  await page.keyboard.press('Escape');
+  await settle(page, 2);
+  const t0 = (await state(page)).target.position;
+  for (let i = 0; i < 3; i++) await page.keyboard.press('PageUp');
+  const t1 = (await until(page, (s) => s.target.position.some((v, i) => Math.abs(v - t0[i]) > 1e-6), 'the target to move')).target.position;
+  // Solve.
+  steps.solve = await tabTo(page, 'Solve');
+  await page.keyboard.press('Enter');
+  const solved = await until(page, (s) => s.reached, 'the target reached');
+  assert.deepEqual(solved.target.position, t1);
+  // The Jacobian: its fold opened by the keyboard if closed, then read entry by entry.
+  const tree0 = await axTree(page);
+  const fold = find(tree0, 'button', 'Jacobian');
+  if (!fold.props.expanded) {
+    steps.jacobian = await tabTo(page, 'Jacobian');
+    await page.keyboard.press('Enter');
+    await settle(page, 3);
+  }
+  const tree = await axTree(page);
+  const table = find(tree, 'table', 'J (6×n, base frame)');
+  assert.ok(table, 'the Jacobian is a table');
+  const rows = tree.filter((n) => n.parent === table.id && n.role === 'row');
+  assert.equal(rows.length, 6);
+  const entry = tree.find((n) => n.parent === rows[5].id && n.role === 'cell');
+  assert.match(entry.name, /^-?\d+\.\d+$/, `J's entry (6, 1) reads as a number: ${entry?.name}`);
+  console.log('KEYBOARD_LECTURE', JSON.stringify({ tabs: steps, joint2: [q0[1], moved.q[1]], target: [t0, t1], entry61: entry.name }));
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});
