@@ -224,13 +224,19 @@ test('the live region and the names speak Finnish in the Finnish interface', asy
 /** Presses Tab (Shift+Tab with `back`) until the control named `name` has the focus;
  * returns the number of presses. */
 async function tabTo(page, name, { back = false, most = 120 } = {}) {
+  const seen = [];
   for (let i = 1; i <= most; i++) {
     await page.keyboard.press(back ? 'Shift+Tab' : 'Tab');
     await settle(page, 2);
-    const at = await page.evaluate(() => document.activeElement?.getAttribute('aria-label'));
+    const at = await page.evaluate(() => {
+      const a = document.activeElement;
+      const by = a?.getAttribute('aria-labelledby');
+      return a?.getAttribute('aria-label') ?? (by ? by.split(' ').map((id) => document.getElementById(id)?.textContent).join(' ') : a?.id);
+    });
     if (at === name) return i;
+    seen.push(at);
   }
-  throw new Error(`Tab never reached "${name}"`);
+  throw new Error(`Tab never reached "${name}": ${seen.slice(0, 40).join(' | ')}`);
 }
 
 test('a lecture by the keyboard alone: robot, joint, target, solve, the Jacobian read entry by entry', async () => {

@@ -305,7 +305,7 @@ catalogue! {
     ViewWordsHeld: "Target out of reach: joint {0} is at its {1} limit." / "Kohde ulottumattomissa: nivel {0} on {1}rajassaan.",
     ViewWordsBranch: "Branch: {0}." / "Haara: {0}.",
     ViewWordsSingular: "At a singularity: the tool cannot move along ({0})." / "Singulaarisuudessa: työkalu ei voi liikkua suuntaan ({0}).",
-    ClosePanelNamed: "Close {0}" / "Sulje {0}",
+    ClosePanelNamed: "Close the {0} panel" / "Sulje paneeli {0}",
     CanvasName: "The robot arm in 3D" / "Robottikäsivarsi 3D:nä",
     CanvasDescription: "The arm, its target and frames; a line of text below the controls says what the view shows." / "Käsivarsi, sen kohde ja koordinaatistot; ohjainten alla oleva tekstirivi kertoo, mitä näkymä näyttää.",
     LinkTransforms: "Link transforms A_i and running products T_0i" / "Linkkien muunnokset A_i ja kertyvät tulot T_0i",

@@ -35,7 +35,12 @@ struct Mirror {
     pass: u64,
 }
 
+/// The most time between two trees while nothing asks for one (a pointer drag's frames).
+const TREE_EVERY_MS: f64 = 500.0;
+
 thread_local! {
+    /// When egui last built its tree for the mirror (`performance.now()`, ms).
+    static LAST_TREE: std::cell::Cell<f64> = const { std::cell::Cell::new(f64::NEG_INFINITY) };
     static MIRROR: RefCell<Option<Mirror>> = const { RefCell::new(None) };
     /// Events from the page for egui's next pass (action requests, keys).
     static EVENTS: RefCell<Vec<egui::Event>> = const { RefCell::new(Vec::new()) };
@@ -53,11 +58,34 @@ impl egui::Plugin for Plugin {
         "a11y mirror"
     }
 
-    fn input_hook(&mut self, _ctx: &egui::Context, input: &mut egui::RawInput) {
-        EVENTS.with(|e| input.events.append(&mut e.borrow_mut()));
+    fn input_hook(&mut self, ctx: &egui::Context, input: &mut egui::RawInput) {
+        let from_page = EVENTS.with(|e| {
+            let mut e = e.borrow_mut();
+            let any = !e.is_empty();
+            input.events.append(&mut e);
+            any
+        });
         if focus_in_mirror() {
             // The canvas lost the DOM focus to the mirror, yet the keys are egui's.
             input.focused = true;
+        }
+        // egui builds the tree (and the mirror follows it) on a pass with a key or a
+        // request from the page, so that focus and values follow the keyboard at once, and
+        // otherwise at most every TREE_EVERY_MS: a drag's frames stay as cheap as without
+        // the mirror, and a screen reader reads a value a fraction of a second late.
+        let keys = input
+            .events
+            .iter()
+            .any(|e| matches!(e, egui::Event::Key { .. }));
+        let now = crate::app::platform::clock::now_ms();
+        let last = LAST_TREE.with(std::cell::Cell::get);
+        if from_page || keys || now - last >= TREE_EVERY_MS {
+            LAST_TREE.with(|t| t.set(now));
+            ctx.enable_accesskit();
+        } else {
+            ctx.disable_accesskit();
+            let wait = (TREE_EVERY_MS - (now - last)).max(0.0) as u64;
+            ctx.request_repaint_after(std::time::Duration::from_millis(wait));
         }
     }
 
