@@ -177,7 +177,12 @@ test('a browser without WebAssembly SIMD gets a sentence, not an endless loading
   await ctx.close();
 });
 
-test('the first load (every file of the page, gzip -9) stays within 1.730 MB', () => {
+// The budget holds the lecture room's client (about 30.6 kB: its bar and cards, the
+// WebSocket, the messages) and the accessibility mirror, keys and live region (about
+// 9.3 kB), which the first frame does not need but a page cannot load later: they are egui
+// code in the app's own wasm (the QR encoder and the symbolic algebra are in the lazy
+// module). Within the 1.8 MB the page was first given.
+test('the first load (every file of the page, gzip -9) stays within 1.768 MB', () => {
   let total = 0;
   for (const f of fs.readdirSync(dist)) {
     // Folders hold what the page fetches later, not on its first load: urdf/, the URDF
@@ -189,7 +194,7 @@ test('the first load (every file of the page, gzip -9) stays within 1.730 MB', (
     total += bytes;
   }
   measurements.first_load_gzip_bytes = total;
-  assert.ok(total <= 1_730_000, `the page's files are ${total} bytes gzip -9 (budget 1,730,000)`);
+  assert.ok(total <= 1_767_600, `the page's files are ${total} bytes gzip -9 (budget 1,767,600)`);
 });
 
 /** Z-Y-X Euler angles [α, β, γ] (radians) of a rotation matrix, R = Rz(α)·Ry(β)·Rx(γ),
