@@ -495,7 +495,7 @@ impl SceneRenderer {
     ///
     /// On a software renderer, a scene that changed after the first picture (an orbit, a
     /// drag, the arm moving) is drawn without MSAA at half the width and height (a
-    /// sixteenth of the samples) until it has rested for [`REST_S`]: then the
+    /// sixteenth of the samples) until it has rested for `REST_S` (0.3 s): then the
     /// full-quality picture, the same as on a GPU, is drawn once and kept.
     pub fn render(
         &mut self,
