@@ -25,6 +25,7 @@ impl ArmLabApp {
         crate::app::page::pump_room(self, ctx);
         #[cfg(not(target_arch = "wasm32"))]
         let _ = ctx;
+        self.class_panel.set_touch(self.touch);
         let student = matches!(self.classroom.role(), Role::Student { .. });
         self.model.set_room_hides(student);
         let predictions = self.room_predictions();
@@ -49,9 +50,12 @@ impl ArmLabApp {
     pub fn apply_room_effect(&mut self, effect: Effect, keep_token: impl FnOnce(&str, &str)) {
         match effect {
             Effect::Follow(state) => follow_state(&self.classroom, &mut self.model, &state),
-            Effect::Keep { code, token } => {
+            Effect::Keep { code, token, new } => {
                 keep_token(&code, &token);
-                self.class_panel.show_join(true);
+                // A resumed class keeps the projector as it was.
+                if new {
+                    self.class_panel.show_join(true);
+                }
             }
             Effect::Refused(reason) => {
                 let text = tr(&self.model, refusal_key(reason));

@@ -44,9 +44,17 @@ pub struct ClassPanel {
     asked: Option<Asked>,
     /// The question whose window was closed.
     closed: Option<u32>,
+    /// The device is a touch screen: a student joining follows the camera.
+    touch: bool,
 }
 
 impl ClassPanel {
+    /// Notes whether the device is a touch screen (a phone or tablet follows the
+    /// lecturer's camera by default).
+    pub fn set_touch(&mut self, touch: bool) {
+        self.touch = touch;
+    }
+
     /// Opens or closes the join window.
     pub fn show_join(&mut self, open: bool) {
         self.join_open = open;
@@ -98,7 +106,7 @@ impl ClassPanel {
         points.insert("class-join", join.rect.center());
         if typed || join.clicked() {
             match armlab_room::normalize_code(&self.code) {
-                Some(code) => room.join(code, ui.ctx().input(|i| i.any_touches())),
+                Some(code) => room.join(code, self.touch),
                 None => model.set_message(crate::app::state::model::Message::warning(tr(
                     model,
                     Key::RefusedBadCode,

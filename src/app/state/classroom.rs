@@ -50,6 +50,8 @@ pub enum Effect {
         code: String,
         /// The control token.
         token: String,
+        /// A class just started (not one resumed after a reload or a reconnection).
+        new: bool,
     },
     /// The server refused to create, resume or join (the page says why).
     Refused(Refusal),
@@ -354,12 +356,12 @@ impl Classroom {
     pub fn receive(&mut self, message: ServerMessage) -> Option<Effect> {
         match message {
             ServerMessage::Created { code, token } => {
-                self.creating = false;
+                let new = std::mem::take(&mut self.creating);
                 self.role = Role::Lecturer {
                     code: code.clone(),
                     token: token.clone(),
                 };
-                return Some(Effect::Keep { code, token });
+                return Some(Effect::Keep { code, token, new });
             }
             ServerMessage::Joined { state, question } => {
                 self.joined = true;

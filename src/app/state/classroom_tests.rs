@@ -24,7 +24,7 @@ fn lecturer() -> Classroom {
         code: "K7QH3MXP".into(),
         token: "ab".repeat(16),
     });
-    assert!(matches!(effect, Some(Effect::Keep { .. })));
+    assert!(matches!(effect, Some(Effect::Keep { new: true, .. })));
     room
 }
 
@@ -76,6 +76,12 @@ fn a_reconnected_lecturer_resumes_with_what_the_page_shows() {
         &out[0],
         ClientMessage::Resume { code, state: s, .. } if code == "K7QH3MXP" && s.link == "q=2"
     ));
+    // The server answers with the class again: kept, not announced as new.
+    let again = room.receive(ServerMessage::Created {
+        code: "K7QH3MXP".into(),
+        token: "ab".repeat(16),
+    });
+    assert!(matches!(again, Some(Effect::Keep { new: false, .. })));
 }
 
 #[test]
