@@ -1,5 +1,6 @@
-//! The HTTP side: the page (the built `dist/`), `/classroom/hello`, `/classroom/stats`,
-//! `/classroom/ws` and `/classroom/{code}/answers.csv`.
+//! The HTTP side: the page (the built `dist/`, its `index.html` marked as a classroom
+//! server's), `/classroom/hello`, `/classroom/stats`, `/classroom/ws` and
+//! `/classroom/{code}/answers.csv`.
 
 use crate::conn::Connection;
 use crate::server::Server;
@@ -27,6 +28,8 @@ const SOCKET_BUFFER_BYTES: usize = 4096;
 pub fn router(server: Arc<Server>) -> Router {
     let dist = server.config.dist.clone();
     let router = Router::new()
+        .route("/", get(page))
+        .route("/index.html", get(page))
         .route("/classroom/hello", get(hello))
         .route("/classroom/stats", get(stats))
         .route("/classroom/ws", get(ws))
@@ -47,6 +50,33 @@ fn json(body: String) -> Response {
         body,
     )
         .into_response()
+}
+
+/// The mark a classroom server's page carries in its `<head>`: the page shows the lecture
+/// room only where it finds it. A static host's page has none and asks nothing (a
+/// request it answered with "not found" would be a console error on every visit).
+pub const PAGE_MARK: &str = r#"<meta name="armlab-classroom" content="1">"#;
+
+/// The page's `index.html` with [`PAGE_MARK`] as the first thing in its `<head>`.
+pub fn marked_page(html: &str) -> String {
+    html.replacen("<head>", &format!("<head>\n  {PAGE_MARK}"), 1)
+}
+
+async fn page(State(server): State<Arc<Server>>) -> Response {
+    let Some(dist) = &server.config.dist else {
+        return StatusCode::NOT_FOUND.into_response();
+    };
+    match tokio::fs::read_to_string(dist.join("index.html")).await {
+        Ok(html) => (
+            [
+                (header::CONTENT_TYPE, "text/html; charset=utf-8"),
+                (header::CACHE_CONTROL, "no-cache"),
+            ],
+            marked_page(&html),
+        )
+            .into_response(),
+        Err(_) => StatusCode::NOT_FOUND.into_response(),
+    }
 }
 
 async fn hello() -> Response {

@@ -410,7 +410,8 @@ async fn the_lecturer_gets_the_answers_coalesced() {
 async fn the_server_says_hello_and_serves_the_page() {
     let dist = std::env::temp_dir().join(format!("armlab-classroom-dist-{}", std::process::id()));
     std::fs::create_dir_all(&dist).expect("a temporary folder");
-    std::fs::write(dist.join("index.html"), "<title>ArmLab</title>").expect("written");
+    let html = "<html><head><title>ArmLab</title></head></html>";
+    std::fs::write(dist.join("index.html"), html).expect("written");
     let running = server(armlab_classroom::Config {
         dist: Some(dist.clone()),
         ..config()
@@ -422,10 +423,13 @@ async fn the_server_says_hello_and_serves_the_page() {
         (status, &hello["classroom"]),
         (200, &serde_json::json!(true))
     );
-    assert_eq!(
-        get(&running, "/").await,
-        (200, "<title>ArmLab</title>".to_owned())
+    // The page is marked as a classroom server's, at both its addresses.
+    let marked = format!(
+        "<html><head>\n  {}<title>ArmLab</title></head></html>",
+        armlab_classroom::http::PAGE_MARK
     );
+    assert_eq!(get(&running, "/").await, (200, marked.clone()));
+    assert_eq!(get(&running, "/index.html").await, (200, marked));
     assert_eq!(get(&running, "/missing.js").await.0, 404);
     let (status, stats) = get(&running, "/classroom/stats").await;
     let stats: serde_json::Value = serde_json::from_str(&stats).expect("JSON");

@@ -1,5 +1,5 @@
 //! The lecture room's side of the page: whether the page came from a classroom server
-//! (it answers `classroom/hello` beside the page), the one WebSocket to it
+//! (which marks the page it serves), the one WebSocket to it
 //! (`classroom/ws`), reconnected with backoff while the page is in a class, and the
 //! lecturer's control token kept in localStorage per class. The messages are
 //! [`armlab_room`]'s JSON; what they mean is the app's classroom state.
@@ -12,8 +12,8 @@ use wasm_bindgen::prelude::*;
 use super::{wake, warn_on_failure};
 use crate::app::platform::clock::now_ms;
 
-/// The greeting a classroom server answers beside the page.
-const HELLO_PATH: &str = "classroom/hello";
+/// The mark of a classroom server's page (crates/armlab-classroom adds it).
+const MARK: &str = "meta[name=armlab-classroom]";
 /// The server's WebSocket, beside the page.
 const SOCKET_PATH: &str = "classroom/ws";
 /// The localStorage key of a class's control token: this prefix and the join code.
@@ -44,7 +44,7 @@ struct Socket {
 }
 
 thread_local! {
-    /// Whether the page came from a classroom server (`None` until the greeting answered).
+    /// Whether the page came from a classroom server (`None` until the page looked).
     static AVAILABLE: Cell<Option<bool>> = const { Cell::new(None) };
     static SOCKET: RefCell<Option<Socket>> = const { RefCell::new(None) };
     /// Events of the current socket, oldest first.
@@ -53,36 +53,19 @@ thread_local! {
     static RETRY: Cell<(u32, f64)> = const { Cell::new((0, 0.0)) };
 }
 
-/// Asks beside the page whether a classroom server serves it; [`available`] answers once
-/// it replied. The static page (no server, or offline) gets no answer and no classroom.
+/// Notes whether a classroom server served the page: its `index.html` carries the mark
+/// `<meta name="armlab-classroom">` in its head. A static host's page has none and asks
+/// nothing (a request it answered with "not found" would be a console error on every
+/// visit).
 pub fn probe(window: &web_sys::Window) {
-    let Ok(url) = address(HELLO_PATH, false) else {
-        AVAILABLE.with(|a| a.set(Some(false)));
-        return;
-    };
-    let request = window.fetch_with_str(&url);
-    wasm_bindgen_futures::spawn_local(async move {
-        let answer = wasm_bindgen_futures::JsFuture::from(request).await;
-        let ok = match answer.map(|r| r.dyn_into::<web_sys::Response>()) {
-            Ok(Ok(response)) => response.ok() && is_json(&response),
-            _ => false,
-        };
-        AVAILABLE.with(|a| a.set(Some(ok)));
-        wake();
-    });
+    let marked = window
+        .document()
+        .and_then(|d| d.query_selector(MARK).ok().flatten())
+        .is_some();
+    AVAILABLE.with(|a| a.set(Some(marked)));
 }
 
-/// Whether a response is JSON (a static host answers a missing file with an HTML page).
-fn is_json(response: &web_sys::Response) -> bool {
-    response
-        .headers()
-        .get("content-type")
-        .ok()
-        .flatten()
-        .is_some_and(|t| t.starts_with("application/json"))
-}
-
-/// Whether the greeting has been answered (or could not be asked).
+/// Whether the page has looked for the classroom server's mark.
 pub fn answered() -> bool {
     AVAILABLE.with(Cell::get).is_some()
 }
