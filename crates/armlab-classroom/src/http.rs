@@ -57,9 +57,13 @@ fn json(body: String) -> Response {
 /// request it answered with "not found" would be a console error on every visit).
 pub const PAGE_MARK: &str = r#"<meta name="armlab-classroom" content="1">"#;
 
-/// The page's `index.html` with [`PAGE_MARK`] as the first thing in its `<head>`.
+/// The page's `index.html` with [`PAGE_MARK`] before its `<title>` (the built page is
+/// minified: its `<head>` tag is left out, as HTML allows), or at its end.
 pub fn marked_page(html: &str) -> String {
-    html.replacen("<head>", &format!("<head>\n  {PAGE_MARK}"), 1)
+    match html.find("<title") {
+        Some(at) => format!("{}{PAGE_MARK}{}", &html[..at], &html[at..]),
+        None => format!("{html}{PAGE_MARK}"),
+    }
 }
 
 async fn page(State(server): State<Arc<Server>>) -> Response {
