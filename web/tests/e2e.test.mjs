@@ -14,7 +14,7 @@ import path from 'node:path';
 import zlib from 'node:zlib';
 import { fileURLToPath } from 'node:url';
 import { browserSuite } from './browser-suite.mjs';
-import { dist, shots, VIEW, state, point, settle, ready, pageOpener } from './page.mjs';
+import { dist, shots, VIEW, state, point, settle, ready, pageOpener, pixels, at, close } from './page.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const snapshot = path.resolve(here, '..', '..', 'tests', 'snapshots', 'ur10.png');
@@ -35,28 +35,6 @@ before(() => {
 });
 after(() => fs.writeFileSync(path.join(shots, 'measurements.json'), JSON.stringify(measurements, null, 2)));
 
-/** Pixels of a PNG (as RGBA rows) decoded by the browser itself. The bytes come back as
- * base64 text: a plain array of millions of numbers takes the protocol about a minute. */
-async function pixels(page, png) {
-  const { width, height, rgba } = await page.evaluate(async (b64) => {
-    const img = new Image();
-    img.src = `data:image/png;base64,${b64}`;
-    await img.decode();
-    const c = document.createElement('canvas');
-    c.width = img.width; c.height = img.height;
-    const g = c.getContext('2d');
-    g.drawImage(img, 0, 0);
-    const bytes = g.getImageData(0, 0, img.width, img.height).data;
-    let text = '';
-    for (let i = 0; i < bytes.length; i += 0x8000) text += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
-    return { width: img.width, height: img.height, rgba: btoa(text) };
-  }, png.toString('base64'));
-  const data = Buffer.from(rgba, 'base64');
-  assert.equal(data.length, width * height * 4, 'every pixel came back');
-  return { width, height, data };
-}
-const at = (img, x, y) => { const i = (Math.round(y) * img.width + Math.round(x)) * 4; return Array.from(img.data.subarray(i, i + 3)); };
-const close = (a, b, tol) => a.every((v, i) => Math.abs(v - b[i]) <= tol);
 
 test('loads without console errors, shows its loading text, then draws the arm in 3D', async () => {
   const { page, ctx, errors, loading, started } = await open(SNAPSHOT_HASH, { slowWasm: true });

@@ -10,7 +10,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { browserSuite } from './browser-suite.mjs';
-import { dist, shots, state, point, pageOpener } from './page.mjs';
+import { dist, shots, state, point, pageOpener, pixels, at, close } from './page.mjs';
 
 const measurements = {};
 const suite = browserSuite(dist, { label: 'ARMLAB_LECTURE_HALL_MEASUREMENTS', measurements });
@@ -18,25 +18,6 @@ const VIEW = { width: 1366, height: 768 };
 const { open } = pageOpener(suite, { view: VIEW });
 const HASH = '#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2&task=position';
 
-/** Pixels of a PNG screenshot (RGBA rows), decoded by the browser. */
-async function pixels(page, png) {
-  const { width, rgba } = await page.evaluate(async (b64) => {
-    const img = new Image();
-    img.src = `data:image/png;base64,${b64}`;
-    await img.decode();
-    const c = document.createElement('canvas');
-    c.width = img.width; c.height = img.height;
-    const g = c.getContext('2d');
-    g.drawImage(img, 0, 0);
-    const bytes = g.getImageData(0, 0, img.width, img.height).data;
-    let text = '';
-    for (let i = 0; i < bytes.length; i += 0x8000) text += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
-    return { width: img.width, rgba: btoa(text) };
-  }, png.toString('base64'));
-  return { width, data: Buffer.from(rgba, 'base64') };
-}
-const at = (img, x, y) => { const i = (Math.round(y) * img.width + Math.round(x)) * 4; return Array.from(img.data.subarray(i, i + 3)); };
-const close = (a, b, tol) => a.every((v, i) => Math.abs(v - b[i]) <= tol);
 
 /**
  * With the left button held at `from`, moves the pointer back and forth (`span` px to the

@@ -165,3 +165,28 @@ export function pageOpener(suite, defaults = {}) {
   }
   return { open, openAt };
 }
+
+/** Pixels of a PNG (as RGBA rows) decoded by the browser itself. The bytes come back as
+ * base64 text: a plain array of millions of numbers takes the protocol about a minute. */
+export async function pixels(page, png) {
+  const { width, height, rgba } = await page.evaluate(async (b64) => {
+    const img = new Image();
+    img.src = `data:image/png;base64,${b64}`;
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.width; c.height = img.height;
+    const g = c.getContext('2d');
+    g.drawImage(img, 0, 0);
+    const bytes = g.getImageData(0, 0, img.width, img.height).data;
+    let text = '';
+    for (let i = 0; i < bytes.length; i += 0x8000) text += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+    return { width: img.width, height: img.height, rgba: btoa(text) };
+  }, png.toString('base64'));
+  const data = Buffer.from(rgba, 'base64');
+  assert.equal(data.length, width * height * 4, 'every pixel came back');
+  return { width, height, data };
+}
+/** The RGB of pixel (`x`, `y`) of `pixels`' image. */
+export const at = (img, x, y) => { const i = (Math.round(y) * img.width + Math.round(x)) * 4; return Array.from(img.data.subarray(i, i + 3)); };
+/** Whether two colours differ by at most `tol` in each channel. */
+export const close = (a, b, tol) => a.every((v, i) => Math.abs(v - b[i]) <= tol);
