@@ -26,8 +26,8 @@ use eframe::egui_wgpu::RenderState;
 use egui::{Color32, Pos2, Rect, Sense};
 use nalgebra::{Point3, Vector3};
 
-use crate::render::SceneRenderer;
 use crate::render::camera::{OrbitCamera, StandardView};
+use crate::render::{Scene, SceneRenderer};
 use armlab_core::Task;
 
 use crate::app::platform::clock;
@@ -498,7 +498,7 @@ impl Viewport {
         let presentation = model.settings().presentation;
         let bg = style::background(presentation);
         self.rendered = false;
-        let (Some(rs), Some(renderer)) = (render_state, self.renderer.as_mut()) else {
+        let Some(rs) = render_state.filter(|_| self.renderer.is_some()) else {
             painter.rect_filled(rect, 0.0, bg);
             painter.text(
                 rect.center(),
@@ -521,6 +521,33 @@ impl Viewport {
             (rect.height() * ppp).round() as u32,
         ];
         let t0 = clock::now_ms();
+        let (scene, step) = self.scene(model, rect, &look, bg);
+        self.grid_step = step;
+        let t1 = clock::now_ms();
+        let Some(renderer) = self.renderer.as_mut() else {
+            return;
+        };
+        let drawn = renderer.render(rs, px_size, &scene, ui.input(|i| i.time));
+        timing.scene_ms += t1 - t0;
+        timing.render_ms += clock::now_ms() - t1;
+        if let Some(s) = drawn.sharpen_in {
+            ui.ctx()
+                .request_repaint_after(std::time::Duration::from_secs_f64(s));
+        }
+        painter.image(
+            drawn.texture,
+            rect,
+            Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0)),
+            Color32::WHITE,
+        );
+        self.rendered = true;
+    }
+
+    /// The scene of this frame: the arm, frames, grid and marker, then the overlays the
+    /// model shows (Jacobian, cloud, directions, the other convention, ghosts, the room's
+    /// predictions, the motion lab's trail, keep-out boxes and paths), colliding parts red.
+    /// Also the grid's spacing.
+    fn scene(&self, model: &Model, rect: Rect, look: &MarkerLook, bg: Color32) -> (Scene, f64) {
         let (mut scene, step) = scene::build(&scene::SceneInput {
             robot: model.robot(),
             fk: model.fk(),
@@ -530,7 +557,7 @@ impl Viewport {
             show_frames: model.settings().show_frames && !model.table_hidden(),
             highlighted_link: model.hovered_link(),
             target: model.target(),
-            marker: &look,
+            marker: look,
             background: [bg.r(), bg.g(), bg.b()],
         });
         if model.settings().overlays != OverlaySet::NONE {
@@ -556,22 +583,7 @@ impl Viewport {
                 instance.color = [230, 60, 50, 255];
             }
         }
-        self.grid_step = step;
-        let t1 = clock::now_ms();
-        let drawn = renderer.render(rs, px_size, &scene, ui.input(|i| i.time));
-        timing.scene_ms += t1 - t0;
-        timing.render_ms += clock::now_ms() - t1;
-        if let Some(s) = drawn.sharpen_in {
-            ui.ctx()
-                .request_repaint_after(std::time::Duration::from_secs_f64(s));
-        }
-        painter.image(
-            drawn.texture,
-            rect,
-            Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0)),
-            Color32::WHITE,
-        );
-        self.rendered = true;
+        (scene, step)
     }
 
     /// Screen points for the browser tests: the marker's handles, the tool and the base.
