@@ -116,7 +116,7 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
         app.open_hash(&hash);
     }
     let app = &*app;
-    hook::publish_classroom(app.classroom_json());
+    hook::publish_classroom(|| app.classroom_json());
     let lang = app.model().settings().lang;
     let canvas = (
         armlab_text::text(lang, armlab_text::Key::CanvasName),

@@ -65,8 +65,11 @@ after(async () => {
   if (server && server.exitCode === null) await stopServer();
 });
 
-/** `window.armlab.classroom()`. */
-const room = async (page) => JSON.parse(await page.evaluate(() => window.armlab.classroom()));
+/** `window.armlab.classroom()` (`{}` until a frame has built it after the first call). */
+async function room(page) {
+  const text = await page.evaluate(() => window.armlab.classroom());
+  return text ? JSON.parse(text) : {};
+}
 
 /** Waits (nudging frames) until `check(room)` holds; fails naming `what`. */
 async function roomUntil(page, check, what, seconds = 30) {

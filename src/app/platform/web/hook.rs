@@ -36,6 +36,9 @@ thread_local! {
     static PANIC_REQUESTED: Cell<bool> = const { Cell::new(false) };
     /// `window.armlab.classroom()`'s JSON, as the last frame wrote it.
     static CLASSROOM: RefCell<String> = const { RefCell::new(String::new()) };
+    /// Whether a script has asked for `window.armlab.classroom()`: until then no frame
+    /// builds its JSON (as for `state()`).
+    static CLASSROOM_WANTED: Cell<bool> = const { Cell::new(false) };
     /// `performance.now()` at the first drawn frame.
     static FIRST_FRAME: RefCell<Option<f64>> = const { RefCell::new(None) };
 }
@@ -95,8 +98,11 @@ pub fn publish(
 }
 
 /// Publishes the lecture room's state for `window.armlab.classroom()`.
-pub fn publish_classroom(json: String) {
-    CLASSROOM.with(|c| *c.borrow_mut() = json);
+/// `json` is called only once a script has asked for it.
+pub fn publish_classroom(json: impl FnOnce() -> String) {
+    if CLASSROOM_WANTED.with(Cell::get) {
+        CLASSROOM.with(|c| *c.borrow_mut() = json());
+    }
 }
 
 /// Sets `window.armlab` (docs/test-hook.md lists its functions).
@@ -120,7 +126,13 @@ pub fn install(window: &web_sys::Window) {
         FIRST_FRAME.with(|f| f.borrow().map_or(JsValue::NULL, JsValue::from))
     });
     set_field(&obj, "firstFrameAt", &first.into_js_value());
-    let classroom = Closure::<dyn Fn() -> String>::new(|| CLASSROOM.with(|c| c.borrow().clone()));
+    // As `state()`: the first call asks for a frame that builds the JSON, and gets "".
+    let classroom = Closure::<dyn Fn() -> String>::new(|| {
+        if !CLASSROOM_WANTED.with(|w| w.replace(true)) {
+            wake();
+        }
+        CLASSROOM.with(|c| c.borrow().clone())
+    });
     set_field(&obj, "classroom", &classroom.into_js_value());
     // The wasm memory's size in bytes (for the soak test: it only grows, in steps).
     let memory = Closure::<dyn Fn() -> JsValue>::new(|| {
