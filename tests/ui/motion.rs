@@ -45,6 +45,7 @@ fn with_move_on_the_arm_drives_to_the_answer_and_the_motion_panel_plots_it() {
         "the tool's path is kept: {} points",
         model.motion().trail().len()
     );
+    angle_plot_reads_as_its_data(&h);
     // A negative gain gets a sentence and K stays 5.
     h.get_by_role_and_label(Role::TextInput, "K (1/s)").click();
     h.run_steps(1);
@@ -66,6 +67,39 @@ fn with_move_on_the_arm_drives_to_the_answer_and_the_motion_panel_plots_it() {
         .set_panel_open(armlab_session::settings::PanelKind::Ik, false);
     h.run_steps(2);
     h.snapshot("motion_panel_plots");
+}
+
+/// A screen reader reads each plot as its data: the angle plot says where each joint
+/// began and ended and its goal.
+fn angle_plot_reads_as_its_data(h: &Harness<'static, ArmLabApp>) {
+    let sim = h
+        .state()
+        .model()
+        .motion()
+        .sim()
+        .expect("the simulation runs");
+    let (start, end, goal) = (
+        sim.record()
+            .joint(1, armlab_core::motion::Series::Position)
+            .next(),
+        sim.record()
+            .joint(1, armlab_core::motion::Series::Position)
+            .last(),
+        sim.goal()[1],
+    );
+    let angles = h
+        .query_all_by_role(Role::Image)
+        .filter_map(|n| n.accesskit_node().label())
+        .find(|l| l.starts_with("q against t"))
+        .expect("the angle plot is in the accessibility tree");
+    let [Some([_, a]), Some([_, b])] = [start, end] else {
+        panic!("joint 2 was recorded")
+    };
+    assert!(
+        angles.contains(&format!("joint 2: {a:.3} at the start, {b:.3} at the end"))
+            && angles.contains(&format!("goal {goal:.3}")),
+        "{angles}"
+    );
 }
 
 #[test]

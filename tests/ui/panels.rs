@@ -63,6 +63,25 @@ fn the_ik_panel_alone_solves_and_replays_its_run() {
         "{} iterations recorded",
         run.trace.len()
     );
+    // A screen reader reads the error plot as its data: every iteration's error.
+    let words = h
+        .get_by_role(Role::Image)
+        .accesskit_node()
+        .label()
+        .unwrap_or_default();
+    let last = run.trace.len() - 1;
+    let errors: Vec<String> = run
+        .trace
+        .iter()
+        .map(|s| format!("{:.1e}", s.error))
+        .collect();
+    assert!(
+        words.contains(&format!(
+            "‖e‖ at iterations 0 to {last}: {}",
+            errors.join(", ")
+        )),
+        "{words}"
+    );
     // Back to the first iteration: the arm shows the q of that step.
     h.get_by_role_and_label(Role::Slider, "iteration").focus();
     h.run_steps(1);

@@ -559,6 +559,12 @@ catalogue! {
     MotionPlotSpeed: "speed q̇ against t ({0} to {1})" / "nopeus q̇ ajan funktiona ({0}…{1})",
     MotionPlotError: "error e against t ({0} to {1})" / "virhe e ajan funktiona ({0}…{1})",
     MotionPlotDeadBand: "{0}, dead band ±{1} shaded" / "{0}, kuollut alue ±{1} varjostettu",
+    PlotSeries: "{0}: {1} at the start, {2} at the end, least {3}, most {4}" / "{0}: alussa {1}, lopussa {2}, pienin {3}, suurin {4}",
+    PlotJoint: "joint {0}" / "nivel {0}",
+    PlotGoal: "{0}, goal {1}" / "{0}, tavoite {1}",
+    PlotTool: "distance" / "etäisyys",
+    PlotTime: "{0}; t from 0 to {1} s; {2}" / "{0}; t 0…{1} s; {2}",
+    PlotIterations: "{0}; ‖e‖ at iterations 0 to {1}: {2}" / "{0}; ‖e‖ kierroksilla 0…{1}: {2}",
     MotionPlotDistance: "tool to target against t (up to {0} {1})" / "työkalun etäisyys kohteesta ajan funktiona (enintään {0} {1})",
     // --- The DH-table exercise and predict-then-reveal -------------------------------------
     LinkUnknownExercise: "the link's exercise \"{0}\" is neither a preset id nor mystery- and a whole number" / "linkin harjoitus \"{0}\" ei ole esiasetuksen tunnus eikä mystery- ja kokonaisluku",

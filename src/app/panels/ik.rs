@@ -294,12 +294,26 @@ fn error_plot(model: &Model, ui: &mut egui::Ui, run: &IkResult, current: usize) 
     if let Some(v) = errs.get(current) {
         plot.dot(ui, current as f64, *v, style::HIGHLIGHT);
     }
-    plot.caption(
-        ui,
+    let caption = trf(
+        model,
+        Key::ErrorPlotRange,
+        &[&format!("{hi:.1}"), &format!("{lo:.1}")],
+    );
+    plot.describe(ui, || {
+        let errors: Vec<String> = run
+            .trace
+            .iter()
+            .map(|s| format!("{:.1e}", s.error))
+            .collect();
         trf(
             model,
-            Key::ErrorPlotRange,
-            &[&format!("{hi:.1}"), &format!("{lo:.1}")],
-        ),
-    );
+            Key::PlotIterations,
+            &[
+                &caption,
+                &run.trace.len().saturating_sub(1),
+                &errors.join(", "),
+            ],
+        )
+    });
+    plot.caption(ui, caption);
 }

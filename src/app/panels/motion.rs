@@ -637,50 +637,12 @@ fn plots_ui(model: &Model, ui: &mut egui::Ui) {
         return;
     }
     let times = plot::range_of(record.times());
-    let dof = sim.q().len();
-    let dead_band = match sim.settings().controller {
-        Controller::OnOff { dead_band } => Some(dead_band),
-        _ => None,
-    };
     for (series, key) in [
         (Series::Position, Key::MotionPlotAngle),
         (Series::Velocity, Key::MotionPlotSpeed),
         (Series::Error, Key::MotionPlotError),
     ] {
-        let mut values = (0..dof).flat_map(|j| record.joint(j, series).map(|[_, v]| v));
-        let mut range = plot::range_of(&mut values);
-        if series == Series::Position {
-            let goals = plot::range_of(sim.goal().iter().copied());
-            range = (range.0.min(goals.0), range.1.max(goals.1));
-        }
-        if let (Series::Error, Some(band)) = (series, dead_band) {
-            range = (range.0.min(-band), range.1.max(band));
-        }
-        let span = (range.1 - range.0).max(1e-9) * 0.05;
-        let plot = PlotBox::allocate(ui, 70.0, times, (range.0 - span, range.1 + span));
-        if series == Series::Error {
-            if let Some(band) = dead_band {
-                plot.band(ui, -band, band, style::PENDING.gamma_multiply(0.25));
-            }
-            plot.goal(ui, 0.0, ui.visuals().weak_text_color());
-        }
-        for j in 0..dof {
-            let [r, g, b] = column_color(j);
-            let color = Color32::from_rgb(r, g, b);
-            if series == Series::Position {
-                plot.goal(ui, sim.goal()[j], color);
-            }
-            plot.line(ui, record.joint(j, series), Stroke::new(1.2, color));
-        }
-        let mut caption = trf(
-            model,
-            key,
-            &[&format!("{:.3}", range.0), &format!("{:.3}", range.1)],
-        );
-        if let (Series::Error, Some(band)) = (series, dead_band) {
-            caption = trf(model, Key::MotionPlotDeadBand, &[&caption, &band]);
-        }
-        plot.caption(ui, caption);
+        joint_plot(model, ui, sim, (series, key), times);
     }
     let distance: Vec<[f64; 2]> = record.tool_distance().collect();
     if distance.len() >= 2 {
@@ -691,18 +653,107 @@ fn plots_ui(model: &Model, ui: &mut egui::Ui) {
             distance.iter().copied(),
             Stroke::new(1.5, style::HIGHLIGHT),
         );
-        plot.caption(
-            ui,
-            trf(
-                model,
-                Key::MotionPlotDistance,
-                &[
-                    &format!("{:.3}", range.1),
-                    &model.robot().length_unit.symbol(),
-                ],
-            ),
+        let caption = trf(
+            model,
+            Key::MotionPlotDistance,
+            &[
+                &format!("{:.3}", range.1),
+                &model.robot().length_unit.symbol(),
+            ],
         );
+        plot.describe(ui, || {
+            let lang = model.settings().lang;
+            let words = plot::series_words(
+                lang,
+                tr(model, Key::PlotTool),
+                distance.iter().map(|[_, d]| *d),
+                |v| format!("{v:.3}"),
+            );
+            plot_words(model, &caption, times.1, words.into_iter())
+        });
+        plot.caption(ui, caption);
     }
+}
+
+/// One series of every joint against time, with its goals or dead band, its caption and
+/// its data in words.
+fn joint_plot(
+    model: &Model,
+    ui: &mut egui::Ui,
+    sim: &armlab_core::motion::MotionSim,
+    (series, key): (Series, Key),
+    times: (f64, f64),
+) {
+    let record = sim.record();
+    let dof = sim.q().len();
+    let dead_band = match sim.settings().controller {
+        Controller::OnOff { dead_band } => Some(dead_band),
+        _ => None,
+    };
+    let mut values = (0..dof).flat_map(|j| record.joint(j, series).map(|[_, v]| v));
+    let mut range = plot::range_of(&mut values);
+    if series == Series::Position {
+        let goals = plot::range_of(sim.goal().iter().copied());
+        range = (range.0.min(goals.0), range.1.max(goals.1));
+    }
+    if let (Series::Error, Some(band)) = (series, dead_band) {
+        range = (range.0.min(-band), range.1.max(band));
+    }
+    let span = (range.1 - range.0).max(1e-9) * 0.05;
+    let plot = PlotBox::allocate(ui, 70.0, times, (range.0 - span, range.1 + span));
+    if series == Series::Error {
+        if let Some(band) = dead_band {
+            plot.band(ui, -band, band, style::PENDING.gamma_multiply(0.25));
+        }
+        plot.goal(ui, 0.0, ui.visuals().weak_text_color());
+    }
+    for j in 0..dof {
+        let [r, g, b] = column_color(j);
+        let color = Color32::from_rgb(r, g, b);
+        if series == Series::Position {
+            plot.goal(ui, sim.goal()[j], color);
+        }
+        plot.line(ui, record.joint(j, series), Stroke::new(1.2, color));
+    }
+    let mut caption = trf(
+        model,
+        key,
+        &[&format!("{:.3}", range.0), &format!("{:.3}", range.1)],
+    );
+    if let (Series::Error, Some(band)) = (series, dead_band) {
+        caption = trf(model, Key::MotionPlotDeadBand, &[&caption, &band]);
+    }
+    plot.describe(ui, || {
+        let lang = model.settings().lang;
+        let joints = (0..dof).filter_map(|j| {
+            let name = trf(model, Key::PlotJoint, &[&(j + 1)]);
+            let values = record.joint(j, series).map(|[_, v]| v);
+            let words = plot::series_words(lang, &name, values, |v| format!("{v:.3}"))?;
+            Some(match (series, sim.goal().get(j)) {
+                (Series::Position, Some(goal)) => {
+                    trf(model, Key::PlotGoal, &[&words, &format!("{goal:.3}")])
+                }
+                _ => words,
+            })
+        });
+        plot_words(model, &caption, times.1, joints)
+    });
+    plot.caption(ui, caption);
+}
+
+/// A time plot in words: its caption, its time span and each series.
+fn plot_words(
+    model: &Model,
+    caption: &str,
+    end: f64,
+    series: impl Iterator<Item = String>,
+) -> String {
+    let series: Vec<String> = series.collect();
+    trf(
+        model,
+        Key::PlotTime,
+        &[&caption, &format!("{end:.2}"), &series.join("; ")],
+    )
 }
 
 /// A keep-out box as the panel shows it: `x, y, z, sx, sy, sz` (centre and size).

@@ -17,13 +17,15 @@ pub struct PlotBox {
     pub x: (f64, f64),
     /// The data's y range (bottom, top).
     pub y: (f64, f64),
+    /// Its node in the accessibility tree.
+    id: egui::Id,
 }
 
 impl PlotBox {
     /// Takes a box of `size` from `ui`, up to 300 points wide, and strokes its edge; the
     /// ranges are the data's (an empty range is widened so nothing divides by zero).
     pub fn allocate(ui: &mut egui::Ui, height: f32, x: (f64, f64), y: (f64, f64)) -> PlotBox {
-        let (rect, _) = ui.allocate_exact_size(
+        let (rect, response) = ui.allocate_exact_size(
             egui::vec2(crate::app::widgets::style::room(ui).min(300.0), height),
             egui::Sense::hover(),
         );
@@ -37,6 +39,7 @@ impl PlotBox {
             rect,
             x: widen(x),
             y: widen(y),
+            id: response.id,
         }
     }
 
@@ -106,6 +109,40 @@ impl PlotBox {
             ui.visuals().text_color(),
         );
     }
+
+    /// Gives the plot to a screen reader as a picture whose name says its data in words:
+    /// `words` is called only when the accessibility tree is being built, so frames that do
+    /// not build it pay nothing for the text.
+    pub fn describe(&self, ui: &egui::Ui, words: impl FnOnce() -> String) {
+        ui.ctx().accesskit_node_builder(self.id, |node| {
+            node.set_role(egui::accesskit::Role::Image);
+            node.set_label(words());
+        });
+    }
+}
+
+/// A series in words: its name, its first and last value, its least and most (the values
+/// as `number` writes them), or `None` without a finite value.
+pub fn series_words(
+    lang: armlab_text::Lang,
+    name: &str,
+    values: impl Iterator<Item = f64>,
+    number: impl Fn(f64) -> String,
+) -> Option<String> {
+    let values: Vec<f64> = values.filter(|v| v.is_finite()).collect();
+    let (first, last) = (values.first()?, values.last()?);
+    let (lo, hi) = range_of(values.iter().copied());
+    Some(armlab_text::fill(
+        lang,
+        armlab_text::Key::PlotSeries,
+        &[
+            &name,
+            &number(*first),
+            &number(*last),
+            &number(lo),
+            &number(hi),
+        ],
+    ))
 }
 
 /// The smallest and largest finite value (`(0, 1)` when there is none).
