@@ -304,6 +304,7 @@ catalogue! {
     ViewWordsOutOfReach: "Target out of reach: the arm stretches toward it." / "Kohde ulottumattomissa: käsivarsi ojentuu sitä kohti.",
     ViewWordsHeld: "Target out of reach: joint {0} is at its {1} limit." / "Kohde ulottumattomissa: nivel {0} on {1}rajassaan.",
     ViewWordsBranch: "Branch: {0}." / "Haara: {0}.",
+    ViewWordsWorkspace: "Workspace: {0} sampled tool positions, up to {1} {4} from the base, at heights {2} to {3} {4}." / "Työtila: {0} näytteistettyä työkalun paikkaa, enintään {1} {4} kannasta, korkeuksilla {2}…{3} {4}.",
     ViewWordsSingular: "At a singularity: the tool cannot move along ({0})." / "Singulaarisuudessa: työkalu ei voi liikkua suuntaan ({0}).",
     ClosePanelNamed: "Close the {0} panel" / "Sulje paneeli {0}",
     CanvasName: "The robot arm in 3D" / "Robottikäsivarsi 3D:nä",

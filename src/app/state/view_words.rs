@@ -1,7 +1,7 @@
 //! The 3D view in words, for the page's live region: the robot, where the tool is,
 //! whether the target is reached (and, when a joint limit holds the arm back, which
-//! joint), the closed-form branch the arm keeps, and a singularity with the direction the
-//! tool has lost.
+//! joint), the closed-form branch the arm keeps, a singularity with the direction the
+//! tool has lost, and the sampled workspace when the view shows it.
 
 use armlab_core::ik::{Reach, branch_of};
 use armlab_session::format::fixed;
@@ -34,7 +34,7 @@ pub fn view_words(model: &Model) -> String {
         },
         _ => String::new(),
     };
-    for sentence in [reach, branch(model), singular(model)] {
+    for sentence in [reach, branch(model), singular(model), workspace(model)] {
         if !sentence.is_empty() {
             words.push(' ');
             words.push_str(&sentence);
@@ -62,6 +62,29 @@ fn singular(model: &Model) -> String {
             trf(model, Key::ViewWordsSingular, &[&d])
         })
         .unwrap_or_default()
+}
+
+/// The workspace cloud once it is whole (while it fills, its count would change every
+/// second): how many tool positions, how far from the base and between which heights.
+fn workspace(model: &Model) -> String {
+    let Some(cloud) = model.shown_workspace().filter(|c| c.is_full()) else {
+        return String::new();
+    };
+    let Some((lo, hi)) = cloud.bounds() else {
+        return String::new();
+    };
+    let decimals = if model.robot().reach() > 100.0 { 0 } else { 2 };
+    trf(
+        model,
+        Key::ViewWordsWorkspace,
+        &[
+            &cloud.len(),
+            &fixed(cloud.outer_reach(), decimals),
+            &fixed(lo.z, decimals),
+            &fixed(hi.z, decimals),
+            &model.robot().length_unit.symbol(),
+        ],
+    )
 }
 
 #[cfg(test)]
@@ -129,5 +152,34 @@ mod tests {
         model.set_q(vec![0.3, 1.0]);
         let words = view_words(&model);
         assert!(!words.contains("singularity"), "{words}");
+    }
+
+    #[test]
+    fn a_whole_workspace_cloud_is_said_with_its_size_reach_and_heights() {
+        let mut model = ur10();
+        model.set_overlay(armlab_session::settings::Overlay::Workspace, true);
+        let measure = armlab_core::workspace::WorkspaceMeasure::Manipulability;
+        model.fill_workspace(measure, 500, 0.0, || 0.0);
+        assert!(
+            !view_words(&model).contains("Workspace"),
+            "said only when whole"
+        );
+        model.fill_workspace(measure, 500, f64::INFINITY, || 0.0);
+        let cloud = model.shown_workspace().expect("shown");
+        assert!(cloud.is_full());
+        let (lo, hi) = cloud.bounds().expect("samples");
+        let expected = format!(
+            "Workspace: 500 sampled tool positions, up to {:.0} mm from the base, at heights {:.0} to {:.0} mm.",
+            cloud.outer_reach(),
+            lo.z,
+            hi.z
+        );
+        assert!(
+            view_words(&model).ends_with(&expected),
+            "{}",
+            view_words(&model)
+        );
+        model.set_overlay(armlab_session::settings::Overlay::Workspace, false);
+        assert!(!view_words(&model).contains("Workspace"));
     }
 }
