@@ -20,6 +20,10 @@ pub struct Config {
     pub expiry: Duration,
     /// How often expired classes are looked for (and Redis keys of live ones renewed).
     pub sweep: Duration,
+    /// How often a connection is pinged (20 s); one that has answered nothing for two of
+    /// these is let go, so that a laptop shut mid-class (its socket never closed) stops
+    /// counting as a student within a minute.
+    pub heartbeat: Duration,
     /// Messages a second a lecturer may send (the burst is one second's worth).
     pub lecturer_rate: f64,
     /// Messages a second a student (or a connection not yet in a class) may send.
@@ -66,6 +70,7 @@ impl Default for Config {
             redis: None,
             expiry: Duration::from_secs(3600),
             sweep: Duration::from_secs(30),
+            heartbeat: Duration::from_secs(20),
             lecturer_rate: 30.0,
             student_rate: 5.0,
             join_failures: 20.0,
@@ -79,7 +84,7 @@ impl Default for Config {
 }
 
 /// The command line's usage line.
-pub const USAGE: &str = "usage: armlab-classroom [--listen ADDR] [--port P] [--dist DIR] [--redis redis://HOST:PORT] [--behind-proxy] [--secret-file PATH] [--expiry-secs S]";
+pub const USAGE: &str = "usage: armlab-classroom [--listen ADDR] [--port P] [--dist DIR] [--redis redis://HOST:PORT] [--behind-proxy] [--secret-file PATH] [--expiry-secs S] [--heartbeat-secs S]";
 
 /// The secret in `path`, or a new one written there (readable by its owner only).
 pub fn load_or_create_secret(path: &std::path::Path) -> std::io::Result<[u8; 32]> {
@@ -130,11 +135,11 @@ impl Config {
                 "--dist" => config.dist = Some(PathBuf::from(value("--dist")?)),
                 "--redis" => config.redis = Some(value("--redis")?),
                 "--expiry-secs" => {
-                    let v = value("--expiry-secs")?;
-                    let secs: u64 = v
-                        .parse()
-                        .map_err(|_| format!("--expiry-secs {v}: not a number"))?;
-                    config.expiry = Duration::from_secs(secs);
+                    config.expiry = seconds("--expiry-secs", &value("--expiry-secs")?)?
+                }
+                "--heartbeat-secs" => {
+                    config.heartbeat = seconds("--heartbeat-secs", &value("--heartbeat-secs")?)?
+                        .max(Duration::from_secs(1));
                 }
                 "--behind-proxy" => config.behind_proxy = true,
                 "--secret-file" => {
@@ -145,4 +150,11 @@ impl Config {
         }
         Ok(config)
     }
+}
+
+/// A whole number of seconds given to option `name`.
+fn seconds(name: &str, v: &str) -> Result<Duration, String> {
+    v.parse()
+        .map(Duration::from_secs)
+        .map_err(|_| format!("{name} {v}: not a number"))
 }

@@ -37,6 +37,7 @@ enum Wake {
     Count(Option<u32>),
     Answers(Option<u64>),
     AnswersDue,
+    Heartbeat,
     Shutdown,
 }
 
@@ -54,6 +55,19 @@ async fn changed<T: Clone>(rx: &mut Option<watch::Receiver<T>>) -> Option<T> {
         },
         None => std::future::pending().await,
     }
+}
+
+/// Sends `message`; false when the socket failed or took longer than `wait` to take it (a
+/// peer that vanished fills the socket's buffer and would hold the connection forever).
+async fn send(
+    tx: &mut futures_util::stream::SplitSink<WebSocket, Message>,
+    message: Message,
+    wait: Duration,
+) -> bool {
+    matches!(
+        tokio::time::timeout(wait, tx.send(message)).await,
+        Ok(Ok(()))
+    )
 }
 
 async fn until(at: Option<tokio::time::Instant>) {
@@ -111,9 +125,13 @@ impl Connection {
     pub async fn run(mut self, socket: WebSocket) {
         let (mut tx, mut rx) = socket.split();
         let mut shutdown = self.server.shutdown.subscribe();
+        let beat = self.server.config.heartbeat;
+        let mut heard = tokio::time::Instant::now();
+        let mut next_ping = heard + beat;
         loop {
             let wake = tokio::select! {
                 frame = rx.next() => Wake::Frame(frame.and_then(Result::ok)),
+                () = tokio::time::sleep_until(next_ping) => Wake::Heartbeat,
                 state = changed(&mut self.subs.state) => Wake::State(state),
                 event = event(&mut self.subs.events) => Wake::Event(event),
                 count = changed(&mut self.subs.count) => Wake::Count(count),
@@ -121,8 +139,21 @@ impl Connection {
                 () = until(self.answers_due) => Wake::AnswersDue,
                 _ = shutdown.changed() => Wake::Shutdown,
             };
+            if matches!(wake, Wake::Frame(Some(_))) {
+                heard = tokio::time::Instant::now();
+            }
             let out = match wake {
                 Wake::Frame(None) | Wake::Shutdown => break,
+                // A browser answers a ping by itself; nothing for two beats is a page gone
+                // without closing its socket.
+                Wake::Heartbeat if heard.elapsed() >= 2 * beat => break,
+                Wake::Heartbeat => {
+                    next_ping = tokio::time::Instant::now() + beat;
+                    if !send(&mut tx, Message::Ping(Default::default()), beat).await {
+                        break;
+                    }
+                    Vec::new()
+                }
                 Wake::Frame(Some(Message::Text(text))) => self.on_frame(text.as_bytes()).await,
                 Wake::Frame(Some(Message::Binary(bytes))) => self.on_frame(&bytes).await,
                 Wake::Frame(Some(_)) => Vec::new(),
@@ -140,7 +171,7 @@ impl Connection {
                     Out::Message(m) => Utf8Bytes::from(m.to_json()),
                     Out::Json(json) => Utf8Bytes::from(&*json),
                 };
-                if tx.send(Message::Text(text)).await.is_err() {
+                if !send(&mut tx, Message::Text(text), beat).await {
                     self.leave();
                     return;
                 }

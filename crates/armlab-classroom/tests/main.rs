@@ -3,6 +3,7 @@
 //! WebSockets.
 
 mod fuzz;
+mod heartbeat;
 mod redis;
 mod relay;
 mod rules;

@@ -110,6 +110,18 @@ impl Client {
         out
     }
 
+    /// Every message for `span`, reading (and so answering the server's pings) until then.
+    pub async fn listen_for(&mut self, span: Duration) -> Vec<ServerMessage> {
+        let end = tokio::time::Instant::now() + span;
+        let mut out = Vec::new();
+        while let Ok(Some(Ok(frame))) = tokio::time::timeout_at(end, self.ws.next()).await {
+            if let Message::Text(text) = frame {
+                out.push(decode_server(&text).expect("the server's message decodes"));
+            }
+        }
+        out
+    }
+
     /// Whether the server closed the socket (within [`WAIT`]).
     pub async fn closed(&mut self) -> bool {
         loop {
