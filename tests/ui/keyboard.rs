@@ -92,3 +92,81 @@ fn a_focused_slider_keeps_its_arrows_from_the_target() {
     h.run_steps(2);
     assert_eq!(target(&h), start, "the target stays");
 }
+
+/// The rotation that takes `from` to `to`, in the world, as an axis and an angle.
+fn turn_between(
+    from: &nalgebra::Rotation3<f64>,
+    to: &nalgebra::Rotation3<f64>,
+) -> (nalgebra::Vector3<f64>, f64) {
+    let r = to * from.inverse();
+    let axis = r
+        .axis()
+        .map_or(nalgebra::Vector3::zeros(), |a| a.into_inner());
+    (axis, r.angle())
+}
+
+/// Checks that the arm's tool (FK of q) is on the target, position and orientation.
+fn assert_tool_on_target(h: &Harness<'_, ArmLabApp>) {
+    let model = h.state().model();
+    let tool = armlab_core::fk::tool_pose(model.robot(), model.q());
+    let target = model.target();
+    let gap = (tool.translation.vector - target.translation.vector).norm();
+    let (_, angle) = turn_between(&tool.rotation, &target.rotation);
+    assert!(
+        gap < 1e-3 * model.robot().reach() && angle < 1e-3,
+        "FK(q) is on the target: {gap} apart, turned {angle} rad"
+    );
+    assert_eq!(model.ik().reach, Reach::Reached);
+}
+
+#[test]
+fn letter_keys_turn_the_target_about_the_views_axes_and_the_arm_follows() {
+    let mut h = harness("#robot=ur10&q=0.3,-1.1,1.2,-1.5,-1.2,0.3&task=full");
+    h.run_steps(2);
+    assert_eq!(h.state().model().task(), armlab_core::Task::FullPose);
+    let [right, up, away] = axes(&h);
+    let position = target(&h);
+    let cases = [
+        (egui::Key::L, egui::Modifiers::NONE, up, 5.0),
+        (egui::Key::J, egui::Modifiers::NONE, -up, 5.0),
+        (egui::Key::K, egui::Modifiers::NONE, right, 5.0),
+        (egui::Key::I, egui::Modifiers::SHIFT, -right, 1.0),
+        (egui::Key::O, egui::Modifiers::NONE, away, 5.0),
+        (egui::Key::U, egui::Modifiers::SHIFT, -away, 1.0),
+    ];
+    for (key, modifiers, axis, degrees) in cases {
+        let before = h.state().model().target().rotation;
+        h.key_press_modifiers(modifiers, key);
+        h.run_steps(2);
+        let after = h.state().model().target().rotation;
+        let (turned_about, angle) = turn_between(&before, &after);
+        assert!(
+            (angle - f64::to_radians(degrees)).abs() < 1e-9,
+            "{key:?}: {degrees}° a press, turned {}°",
+            angle.to_degrees()
+        );
+        assert!(
+            (turned_about - axis).norm() < 1e-9,
+            "{key:?}: about {axis:?}, turned about {turned_about:?}"
+        );
+        assert!(
+            (target(&h) - position).norm() < 1e-9,
+            "{key:?}: the target turns in place"
+        );
+        assert_tool_on_target(&h);
+    }
+}
+
+#[test]
+fn letter_keys_leave_the_target_in_a_position_task() {
+    let mut h = harness("#robot=ur10&q=0.3,-1.1,1.2,-1.5,-1.2,0.3&task=position");
+    h.run_steps(2);
+    let before = *h.state().model().target();
+    h.key_press(egui::Key::L);
+    h.run_steps(2);
+    assert_eq!(
+        *h.state().model().target(),
+        before,
+        "orientation does not count"
+    );
+}
