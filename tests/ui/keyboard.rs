@@ -1,6 +1,6 @@
 //! The lab from the keyboard: the target moved by the arrow keys and Page Up / Page Down
 //! in the view's axes (Shift fine), the camera by Alt and the same keys; a control with the
-//! keyboard keeps its own arrows.
+//! keyboard keeps its own arrows; the zoom buttons, the one-finger alternative to pinch.
 
 use super::*;
 
@@ -169,4 +169,44 @@ fn letter_keys_leave_the_target_in_a_position_task() {
         before,
         "orientation does not count"
     );
+}
+
+/// The camera's distance from its focus.
+fn distance(h: &Harness<'_, ArmLabApp>) -> f64 {
+    h.state().viewport().camera().distance
+}
+
+#[test]
+fn the_zoom_buttons_change_the_cameras_distance_by_a_step_at_every_screen_size() {
+    for (size, _) in SCREENS {
+        for (lang, zoom_in, zoom_out) in
+            [("en", "Zoom in", "Zoom out"), ("fi", "Lähennä", "Loitonna")]
+        {
+            let mut h = harness_at(&format!("#robot=ur10&lang={lang}"), size);
+            h.run_steps(2);
+            let start = distance(&h);
+            let button = h.get_by_role_and_label(Role::Button, zoom_in);
+            let rect = button.rect();
+            assert!(
+                egui::Rect::from_min_size(egui::Pos2::ZERO, size.into()).contains_rect(rect),
+                "{size:?}: the button lies in the window, {rect:?}"
+            );
+            button.click();
+            h.run_steps(2);
+            let ratio = distance(&h) / start;
+            assert!(
+                (ratio - 1.0 / 1.25).abs() < 1e-9,
+                "{size:?} {lang}: zoom in: the distance ×0.8, ×{ratio}"
+            );
+            h.get_by_role_and_label(Role::Button, zoom_out).click();
+            h.run_steps(2);
+            h.get_by_role_and_label(Role::Button, zoom_out).click();
+            h.run_steps(2);
+            let ratio = distance(&h) / start;
+            assert!(
+                (ratio - 1.25).abs() < 1e-9,
+                "{size:?} {lang}: in, then out twice: ×1.25, ×{ratio}"
+            );
+        }
+    }
 }

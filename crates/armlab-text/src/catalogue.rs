@@ -70,6 +70,8 @@ catalogue! {
     FitHint: "Frame the robot (F)" / "Rajaa robotti näkymään (F)",
     Menu: "≡ Menu" / "≡ Valikko",
     ShortcutHint: "keys: F fit   P presentation   1–9 joint N   arrows, PgUp/PgDn target (Shift fine, Alt camera)   J/L I/K U/O turn it   Tab controls   Esc close" / "näppäimet: F sovita   P esitys   1–9 nivel N   nuolet, PgUp/PgDn kohde (Shift hienosäätö, Alt kamera)   J/L I/K U/O käännä   Tab ohjaimet   Esc sulje",
+    ZoomIn: "Zoom in" / "Lähennä",
+    ZoomOut: "Zoom out" / "Loitonna",
     ViewTop: "Top" / "Ylhäältä",
     ViewFront: "Front" / "Edestä",
     ViewSide: "Side" / "Sivulta",
