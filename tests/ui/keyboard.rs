@@ -1,6 +1,6 @@
 //! The lab from the keyboard: the target moved by the arrow keys and Page Up / Page Down
 //! in the view's axes (Shift fine), the camera by Alt and the same keys; a control with the
-//! keyboard keeps its own arrows.
+//! keyboard keeps its own arrows; the zoom buttons, the one-finger alternative to pinch.
 
 use super::*;
 
@@ -91,4 +91,122 @@ fn a_focused_slider_keeps_its_arrows_from_the_target() {
     h.key_press(egui::Key::ArrowRight);
     h.run_steps(2);
     assert_eq!(target(&h), start, "the target stays");
+}
+
+/// The rotation that takes `from` to `to`, in the world, as an axis and an angle.
+fn turn_between(
+    from: &nalgebra::Rotation3<f64>,
+    to: &nalgebra::Rotation3<f64>,
+) -> (nalgebra::Vector3<f64>, f64) {
+    let r = to * from.inverse();
+    let axis = r
+        .axis()
+        .map_or(nalgebra::Vector3::zeros(), |a| a.into_inner());
+    (axis, r.angle())
+}
+
+/// Checks that the arm's tool (FK of q) is on the target, position and orientation.
+fn assert_tool_on_target(h: &Harness<'_, ArmLabApp>) {
+    let model = h.state().model();
+    let tool = armlab_core::fk::tool_pose(model.robot(), model.q());
+    let target = model.target();
+    let gap = (tool.translation.vector - target.translation.vector).norm();
+    let (_, angle) = turn_between(&tool.rotation, &target.rotation);
+    assert!(
+        gap < 1e-3 * model.robot().reach() && angle < 1e-3,
+        "FK(q) is on the target: {gap} apart, turned {angle} rad"
+    );
+    assert_eq!(model.ik().reach, Reach::Reached);
+}
+
+#[test]
+fn letter_keys_turn_the_target_about_the_views_axes_and_the_arm_follows() {
+    let mut h = harness("#robot=ur10&q=0.3,-1.1,1.2,-1.5,-1.2,0.3&task=full");
+    h.run_steps(2);
+    assert_eq!(h.state().model().task(), armlab_core::Task::FullPose);
+    let [right, up, away] = axes(&h);
+    let position = target(&h);
+    let cases = [
+        (egui::Key::L, egui::Modifiers::NONE, up, 5.0),
+        (egui::Key::J, egui::Modifiers::NONE, -up, 5.0),
+        (egui::Key::K, egui::Modifiers::NONE, right, 5.0),
+        (egui::Key::I, egui::Modifiers::SHIFT, -right, 1.0),
+        (egui::Key::O, egui::Modifiers::NONE, away, 5.0),
+        (egui::Key::U, egui::Modifiers::SHIFT, -away, 1.0),
+    ];
+    for (key, modifiers, axis, degrees) in cases {
+        let before = h.state().model().target().rotation;
+        h.key_press_modifiers(modifiers, key);
+        h.run_steps(2);
+        let after = h.state().model().target().rotation;
+        let (turned_about, angle) = turn_between(&before, &after);
+        assert!(
+            (angle - f64::to_radians(degrees)).abs() < 1e-9,
+            "{key:?}: {degrees}° a press, turned {}°",
+            angle.to_degrees()
+        );
+        assert!(
+            (turned_about - axis).norm() < 1e-9,
+            "{key:?}: about {axis:?}, turned about {turned_about:?}"
+        );
+        assert!(
+            (target(&h) - position).norm() < 1e-9,
+            "{key:?}: the target turns in place"
+        );
+        assert_tool_on_target(&h);
+    }
+}
+
+#[test]
+fn letter_keys_leave_the_target_in_a_position_task() {
+    let mut h = harness("#robot=ur10&q=0.3,-1.1,1.2,-1.5,-1.2,0.3&task=position");
+    h.run_steps(2);
+    let before = *h.state().model().target();
+    h.key_press(egui::Key::L);
+    h.run_steps(2);
+    assert_eq!(
+        *h.state().model().target(),
+        before,
+        "orientation does not count"
+    );
+}
+
+/// The camera's distance from its focus.
+fn distance(h: &Harness<'_, ArmLabApp>) -> f64 {
+    h.state().viewport().camera().distance
+}
+
+#[test]
+fn the_zoom_buttons_change_the_cameras_distance_by_a_step_at_every_screen_size() {
+    for (size, _) in SCREENS {
+        for (lang, zoom_in, zoom_out) in
+            [("en", "Zoom in", "Zoom out"), ("fi", "Lähennä", "Loitonna")]
+        {
+            let mut h = harness_at(&format!("#robot=ur10&lang={lang}"), size);
+            h.run_steps(2);
+            let start = distance(&h);
+            let button = h.get_by_role_and_label(Role::Button, zoom_in);
+            let rect = button.rect();
+            assert!(
+                egui::Rect::from_min_size(egui::Pos2::ZERO, size.into()).contains_rect(rect),
+                "{size:?}: the button lies in the window, {rect:?}"
+            );
+            button.click();
+            h.run_steps(2);
+            let ratio = distance(&h) / start;
+            assert!(
+                (ratio - 1.0 / 1.25).abs() < 1e-9,
+                "{size:?} {lang}: zoom in: the distance ×0.8, ×{ratio}"
+            );
+            h.get_by_role_and_label(Role::Button, zoom_out).click();
+            h.run_steps(2);
+            h.get_by_role_and_label(Role::Button, zoom_out).click();
+            h.run_steps(2);
+            let ratio = distance(&h) / start;
+            assert!(
+                (ratio - 1.25).abs() < 1e-9,
+                "{size:?} {lang}: in, then out twice: ×1.25, ×{ratio}"
+            );
+        }
+    }
 }

@@ -300,7 +300,8 @@ fn edge_tab(ui: &mut egui::Ui, text: &str, open: bool) -> egui::Response {
     let size = egui::vec2(EDGE_TAB_WIDTH - 4.0, galley.size().x + 18.0);
     let (rect, response) = ui.allocate_exact_size(size, egui::Sense::click());
     let visuals = ui.style().interact_selectable(&response, open);
-    ui.painter().rect_filled(
+    // Outlined as a button is: the fill alone is too near the panel's to mark the tab.
+    ui.painter().rect(
         rect,
         4.0,
         if open {
@@ -308,6 +309,8 @@ fn edge_tab(ui: &mut egui::Ui, text: &str, open: bool) -> egui::Response {
         } else {
             visuals.weak_bg_fill
         },
+        visuals.bg_stroke,
+        egui::StrokeKind::Inside,
     );
     let at = egui::pos2(rect.center().x - galley.size().y / 2.0, rect.bottom() - 9.0);
     ui.painter().add(

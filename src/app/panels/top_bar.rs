@@ -38,6 +38,7 @@ pub fn ui(
         {
             action = Some(ViewAction::Fit);
         }
+        action = action.or(zoom_buttons(model, ui));
         if narrow {
             ui.menu_button(tr(model, Key::Menu), |ui| {
                 action = action.or(controls(model, ui, points));
@@ -48,6 +49,26 @@ pub fn ui(
     });
     if let Some(message) = model.message().cloned() {
         message_line(model, ui, &message);
+    }
+    action
+}
+
+/// Zoom in and out, one press each: pinch's alternative for one finger or a mouse
+/// without a wheel. Out of the narrow layout's menu, so a phone reaches them in one tap.
+fn zoom_buttons(model: &Model, ui: &mut egui::Ui) -> Option<ViewAction> {
+    let mut action = None;
+    for (sign, key, zoom) in [
+        ("+", Key::ZoomIn, ViewAction::ZoomIn),
+        ("\u{2212}", Key::ZoomOut, ViewAction::ZoomOut),
+    ] {
+        if ui
+            .button(sign)
+            .on_hover_text(tr(model, key))
+            .accessible_name(tr(model, key))
+            .clicked()
+        {
+            action = Some(zoom);
+        }
     }
     action
 }

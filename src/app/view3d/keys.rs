@@ -2,10 +2,17 @@
 //! arrow keys move the target in the view's plane (right, up as the view shows them),
 //! Page Up and Page Down along the view's axis (away, toward), a fiftieth of the arm's
 //! reach a press, with Shift a five-hundredth; with Alt, the arrows orbit the camera and
-//! Page Up / Page Down zoom it. The arm follows the target as it does a drag.
+//! Page Up / Page Down zoom it. When the task counts the tool's orientation, letter keys
+//! turn the target about the view's axes (five degrees a press, with Shift one): J and L
+//! about the up axis (its near side to the left, to the right), I and K about the right
+//! axis (near side up, down), U and O about the view's axis (counterclockwise, clockwise as
+//! seen). Letters, because a focused canvas keeps them from the browser and a screen
+//! reader in focus mode, and the app's other shortcuts (F, P, digits) leave them free. The
+//! arm follows the target as it does a drag.
 
+use armlab_core::Task;
 use egui::Key;
-use nalgebra::Vector3;
+use nalgebra::{Rotation3, Unit, Vector3};
 
 use crate::app::state::model::Model;
 use crate::render::camera::OrbitCamera;
@@ -17,6 +24,53 @@ const STEP: (f64, f64) = (0.02, 0.002);
 const ORBIT: f64 = 12.0;
 /// IK steps a press allows the arm to follow the target.
 const FOLLOW_STEPS: usize = 60;
+/// A turning press's angle in degrees, coarse and fine (Shift).
+pub const TURN_DEG: (f64, f64) = (5.0, 1.0);
+
+/// The turning presses of the frame as turns (in presses) about the view's right, up and
+/// away axes, signed so that a positive turn is the right-hand rotation about that axis.
+fn turns(ctx: &egui::Context) -> Option<(Vector3<f64>, bool)> {
+    ctx.input(|i| {
+        let mut t = Vector3::zeros();
+        for e in &i.events {
+            if let egui::Event::Key {
+                key,
+                pressed: true,
+                modifiers,
+                ..
+            } = e
+                && !modifiers.command
+                && !modifiers.alt
+            {
+                // (right, up, away) is left-handed: a right-hand turn about up swings the
+                // near side to the right, about right swings it down, about away turns
+                // the picture clockwise.
+                match key {
+                    Key::L => t.y += 1.0,
+                    Key::J => t.y -= 1.0,
+                    Key::K => t.x += 1.0,
+                    Key::I => t.x -= 1.0,
+                    Key::O => t.z += 1.0,
+                    Key::U => t.z -= 1.0,
+                    _ => {}
+                }
+            }
+        }
+        (t != Vector3::zeros()).then_some((t, i.modifiers.shift))
+    })
+}
+
+/// The rotation that a frame's turns make, in the world, about the view's axes.
+pub fn turn_rotation(axes: &[Vector3<f64>; 3], t: &Vector3<f64>, shift: bool) -> Rotation3<f64> {
+    let step = if shift { TURN_DEG.1 } else { TURN_DEG.0 }.to_radians();
+    let mut r = Rotation3::identity();
+    for (axis, n) in axes.iter().zip(t.iter()) {
+        if *n != 0.0 {
+            r = Rotation3::from_axis_angle(&Unit::new_normalize(*axis), n * step) * r;
+        }
+    }
+    r
+}
 
 /// The presses of the frame as a move in view axes (right, up, away) and whether Alt
 /// (the camera) or Shift (fine) was held.
@@ -48,7 +102,7 @@ fn presses(ctx: &egui::Context) -> Option<(Vector3<f64>, bool, bool)> {
 }
 
 /// The view's right, up and away directions in the world.
-fn view_axes(camera: &OrbitCamera) -> [Vector3<f64>; 3] {
+pub fn view_axes(camera: &OrbitCamera) -> [Vector3<f64>; 3] {
     let away = (camera.focus - camera.eye()).normalize();
     let right = away
         .cross(&Vector3::z())
@@ -64,9 +118,16 @@ pub fn handle_keys(camera: &mut OrbitCamera, model: &mut Model, ctx: &egui::Cont
     if ctx.memory(|m| m.focused().is_some()) {
         return false;
     }
+    let turn = turns(ctx).filter(|_| model.task() != Task::Position);
     let Some((d, alt, shift)) = presses(ctx) else {
-        return false;
+        return turn.is_some_and(|(t, shift)| {
+            turn_target(camera, model, &t, shift);
+            true
+        });
     };
+    if let Some((t, shift)) = turn {
+        turn_target(camera, model, &t, shift);
+    }
     if alt {
         camera.orbit(-d.x * ORBIT, d.y * ORBIT);
         camera.zoom(1.1f64.powf(d.z));
@@ -77,10 +138,24 @@ pub fn handle_keys(camera: &mut OrbitCamera, model: &mut Model, ctx: &egui::Cont
     let mut target = *model.target();
     target.translation.vector += (right * d.x + up * d.y + away * d.z) * step;
     model.set_target(target);
+    follow(model);
+    true
+}
+
+/// Turns the target about its own position by the frame's turns, and the arm follows.
+fn turn_target(camera: &OrbitCamera, model: &mut Model, t: &Vector3<f64>, shift: bool) {
+    let r = turn_rotation(&view_axes(camera), t, shift);
+    let mut target = *model.target();
+    target.rotation = r * target.rotation;
+    model.set_target(target);
+    follow(model);
+}
+
+/// Lets the arm follow a target moved by keys, as it follows a drag.
+fn follow(model: &mut Model) {
     for _ in 0..FOLLOW_STEPS {
         if !model.drag_step() {
             break;
         }
     }
-    true
 }

@@ -48,7 +48,14 @@ pub enum ViewAction {
     Fit,
     /// A standard view direction.
     View(StandardView),
+    /// Come closer by [`ZOOM_STEP`]: pinch's one-finger alternative.
+    ZoomIn,
+    /// Step back by [`ZOOM_STEP`].
+    ZoomOut,
 }
+
+/// The factor the zoom buttons change the camera's distance by.
+pub const ZOOM_STEP: f64 = 1.25;
 
 /// What the pointer is dragging.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -172,10 +179,16 @@ impl Viewport {
 
     /// Carries out what the top bar asked.
     pub fn apply(&mut self, action: ViewAction, ctx: &egui::Context) {
-        if let ViewAction::View(view) = action {
-            self.camera.set_view(view);
+        match action {
+            // A zoom keeps the framing: framing anew would undo it.
+            ViewAction::ZoomIn => self.camera.zoom(ZOOM_STEP),
+            ViewAction::ZoomOut => self.camera.zoom(1.0 / ZOOM_STEP),
+            ViewAction::View(view) => {
+                self.camera.set_view(view);
+                self.framed_at = None;
+            }
+            ViewAction::Fit => self.framed_at = None,
         }
-        self.framed_at = None;
         ctx.request_repaint();
     }
 

@@ -1,5 +1,6 @@
 //! Contrast ratios as WCAG 2.1 defines them (relative luminance of sRGB colours), for the
-//! test that holds the theme's text to 4.5:1 and its marks in the 3D view to 3:1.
+//! test that holds the theme's text to 4.5:1, its controls' outlines and its marks in the
+//! 3D view to 3:1.
 
 use egui::Color32;
 
@@ -90,6 +91,33 @@ mod tests {
                 pairs.push((what, c, view));
             }
             let failing = failing(&pairs, 4.5);
+            assert!(
+                failing.is_empty(),
+                "presentation {presentation}: {failing:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn control_outlines_have_at_least_3_to_1_on_the_panels_and_windows() {
+        for presentation in [false, true] {
+            let v = visuals(presentation);
+            let (idle, hovered) = (v.widgets.inactive.bg_stroke, v.widgets.hovered.bg_stroke);
+            assert!(
+                idle.width >= 1.0 && hovered.width >= 1.0,
+                "presentation {presentation}: controls are outlined, {idle:?} {hovered:?}"
+            );
+            let pairs = [
+                ("an idle control on a panel", idle.color, v.panel_fill),
+                ("an idle control in a window", idle.color, v.window_fill),
+                ("a hovered control on a panel", hovered.color, v.panel_fill),
+                (
+                    "a hovered control in a window",
+                    hovered.color,
+                    v.window_fill,
+                ),
+            ];
+            let failing = failing(&pairs, 3.0);
             assert!(
                 failing.is_empty(),
                 "presentation {presentation}: {failing:?}"

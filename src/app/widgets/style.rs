@@ -29,6 +29,9 @@ pub fn reach_color(reach: Reach) -> Color32 {
     }
 }
 
+/// An idle control's outline: 3.3:1 on the panel, 4.5:1 on presentation mode's.
+pub const CONTROL_OUTLINE: Color32 = Color32::from_gray(120);
+
 /// The viewport and window background (opaque).
 pub fn background(presentation: bool) -> Color32 {
     if presentation {
@@ -111,6 +114,10 @@ pub fn install(ctx: &egui::Context, presentation: bool, touch: bool, screen: Scr
     }
     ctx.data_mut(|d| d.insert_temp(id, wanted));
     let mut visuals = egui::Visuals::dark();
+    // egui marks an idle button or field by a fill only slightly lighter than the panel
+    // (about 1.2:1); a thin outline gives its boundary 3:1 (WCAG's non-text contrast),
+    // grey so the panels stay calm.
+    visuals.widgets.inactive.bg_stroke = egui::Stroke::new(1.0, CONTROL_OUTLINE);
     visuals.panel_fill = if presentation {
         Color32::from_rgb(8, 8, 8)
     } else {
