@@ -6,7 +6,9 @@
 //
 // The worker (dist/service-worker.js) is web/page/service-worker.js preceded by one line,
 //   const ARMLAB_BUILD = {"version":"…","files":["icon.svg","index.html",…]};
-// `files`: every file of the build except the worker itself and dot files, relative to the
+// `files`: every file of the build except the worker itself, dot files and the copies
+// compressed ahead (`.br`, `.gz`: web/build/precompress.mjs; a browser never asks for them
+// by name, the server sends them in place of the file), relative to the
 // folder, sorted; `version`: the first 16 hex digits of the SHA-256 of, for each file in
 // that order, its path, a newline, the SHA-256 (hex) of its contents and a newline. Every
 // build whose files differ has another version, so its worker installs and replaces the
@@ -27,6 +29,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 const WORKER = 'service-worker.js';
+const PRECOMPRESSED = /\.(br|gz)$/;
 const template = path.join(path.dirname(fileURLToPath(import.meta.url)), '..', 'page', 'service-worker.js');
 
 /** The build's files under `dir`, as sorted relative paths with forward slashes. */
@@ -36,7 +39,7 @@ function buildFiles(dir, prefix = '') {
     if (entry.name.startsWith('.')) continue;
     const rel = prefix ? `${prefix}/${entry.name}` : entry.name;
     if (entry.isDirectory()) files.push(...buildFiles(dir, rel));
-    else if (entry.isFile() && rel !== WORKER) files.push(rel);
+    else if (entry.isFile() && rel !== WORKER && !PRECOMPRESSED.test(rel)) files.push(rel);
   }
   return files.sort();
 }

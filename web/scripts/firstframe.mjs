@@ -9,7 +9,9 @@
 // empty HTTP cache, no service worker) with Chromium's network throttling (CDP
 // Network.emulateNetworkConditions: `down` and `up` Mbit/s, `rtt` ms round trip, 9/3/100
 // by default, a crowded lecture-hall Wi-Fi or a phone's connection), then five runs the
-// same on loopback without throttling. It prints, per run, the ms from the navigation's
+// same on loopback without throttling. `shown_ms`: when that first frame reached the
+// canvas (the blit into it after firstFrameAt), after egui's paint. Where the build holds files compressed ahead
+// (NAME.br, NAME.gz, as build_web writes them), the server sends those. It prints, per run, the ms from the navigation's
 // start to the app's first drawn frame (window.armlab.firstFrameAt()), to the wasm's
 // request and to its last byte, the bytes that came over the wire, and which files were
 // requested more than once, and how many wasm files the server had sent by the first
@@ -33,7 +35,7 @@ const { server, base } = await serveDist(path.resolve(distArg), { encoding });
 const browser = await launchChromium();
 // The server compresses each file once, on its first request: that is done here, before
 // any run is timed (brotli's quality 11 takes the 4 MB wasm most of a minute).
-for (const file of fs.readdirSync(path.resolve(distArg))) {
+for (const file of fs.readdirSync(path.resolve(distArg)).filter((f) => !/\.(br|gz)$/.test(f))) {
   await fetch(base + file, { headers: { 'accept-encoding': encoding } }).then((r) => r.arrayBuffer());
 }
 // Every answer the server finished, with when (epoch ms): the service worker's fetches do
@@ -43,6 +45,21 @@ server.on('request', (req, res) => res.on('finish', () => served.push({ path: ne
 
 async function run(throttled) {
   const ctx = await browser.newContext({ viewport: { width: 1366, height: 768 }, deviceScaleFactor: 1 });
+  // When each picture reached the canvas: wgpu's WebGL2 backend shows a frame by a blit
+  // into the canvas's own framebuffer. firstFrameAt() is taken while the app builds its
+  // first frame; the blit after it is that frame handed to the browser, after egui's
+  // paint (and after any pass egui ran again before painting).
+  await ctx.addInitScript(() => {
+    const GL = window.WebGL2RenderingContext?.prototype;
+    if (!GL) return;
+    const blit = GL.blitFramebuffer;
+    window.armlabCanvasBlits = [];
+    GL.blitFramebuffer = function (...args) {
+      const r = blit.apply(this, args);
+      if (this.getParameter(this.DRAW_FRAMEBUFFER_BINDING) === null) window.armlabCanvasBlits.push(performance.now());
+      return r;
+    };
+  });
   const page = await ctx.newPage();
   const cdp = await ctx.newCDPSession(page);
   await cdp.send('Network.enable');
@@ -59,13 +76,22 @@ async function run(throttled) {
   const urls = new Map();
   cdp.on('Network.requestWillBeSent', (e) => urls.set(e.requestId, new URL(e.request.url).pathname));
   cdp.on('Network.loadingFinished', (e) => wire.set(e.requestId, e.encodedDataLength));
+  // Whether the server sent the wasm from the build's copy compressed ahead (NAME.br, NAME.gz).
+  let precompressed = false;
+  cdp.on('Network.responseReceived', (e) => {
+    if (e.response.url.endsWith('.wasm')) precompressed = e.response.headers['x-precompressed'] === '1';
+  });
   served.length = 0;
   await page.goto(`${base}#robot=ur10`, { waitUntil: 'commit' });
-  await page.waitForFunction(() => window.armlab?.firstFrameAt?.(), null, { timeout: 120000, polling: 100 });
+  await page.waitForFunction(() => {
+    const at = window.armlab?.firstFrameAt?.();
+    return at && window.armlabCanvasBlits.some((t) => t >= at);
+  }, null, { timeout: 120000, polling: 100 });
   const timing = await page.evaluate(() => {
     const wasm = performance.getEntriesByType('resource').filter((e) => e.name.endsWith('.wasm'));
     return {
       first_frame_ms: Math.round(window.armlab.firstFrameAt()),
+      shown_ms: Math.round(window.armlabCanvasBlits.find((t) => t >= window.armlab.firstFrameAt())),
       first_frame_epoch_ms: performance.timeOrigin + window.armlab.firstFrameAt(),
       wasm_start_ms: Math.round(Math.min(...wasm.map((e) => e.startTime))),
       wasm_end_ms: Math.round(Math.max(0, ...wasm.map((e) => e.responseEnd))),
@@ -80,7 +106,7 @@ async function run(throttled) {
   const { first_frame_epoch_ms: firstAt, ...shown } = timing;
   // The wasm files the server sent before the first frame: the page's, and a worker's.
   const wasmServed = served.filter((s) => s.at <= firstAt && s.path.endsWith('.wasm')).length;
-  return { ...shown, wire_bytes: bytes, requests: requested.length, requested_twice: twice, wasm_files_served_before_first_frame: wasmServed };
+  return { ...shown, wire_bytes: bytes, requests: requested.length, requested_twice: twice, wasm_files_served_before_first_frame: wasmServed, wasm_precompressed: precompressed };
 }
 
 const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor(xs.length / 2)];
@@ -93,7 +119,8 @@ for (const throttled of [true, false]) {
     results.push(r);
   }
   console.log(JSON.stringify({ link: label, median_first_frame_ms: median(results.map((r) => r.first_frame_ms)),
-    first_frame_ms: results.map((r) => r.first_frame_ms), median_wasm_end_ms: median(results.map((r) => r.wasm_end_ms)) }));
+    first_frame_ms: results.map((r) => r.first_frame_ms), median_shown_ms: median(results.map((r) => r.shown_ms)),
+    shown_ms: results.map((r) => r.shown_ms), median_wasm_end_ms: median(results.map((r) => r.wasm_end_ms)) }));
 }
 await browser.close();
 server.close();

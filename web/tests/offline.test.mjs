@@ -105,12 +105,12 @@ function workerBuild(dir) {
 }
 
 /** The version a build of `dir` must carry: SHA-256 over each file (sorted by path, the
- * worker and dot files left out) of "path\n" + the hex SHA-256 of its bytes + "\n". */
+ * worker, dot files and the copies compressed ahead, `.br` and `.gz`, left out) of "path\n" + the hex SHA-256 of its bytes + "\n". */
 function expectedBuild(dir) {
   const files = fs.readdirSync(dir, { recursive: true, withFileTypes: true })
     .filter((e) => e.isFile())
     .map((e) => path.relative(dir, path.join(e.parentPath ?? e.path, e.name)).split(path.sep).join('/'))
-    .filter((f) => f !== WORKER && !f.split('/').some((part) => part.startsWith('.')))
+    .filter((f) => f !== WORKER && !f.split('/').some((part) => part.startsWith('.')) && !/\.(br|gz)$/.test(f))
     .sort();
   const hash = crypto.createHash('sha256');
   for (const f of files) hash.update(`${f}\n${crypto.createHash('sha256').update(fs.readFileSync(path.join(dir, f))).digest('hex')}\n`);

@@ -19,7 +19,10 @@ const types = {
  * `encoding` 'gzip' or 'br' it compresses each answer, where the request accepts it, as a
  * host does: 'gzip' as GitHub Pages and Apache's mod_deflate (level 9 here, the page's
  * budget figure), 'br' as Apache's mod_brotli (quality 11 here: a host compressing on the
- * fly uses less, a host serving files compressed ahead, the same). Compressed once per file.
+ * fly uses less, a host serving files compressed ahead, the same). Compressed once per file;
+ * where the build wrote the file compressed ahead (`NAME.br`, `NAME.gz`:
+ * web/build/precompress.mjs), that copy is sent, as nginx's `gzip_static` and the classroom
+ * server do (the answer's `x-precompressed` header says so).
  */
 export async function serveDist(dist, { encoding } = {}) {
   const packed = new Map();
@@ -43,7 +46,13 @@ export async function serveDist(dist, { encoding } = {}) {
       if (encoding && (req.headers['accept-encoding'] ?? '').includes(encoding)) {
         headers['content-encoding'] = encoding;
         headers.vary = 'Accept-Encoding';
-        data = pack(file, data);
+        const ahead = `${file}.${encoding === 'br' ? 'br' : 'gz'}`;
+        if (fs.existsSync(ahead)) {
+          headers['x-precompressed'] = '1';
+          data = fs.readFileSync(ahead);
+        } else {
+          data = pack(file, data);
+        }
       }
       res.writeHead(200, headers);
       res.end(data);

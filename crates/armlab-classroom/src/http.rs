@@ -24,7 +24,10 @@ pub const MAX_FRAME_BYTES: usize = 1024 * 1024;
 /// The read buffer of a WebSocket.
 const SOCKET_BUFFER_BYTES: usize = 4096;
 
-/// The routes, with the page served from `dist` when the server has one.
+/// The routes, with the page served from `dist` when the server has one: a file's copy
+/// compressed ahead (`NAME.br`, `NAME.gz`, which the page's release build writes beside
+/// each file) goes to a browser that accepts its encoding, brotli first (about a fifth
+/// smaller than gzip for the wasm).
 pub fn router(server: Arc<Server>) -> Router {
     let dist = server.config.dist.clone();
     let router = Router::new()
@@ -36,7 +39,9 @@ pub fn router(server: Arc<Server>) -> Router {
         .route("/classroom/{code}/answers.csv", get(csv))
         .with_state(server);
     match dist {
-        Some(dist) => router.fallback_service(ServeDir::new(dist)),
+        Some(dist) => {
+            router.fallback_service(ServeDir::new(dist).precompressed_br().precompressed_gzip())
+        }
         None => router,
     }
 }

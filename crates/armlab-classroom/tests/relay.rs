@@ -3,7 +3,7 @@
 //! and revealed, the CSV holds the answers, End ends the class, and after a restart the
 //! lecturer's Resume re-creates it.
 
-use crate::support::{Client, config, count, get, lecturer, server, state, student};
+use crate::support::{Client, config, count, get, get_with, lecturer, server, state, student};
 use armlab_classroom::Running;
 use armlab_room::{Answer, ClientMessage, DropReason, Question, Refusal, ServerMessage};
 use std::time::Duration;
@@ -438,6 +438,45 @@ async fn the_server_says_hello_and_serves_the_page() {
         (status, &stats["classes"], &stats["dropped"]["NotAllowed"]),
         (200, &0.into(), &0.into())
     );
+    running.stop();
+    let _ = std::fs::remove_dir_all(dist);
+}
+
+#[tokio::test]
+async fn a_file_compressed_ahead_goes_to_a_browser_that_accepts_it() {
+    let dist = std::env::temp_dir().join(format!("armlab-classroom-packed-{}", std::process::id()));
+    std::fs::create_dir_all(&dist).expect("a temporary folder");
+    // Stand-ins for the build's copies: the server sends them as they are.
+    for (name, body) in [
+        ("app.js", "plain"),
+        ("app.js.br", "brotli"),
+        ("app.js.gz", "gzip"),
+    ] {
+        std::fs::write(dist.join(name), body).expect("written");
+    }
+    let running = server(armlab_classroom::Config {
+        dist: Some(dist.clone()),
+        ..config()
+    })
+    .await;
+    let sent = |accepts: &'static str| {
+        let running = &running;
+        async move {
+            let (status, head, body) = get_with(running, "/app.js", accepts).await;
+            let encoding = head
+                .lines()
+                .find_map(|l| l.strip_prefix("content-encoding: "))
+                .map(str::to_owned);
+            (status, encoding, body)
+        }
+    };
+    let plain = (200, None, "plain".to_owned());
+    assert_eq!(sent("").await, plain);
+    assert_eq!(sent("Accept-Encoding: identity\r\n").await, plain);
+    let gzip = (200, Some("gzip".to_owned()), "gzip".to_owned());
+    assert_eq!(sent("Accept-Encoding: gzip\r\n").await, gzip);
+    let brotli = (200, Some("br".to_owned()), "brotli".to_owned());
+    assert_eq!(sent("Accept-Encoding: gzip, deflate, br\r\n").await, brotli);
     running.stop();
     let _ = std::fs::remove_dir_all(dist);
 }

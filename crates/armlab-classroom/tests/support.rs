@@ -169,9 +169,16 @@ pub async fn count(lecturer: &mut Client) -> u32 {
 
 /// GET `path` from the server: (status, body).
 pub async fn get(running: &Running, path: &str) -> (u16, String) {
+    let (status, _, body) = get_with(running, path, "").await;
+    (status, body)
+}
+
+/// GET `path` with the extra header lines `headers` (each ending in CRLF): (status, the
+/// response's header lines in lower case, body).
+pub async fn get_with(running: &Running, path: &str, headers: &str) -> (u16, String, String) {
     let mut stream = TcpStream::connect(running.addr).await.expect("connects");
     let request = format!(
-        "GET {path} HTTP/1.1\r\nHost: {}\r\nConnection: close\r\n\r\n",
+        "GET {path} HTTP/1.1\r\nHost: {}\r\n{headers}Connection: close\r\n\r\n",
         running.addr
     );
     stream
@@ -188,9 +195,6 @@ pub async fn get(running: &Running, path: &str) -> (u16, String) {
         .nth(1)
         .and_then(|s| s.parse().ok())
         .unwrap_or(0);
-    let body = response
-        .split_once("\r\n\r\n")
-        .map(|(_, b)| b.to_owned())
-        .unwrap_or_default();
-    (status, body)
+    let (head, body) = response.split_once("\r\n\r\n").unwrap_or_default();
+    (status, head.to_lowercase(), body.to_owned())
 }
