@@ -132,6 +132,7 @@ impl ArmLabApp {
                 matrices: matrices::MatricesPanel::default(),
                 motion: motion::MotionPanel::default(),
                 reveal: None,
+                anchors: Vec::new(),
             },
             model,
             sheet: None,

@@ -125,6 +125,10 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
     web::a11y::describe(ctx, canvas, || {
         crate::app::state::view_words::view_words(app.model())
     });
+    web::skip::update(
+        armlab_text::text(lang, armlab_text::Key::SkipLinks),
+        skip_links(app),
+    );
     hook::publish(
         ctx,
         || app.state_json(),
@@ -134,6 +138,22 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
         app.frame_times().back().copied(),
         start,
     );
+}
+
+/// The page's skip links: the 3D view, then each panel drawn this frame (to its first
+/// widget), in the interface's language.
+fn skip_links(app: &ArmLabApp) -> Vec<(String, Option<egui::Id>)> {
+    use armlab_text::Key;
+    let lang = app.model().settings().lang;
+    let view = (armlab_text::text(lang, Key::SkipToView).to_owned(), None);
+    let panels = app.panels.anchors.iter().map(|(kind, first)| {
+        let title = armlab_text::text(lang, crate::app::panels::shell::title(*kind));
+        (
+            armlab_text::fill(lang, Key::SkipToPanel, &[&title]),
+            Some(*first),
+        )
+    });
+    std::iter::once(view).chain(panels).collect()
 }
 
 /// The lecture room, each frame before the panels: a link's `class=` part once the page

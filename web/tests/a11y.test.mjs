@@ -8,34 +8,12 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { browserSuite } from './browser-suite.mjs';
-import { dist, state, settle, until, point, pageOpener } from './page.mjs';
+import path from 'node:path';
+import { dist, shots, state, settle, until, point, pageOpener, pixels, at, close } from './page.mjs';
+import { CONTROLS, axTree, boxes } from './axtree.mjs';
 
 const suite = browserSuite(dist);
 const { open } = pageOpener(suite, { view: { width: 1366, height: 768 } });
-
-/** Roles a person operates or reads entry by entry. */
-const CONTROLS = new Set(['button', 'slider', 'spinbutton', 'checkbox', 'combobox', 'textbox', 'radio',
-  'tab', 'link', 'menuitem', 'table']);
-
-/** The accessibility tree: every node that is not ignored, with its role, name, value,
- * properties and the names of its section (the panel's title, the first text in it). */
-async function axTree(page) {
-  const cdp = await page.context().newCDPSession(page);
-  const { nodes } = await cdp.send('Accessibility.getFullAXTree');
-  await cdp.detach();
-  const byId = new Map(nodes.map((n) => [n.nodeId, n]));
-  const props = (n) => Object.fromEntries((n.properties ?? []).map((p) => [p.name, p.value.value]));
-  return nodes.filter((n) => !n.ignored).map((n) => ({
-    id: n.nodeId,
-    role: n.role?.value,
-    name: n.name?.value ?? '',
-    value: n.value?.value,
-    props: props(n),
-    parent: n.parentId,
-    node: n,
-    byId,
-  }));
-}
 
 const PANELS = {
   en: ['Joints', 'Inverse kinematics', 'Robot', 'Matrices', 'Motion'],
@@ -231,7 +209,8 @@ async function tabTo(page, name, { back = false, most = 120 } = {}) {
     const at = await page.evaluate(() => {
       const a = document.activeElement;
       const by = a?.getAttribute('aria-labelledby');
-      return a?.getAttribute('aria-label') ?? (by ? by.split(' ').map((id) => document.getElementById(id)?.textContent).join(' ') : a?.id);
+      return a?.getAttribute('aria-label') ?? (by ? by.split(' ').map((id) => document.getElementById(id)?.textContent).join(' ')
+        : a?.tagName === 'A' ? a.textContent : a?.id);
     });
     if (at === name) return i;
     seen.push(at);
@@ -264,7 +243,10 @@ test('a lecture by the keyboard alone: robot, joint, target, solve, the Jacobian
   await settle(page, 2);
   const t0 = (await state(page)).target.position;
   for (let i = 0; i < 3; i++) await page.keyboard.press('PageUp');
-  const t1 = (await until(page, (s) => s.target.position.some((v, i) => Math.abs(v - t0[i]) > 1e-6), 'the target to move')).target.position;
+  await until(page, (s) => s.target.position.some((v, i) => Math.abs(v - t0[i]) > 1e-6), 'the target to move');
+  // The three presses may take more than one frame: the target where they left it.
+  await settle(page, 5);
+  const t1 = (await state(page)).target.position;
   // Solve.
   steps.solve = await tabTo(page, 'Solve');
   await page.keyboard.press('Enter');
@@ -286,6 +268,89 @@ test('a lecture by the keyboard alone: robot, joint, target, solve, the Jacobian
   const entry = tree.find((n) => n.parent === rows[5].id && n.role === 'cell');
   assert.match(entry.name, /^-?\d+\.\d+$/, `J's entry (6, 1) reads as a number: ${entry?.name}`);
   console.log('KEYBOARD_LECTURE', JSON.stringify({ tabs: steps, joint2: [q0[1], moved.q[1]], target: [t0, t1], entry61: entry.name }));
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});
+
+/** The focused node of the accessibility tree. */
+const focusedNode = async (page) => (await axTree(page)).find((n) => n.props.focused && n.role !== 'RootWebArea');
+
+test('skip links come first: Tab reaches "Skip to the 3D view", seen over the canvas, then one per open panel', async () => {
+  const { page, errors } = await open('#robot=ur10&task=position');
+  const before = await pixels(page, await page.screenshot());
+  await page.keyboard.press('Tab');
+  const first = await focusedNode(page);
+  assert.equal(first?.role, 'link', `the first Tab reaches a link: ${first?.role} "${first?.name}"`);
+  assert.equal(first.name, 'Skip to the 3D view');
+  // Seen while focused: a box on screen, drawn over the canvas in the outline's blue.
+  const [box] = await boxes(page, [first]);
+  assert.ok(box.x >= 0 && box.y >= 0 && box.width >= 120 && box.height >= 24
+    && box.x + box.width <= 1366 && box.y + box.height <= 768, `on screen: ${JSON.stringify(box)}`);
+  const shot = await pixels(page, await page.screenshot({ path: path.join(shots, 'skip-link-focused.png') }));
+  let changed = 0, blue = 0;
+  for (let y = Math.floor(box.y) - 3; y < box.y + box.height + 3; y++) {
+    for (let x = Math.floor(box.x) - 3; x < box.x + box.width + 3; x++) {
+      if (!close(at(shot, x, y), at(before, x, y), 8)) changed++;
+      if (close(at(shot, x, y), [0x8a, 0xb4, 0xf8], 12)) blue++;
+    }
+  }
+  assert.ok(changed > box.width * box.height * 0.3, `the link shows: ${changed} pixels changed`);
+  assert.ok(blue > 2 * (box.width + box.height), `with its focus outline: ${blue} outline pixels`);
+  const links = (await axTree(page)).filter((n) => n.role === 'link' && n.name.startsWith('Skip to')).map((n) => n.name);
+  console.log('SKIP_LINKS', JSON.stringify(links));
+  assert.equal(links[0], 'Skip to the 3D view');
+  for (const panel of ['Joints', 'Inverse kinematics', 'Matrices']) assert.ok(links.includes(`Skip to the ${panel} panel`), panel);
+  // Out of sight again once the focus leaves it.
+  await page.keyboard.press('Tab');
+  const gone = await page.evaluate(() => document.querySelector('#armlab_skip a').getBoundingClientRect().width);
+  assert.ok(gone <= 1, `hidden when not focused: ${gone} px wide`);
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});
+
+test('"Skip to the Inverse kinematics panel" gives the keyboard to that panel: the next Tab stays inside it', async () => {
+  const { page, errors } = await open('#robot=ur10&task=position');
+  await tabTo(page, 'Skip to the Inverse kinematics panel', { most: 10 });
+  await page.keyboard.press('Enter');
+  await settle(page, 4);
+  await page.keyboard.press('Tab');
+  await settle(page, 3);
+  const tree = await axTree(page);
+  const focused = tree.find((n) => n.props.focused && n.role !== 'RootWebArea');
+  assert.ok(focused && CONTROLS.has(focused.role), `a control has the focus: ${focused?.role} "${focused?.name}"`);
+  const cdp = await page.context().newCDPSession(page);
+  const title = (name) => tree.find((n) => n.role === 'StaticText' && n.name === name);
+  const ik = await place(cdp, title('Inverse kinematics'));
+  const next = await place(cdp, title('Robot'));
+  const it = await place(cdp, focused);
+  await cdp.detach();
+  console.log('SKIP_IK', JSON.stringify({ focused: `${focused.role} "${focused.name}"`, at: it, ik, next }));
+  assert.ok(it.y > ik.y && (!next || it.y < next.y) && Math.abs(it.x - ik.x) < 300,
+    `the focused control is in the IK panel: ${JSON.stringify({ it, ik, next })}`);
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});
+
+test('"Skip to the 3D view" leaves no control focused: the arrow keys move the target', async () => {
+  const { page, errors } = await open('#robot=ur10&task=position');
+  // From inside the panels: joint 2's slider has the keyboard (key 2), then the focus goes
+  // back to the first skip link.
+  await page.focus('#armlab_canvas');
+  await page.keyboard.press('2');
+  await settle(page, 3);
+  assert.equal((await focusedNode(page))?.name, 'θ2', 'the slider has the keyboard');
+  await page.focus('#armlab_skip a');
+  assert.equal((await focusedNode(page))?.name, 'Skip to the 3D view');
+  await page.keyboard.press('Enter');
+  await settle(page, 4);
+  assert.equal(await page.evaluate(() => document.activeElement?.id), 'armlab_canvas', 'the canvas has the DOM focus');
+  const t0 = (await state(page)).target.position;
+  const q0 = (await state(page)).q;
+  for (let i = 0; i < 3; i++) await page.keyboard.press('ArrowRight');
+  const s = await until(page, (st) => st.target.position.some((v, i) => Math.abs(v - t0[i]) > 1e-6), 'the target to move');
+  console.log('SKIP_VIEW', JSON.stringify({ from: t0, to: s.target.position }));
+  assert.ok(s.q.some((v, i) => Math.abs(v - q0[i]) > 1e-6), 'and the arm follows it');
+  assert.equal((await focusedNode(page))?.role === 'slider', false, 'no slider took the arrows');
   assert.deepEqual(errors, []);
   await page.context().close();
 });

@@ -31,6 +31,9 @@ pub struct SidePanels {
     /// A panel just opened from its edge tab: its column scrolls to it once drawn (below
     /// the others, it opened out of sight).
     pub reveal: Option<PanelKind>,
+    /// The panels drawn this frame, in order, each with its first widget (its title row's
+    /// close button): where the page's skip links lead.
+    pub anchors: Vec<(PanelKind, egui::Id)>,
 }
 
 impl SidePanels {
@@ -59,6 +62,7 @@ impl SidePanels {
         ui: &mut egui::Ui,
         points: &mut ScreenPoints,
     ) {
+        self.anchors.clear();
         let mut used = 0.0;
         for (index, column) in plan.columns.iter().enumerate() {
             if let Some(opened) = edge_tabs(column, model, ui, points) {
@@ -120,7 +124,9 @@ impl SidePanels {
                         ui.scroll_to_cursor(Some(egui::Align::TOP));
                         self.reveal = None;
                     }
-                    if section_header(*kind, model, ui) {
+                    let (closed, first) = section_header(*kind, model, ui);
+                    self.anchors.push((*kind, first));
+                    if closed {
                         model.set_panel_open(*kind, false);
                     }
                     ui.scope(|ui| {
@@ -141,6 +147,7 @@ impl SidePanels {
         ui: &mut egui::Ui,
         points: &mut ScreenPoints,
     ) {
+        self.anchors.clear();
         egui::Panel::bottom("armlab_tabs")
             .resizable(false)
             .show(ui, |ui| {
@@ -172,7 +179,9 @@ impl SidePanels {
             .exact_size(plan.sheet_height)
             .resizable(false)
             .show(ui, |ui| {
-                if section_header(kind, model, ui) {
+                let (closed, first) = section_header(kind, model, ui);
+                self.anchors.push((kind, first));
+                if closed {
                     *sheet = None;
                 }
                 let width = visible_width(ui);
@@ -238,22 +247,22 @@ pub fn tab_title(kind: PanelKind) -> Key {
     }
 }
 
-/// A panel's title row with a close button; returns whether it was closed.
-fn section_header(kind: PanelKind, model: &Model, ui: &mut egui::Ui) -> bool {
-    let mut close = false;
+/// A panel's title row with a close button; returns whether it was closed, and the
+/// button's id.
+fn section_header(kind: PanelKind, model: &Model, ui: &mut egui::Ui) -> (bool, egui::Id) {
     ui.horizontal(|ui| {
-        close = ui
+        let close = ui
             .small_button("×")
             .on_hover_text(t(model, Key::ClosePanel))
             .accessible_name(armlab_text::fill(
                 model.settings().lang,
                 Key::ClosePanelNamed,
                 &[&t(model, title(kind))],
-            ))
-            .clicked();
+            ));
         ui.strong(t(model, title(kind)));
-    });
-    close
+        (close.clicked(), close.id)
+    })
+    .inner
 }
 
 /// A column's strip of edge tabs: one vertical tab per panel, lit when open; a click

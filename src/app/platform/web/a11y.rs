@@ -65,6 +65,7 @@ impl egui::Plugin for Plugin {
             input.events.append(&mut e);
             any
         });
+        let from_page = super::skip::step(ctx, input) || from_page;
         if focus_in_mirror() {
             // The canvas lost the DOM focus to the mirror, yet the keys are egui's.
             input.focused = true;
@@ -142,6 +143,7 @@ pub fn install(ctx: &egui::Context) {
     if body.append_child(&root).is_err() {
         return;
     }
+    super::skip::install(&doc, &body);
     listen(&root, "click", |e| request(e, Action::Click));
     listen(&root, "focusin", |e| request(e, Action::Focus));
     listen(&root, "keydown", |e| key(e, true));
@@ -201,7 +203,7 @@ pub fn describe(
 }
 
 /// Adds a listener for the page's lifetime.
-fn listen(el: &web_sys::HtmlElement, name: &str, f: fn(web_sys::Event)) {
+pub(super) fn listen(el: &web_sys::HtmlElement, name: &str, f: fn(web_sys::Event)) {
     let closure = Closure::<dyn FnMut(web_sys::Event)>::new(f);
     let _ = el.add_event_listener_with_callback(name, closure.as_ref().unchecked_ref());
     closure.forget();

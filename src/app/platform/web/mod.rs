@@ -9,12 +9,14 @@
 //! - [`modules`]: the lazily loaded modules (URDF, collisions, symbolic matrices, QR codes).
 //! - [`room`]: the lecture room's connection to a classroom server.
 //! - [`a11y`]: the accessibility tree mirrored into the page for screen readers.
+//! - [`skip`]: the skip links to the 3D view and to each open panel.
 
 pub mod a11y;
 pub mod files;
 pub mod hook;
 pub mod modules;
 pub mod room;
+pub mod skip;
 pub mod storage;
 
 use std::cell::{Cell, RefCell};
