@@ -342,13 +342,15 @@ impl ArmLabApp {
         if let Some(action) = self.shortcuts(&ctx, narrow) {
             self.viewport.apply(action, &ctx);
         }
-        egui::Panel::top("armlab_top").show(ui, |ui| {
-            if let Some(action) = top_bar::ui(&mut self.model, ui, narrow, &mut self.points) {
-                self.viewport.apply(action, ui.ctx());
-            }
-            self.class_panel
-                .bar(&mut self.classroom, &mut self.model, ui, &mut self.points);
-        });
+        egui::Panel::top("armlab_top")
+            .frame(shell::panel_frame(ui.style()))
+            .show(ui, |ui| {
+                if let Some(action) = top_bar::ui(&mut self.model, ui, narrow, &mut self.points) {
+                    self.viewport.apply(action, ui.ctx());
+                }
+                self.class_panel
+                    .bar(&mut self.classroom, &mut self.model, ui, &mut self.points);
+            });
         match plan.mode {
             layout::Mode::Wide => {
                 self.panels
@@ -453,9 +455,9 @@ impl eframe::App for ArmLabApp {
         }
     }
 
-    fn clear_color(&self, _visuals: &egui::Visuals) -> [f32; 4] {
+    fn clear_color(&self, visuals: &egui::Visuals) -> [f32; 4] {
         // Opaque: eframe's default is translucent, which lets the page show through.
-        style::background(self.model.settings().presentation).to_normalized_gamma_f32()
+        shell::panel_clear_color(visuals)
     }
 
     #[cfg(target_arch = "wasm32")]

@@ -506,3 +506,24 @@ fn a_target_by_the_base_axis_reads_out_of_reach_everywhere() {
     );
     assert_eq!(h.state().model().shown_reach(), Reach::OutOfReach);
 }
+
+/// The page paints its panels without their fills (each of their pixels would otherwise be
+/// drawn twice, a cost with software WebGL): the window is cleared to the panels' colour,
+/// in the dark theme and in presentation mode, so they look the same.
+#[test]
+fn the_window_is_cleared_to_the_panels_colour() {
+    let mut h = harness("#robot=ur10");
+    for presentation in [false, true] {
+        h.state_mut().model_mut().set_presentation(presentation);
+        h.run_steps(2);
+        let visuals = h.ctx.global_style().visuals.clone();
+        let fill = visuals.panel_fill;
+        let clear = eframe::App::clear_color(h.state(), &visuals);
+        let rgb = |c: [f32; 4]| c.map(|v| (v * 255.0).round() as u8);
+        assert_eq!(
+            rgb(clear),
+            [fill.r(), fill.g(), fill.b(), 255],
+            "presentation {presentation}"
+        );
+    }
+}

@@ -93,6 +93,7 @@ impl SidePanels {
                 Side::Right => egui::Panel::right(salt),
             };
             let response = panel
+                .frame(panel_frame(ui.style()))
                 .default_size(column.default_width.min(max))
                 .size_range(column.min_width.min(max)..=max)
                 .resizable(true)
@@ -149,6 +150,7 @@ impl SidePanels {
     ) {
         self.anchors.clear();
         egui::Panel::bottom("armlab_tabs")
+            .frame(panel_frame(ui.style()))
             .resizable(false)
             .show(ui, |ui| {
                 // Five tabs share a phone's 390 points: narrow gaps keep "Matrices" (and
@@ -176,6 +178,7 @@ impl SidePanels {
             return;
         };
         egui::Panel::bottom("armlab_sheet")
+            .frame(panel_frame(ui.style()))
             .exact_size(plan.sheet_height)
             .resizable(false)
             .show(ui, |ui| {
@@ -194,6 +197,26 @@ impl SidePanels {
                     });
             });
     }
+}
+
+/// egui's frame of a side or top panel, without its fill in the page: there the canvas is
+/// cleared to the panels' colour every frame ([`panel_clear_color`]), so a fill would paint
+/// each of the panels' pixels a second time, and with software WebGL every pixel is the
+/// CPU's work. Natively the fill stays (the UI tests' renderer clears to transparent).
+pub fn panel_frame(style: &egui::Style) -> egui::Frame {
+    let frame = egui::Frame::side_top_panel(style);
+    if cfg!(target_arch = "wasm32") {
+        frame.fill(egui::Color32::TRANSPARENT)
+    } else {
+        frame
+    }
+}
+
+/// The colour the window is cleared to before egui paints: the panels' own (the 3D view
+/// covers the rest), so that a panel whose frame leaves out its fill ([`panel_frame`]) looks
+/// as with it.
+pub fn panel_clear_color(visuals: &egui::Visuals) -> [f32; 4] {
+    visuals.panel_fill.to_normalized_gamma_f32()
 }
 
 /// A tab's title in the narrow bar, its text made smaller (down to three quarters) when
@@ -285,7 +308,7 @@ fn edge_tabs(
     panel
         .exact_size(EDGE_TAB_WIDTH)
         .resizable(false)
-        .frame(egui::Frame::side_top_panel(ui.style()).inner_margin(egui::Margin::symmetric(2, 6)))
+        .frame(panel_frame(ui.style()).inner_margin(egui::Margin::symmetric(2, 6)))
         .show(ui, |ui| {
             ui.spacing_mut().item_spacing.y = 6.0;
             for kind in &column.tabs {
