@@ -30,6 +30,7 @@ pub fn state_json(app: &ArmLabApp) -> String {
             "verdict": e.verdict.map(|v| v.sentence(armlab_text::Lang::En)),
         })),
         "dof": robot.dof(),
+        "reduced_motion": model.reduced_motion(),
         "length_unit": robot.length_unit.symbol(),
         "q": model.q(),
         "tool": [tool.x, tool.y, tool.z],

@@ -44,14 +44,16 @@ use widgets::style;
 
 use armlab_text::Key;
 
-/// What the device says before any link is read: the browser's language and whether its
-/// main pointer is a finger.
+/// What the device says before any link is read: the browser's language, whether its
+/// main pointer is a finger and whether it asks for reduced motion.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Preferences {
     /// The first of the browser's languages that ArmLab has (English when none).
     pub lang: armlab_text::Lang,
     /// A touch screen: thumb-sized controls.
     pub touch: bool,
+    /// The system asks for reduced motion: egui's animations off.
+    pub reduced_motion: bool,
 }
 
 /// The first character of a session stored as JSON (an object), written as an escape.
@@ -110,6 +112,7 @@ impl ArmLabApp {
         app.viewport = view3d::Viewport::new(cc.wgpu_render_state.as_ref());
         app.touch = preferences.touch;
         app.model.set_lang(preferences.lang);
+        app.model.set_reduced_motion(preferences.reduced_motion);
         // A link with only a class part (`#class=…`) opens the last session in the class.
         let (class, link) = split_class_link(link);
         app.class_link = class;
@@ -333,6 +336,7 @@ impl ArmLabApp {
         self.room_frame(&ctx);
         let screen = screen(&ctx);
         style::install(&ctx, self.model.settings().presentation, self.touch, screen);
+        style::reduce_motion(&ctx, self.model.reduced_motion());
         let plan = layout::plan(
             ui.max_rect().size(),
             screen.css_width,

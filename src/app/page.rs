@@ -73,8 +73,8 @@ pub fn start() {
     });
 }
 
-/// The browser's languages (`navigator.languages`) and whether its main pointer is a
-/// finger (`(pointer: coarse)`).
+/// The browser's languages (`navigator.languages`), whether its main pointer is a
+/// finger (`(pointer: coarse)`) and whether it asks for reduced motion.
 fn browser_preferences(window: &web_sys::Window) -> Preferences {
     let navigator = window.navigator();
     let tags: Vec<String> = navigator
@@ -91,6 +91,7 @@ fn browser_preferences(window: &web_sys::Window) -> Preferences {
     Preferences {
         lang: armlab_text::Lang::from_tags(tags.iter().map(String::as_str)),
         touch,
+        reduced_motion: web::prefers_reduced_motion(window),
     }
 }
 

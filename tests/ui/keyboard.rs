@@ -210,3 +210,47 @@ fn the_zoom_buttons_change_the_cameras_distance_by_a_step_at_every_screen_size()
         }
     }
 }
+
+/// Where the IK panel's header lies (its top) one frame after the Joints panel's "Joint
+/// speeds" fold was clicked open, and once the fold has settled.
+fn fold_opening(reduced_motion: bool) -> (f32, f32) {
+    // Frames a sixtieth of a second apart, as a screen draws them: the harness's own
+    // quarter-second steps would end any animation within one.
+    let mut h = Harness::builder()
+        .with_size([1366.0, 768.0])
+        .with_step_dt(1.0 / 60.0)
+        .wgpu()
+        .build_eframe(|cc| ArmLabApp::new(cc, "#robot=ur10"));
+    h.state_mut().model_mut().set_reduced_motion(reduced_motion);
+    h.run_steps(3);
+    let header = |h: &Harness<'_, ArmLabApp>| {
+        h.get_by_label("Close the Inverse kinematics panel")
+            .rect()
+            .top()
+    };
+    let closed = header(&h);
+    h.get_by_label("Joint speeds q̇").click();
+    h.run_steps(1);
+    let first = header(&h);
+    h.run_steps(30);
+    let settled = header(&h);
+    assert!(
+        settled > closed + 20.0,
+        "the fold opened: {closed} → {settled}"
+    );
+    (first, settled)
+}
+
+#[test]
+fn with_reduced_motion_a_fold_opens_in_one_frame() {
+    let (first, settled) = fold_opening(true);
+    assert!(
+        (settled - first).abs() < 0.5,
+        "open at once: {first} then {settled}"
+    );
+    let (first, settled) = fold_opening(false);
+    assert!(
+        settled - first > 5.0,
+        "without the setting it slides open: {first} then {settled}"
+    );
+}

@@ -354,3 +354,13 @@ test('"Skip to the 3D view" leaves no control focused: the arrow keys move the t
   assert.deepEqual(errors, []);
   await page.context().close();
 });
+
+test('the page takes the system\'s reduced motion, and leaves motion on without it', async () => {
+  for (const reducedMotion of ['reduce', 'no-preference']) {
+    const { page, errors } = await open('#robot=ur10', { contextOptions: { reducedMotion } });
+    const s = await state(page);
+    assert.equal(s.reduced_motion, reducedMotion === 'reduce', `reducedMotion: ${reducedMotion}`);
+    assert.deepEqual(errors, []);
+    await page.context().close();
+  }
+});

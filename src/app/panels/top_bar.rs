@@ -58,8 +58,8 @@ pub fn ui(
 fn zoom_buttons(model: &Model, ui: &mut egui::Ui) -> Option<ViewAction> {
     let mut action = None;
     for (sign, key, zoom) in [
-        ("+", Key::ZoomIn, ViewAction::ZoomIn),
-        ("\u{2212}", Key::ZoomOut, ViewAction::ZoomOut),
+        ("+", Key::ZoomIn, ViewAction::Zoom(1)),
+        ("\u{2212}", Key::ZoomOut, ViewAction::Zoom(-1)),
     ] {
         if ui
             .button(sign)

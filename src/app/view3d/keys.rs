@@ -24,6 +24,8 @@ const STEP: (f64, f64) = (0.02, 0.002);
 const ORBIT: f64 = 12.0;
 /// IK steps a press allows the arm to follow the target.
 const FOLLOW_STEPS: usize = 60;
+/// The factor a zoom button changes the camera's distance by.
+pub const ZOOM_STEP: f64 = 1.25;
 /// A turning press's angle in degrees, coarse and fine (Shift).
 pub const TURN_DEG: (f64, f64) = (5.0, 1.0);
 

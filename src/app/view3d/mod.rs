@@ -48,14 +48,9 @@ pub enum ViewAction {
     Fit,
     /// A standard view direction.
     View(StandardView),
-    /// Come closer by [`ZOOM_STEP`]: pinch's one-finger alternative.
-    ZoomIn,
-    /// Step back by [`ZOOM_STEP`].
-    ZoomOut,
+    /// Zoom by [`keys::ZOOM_STEP`] a press, closer (1) or back (−1): pinch's alternative.
+    Zoom(i8),
 }
-
-/// The factor the zoom buttons change the camera's distance by.
-pub const ZOOM_STEP: f64 = 1.25;
 
 /// What the pointer is dragging.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -181,13 +176,12 @@ impl Viewport {
     pub fn apply(&mut self, action: ViewAction, ctx: &egui::Context) {
         match action {
             // A zoom keeps the framing: framing anew would undo it.
-            ViewAction::ZoomIn => self.camera.zoom(ZOOM_STEP),
-            ViewAction::ZoomOut => self.camera.zoom(1.0 / ZOOM_STEP),
-            ViewAction::View(view) => {
-                self.camera.set_view(view);
-                self.framed_at = None;
-            }
-            ViewAction::Fit => self.framed_at = None,
+            ViewAction::Zoom(n) => self.camera.zoom(keys::ZOOM_STEP.powi(n.into())),
+            ViewAction::View(view) => self.camera.set_view(view),
+            ViewAction::Fit => {}
+        }
+        if !matches!(action, ViewAction::Zoom(_)) {
+            self.framed_at = None;
         }
         ctx.request_repaint();
     }

@@ -164,6 +164,27 @@ pub fn install(ctx: &egui::Context, presentation: bool, touch: bool, screen: Scr
     ctx.set_zoom_factor(zoom);
 }
 
+/// Stops egui's own motion when the system asks for reduced motion: folds open and
+/// scroll areas jump to a control at once instead of sliding. Cheap to call every frame:
+/// it only writes when the setting changed.
+pub fn reduce_motion(ctx: &egui::Context, reduced: bool) {
+    let id = egui::Id::unique("armlab_reduced_motion");
+    if ctx.data(|d| d.get_temp::<bool>(id)) == Some(reduced) {
+        return;
+    }
+    ctx.data_mut(|d| d.insert_temp(id, reduced));
+    let normal = egui::Style::default();
+    ctx.all_styles_mut(|style| {
+        if reduced {
+            style.animation_time = 0.0;
+            style.scroll_animation = egui::style::ScrollAnimation::none();
+        } else {
+            style.animation_time = normal.animation_time;
+            style.scroll_animation = normal.scroll_animation;
+        }
+    });
+}
+
 /// A fold header's title, wrapped to the room the header has: egui lays a
 /// [`egui::CollapsingHeader`]'s title out on one line however long it is, which widens
 /// the whole column past the screen on a projector ("Both conventions side by…" cut off).

@@ -172,6 +172,16 @@ pub fn measure_canvas(ctx: &egui::Context) -> Option<f32> {
     (css_w > 0).then_some(css_w as f32)
 }
 
+/// Whether the user's system asks for reduced motion
+/// (`(prefers-reduced-motion: reduce)`); natively there is no such setting.
+pub fn prefers_reduced_motion(window: &web_sys::Window) -> bool {
+    window
+        .match_media("(prefers-reduced-motion: reduce)")
+        .ok()
+        .flatten()
+        .is_some_and(|m| m.matches())
+}
+
 /// Sets `object[key] = value`, logging a failure.
 fn set_field(object: &JsValue, key: &str, value: &JsValue) {
     warn_on_failure(

@@ -1,6 +1,6 @@
 //! The model's writers of the display settings, one per thing a person switches: units,
 //! frames, presentation, language, precision, which panels are open, the 3D view's
-//! overlays and presentation's hidden entries.
+//! overlays and presentation's hidden entries, and the device's reduced motion.
 
 use armlab_session::settings::{Hidden, Overlay, PanelKind};
 use armlab_text::Lang;
@@ -41,6 +41,11 @@ impl Model {
     /// Switches one of the 3D view's overlays.
     pub fn set_overlay(&mut self, overlay: Overlay, on: bool) {
         self.settings.overlays.set(overlay, on);
+    }
+
+    /// The user's system asks for reduced motion (the platform says so at start).
+    pub fn set_reduced_motion(&mut self, reduced: bool) {
+        self.reduced_motion = reduced;
     }
 
     /// Hides an entry in presentation mode, or shows it again.

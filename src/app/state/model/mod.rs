@@ -194,6 +194,8 @@ pub struct Model {
     replay: Option<Replay>,
     /// The closed form's "no exact solution", and the target, task and robot it is for.
     no_exact: Option<(IsometryMatrix3<f64>, Task, u64, bool)>,
+    /// The user's system asks for reduced motion (the device's setting, in no link).
+    reduced_motion: bool,
 }
 
 impl Model {
@@ -233,6 +235,7 @@ impl Model {
             exercise: None,
             replay: None,
             no_exact: None,
+            reduced_motion: false,
         };
         model.open(session);
         model
@@ -253,6 +256,11 @@ impl Model {
     /// The joint vector (radians, the robot's length unit).
     pub fn q(&self) -> &[f64] {
         &self.q
+    }
+
+    /// Whether the user's system asks for reduced motion: nothing moves by itself.
+    pub fn reduced_motion(&self) -> bool {
+        self.reduced_motion
     }
 
     /// The IK target in the base frame.
