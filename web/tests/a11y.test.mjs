@@ -264,7 +264,8 @@ test('the live region says what the view shows, once a second at most, and out o
   });
   await settle(page, 30);
   assert.deepEqual(await page.evaluate(() => window.__said), [], 'silent while nothing changes');
-  // Drag the target far past the arm's reach for about three seconds.
+  // Drag the target far past the arm's reach for about three seconds: only the change
+  // of reach is said while the pointer is down, the whole sentence once it is up.
   const t = await point(page, 'target');
   const view = await page.evaluate(() => window.armlab.viewRect());
   await page.mouse.move(t.x, t.y);
@@ -272,14 +273,20 @@ test('the live region says what the view shows, once a second at most, and out o
   const started = Date.now();
   await page.mouse.move(view.x + view.width - 5, view.y + 5, { steps: 60 });
   while (Date.now() - started < 3000) await page.mouse.move(view.x + view.width - 5 - ((Date.now() / 50) % 2), view.y + 5);
+  const during = await page.evaluate(() => window.__said.map(([, text]) => text));
   await page.mouse.up();
-  for (let i = 0; i < 100 && !(await live()).includes('out of reach'); i++) await settle(page, 2);
+  for (let i = 0; i < 100 && !/^UR10\. .*out of reach/.test(await live()); i++) await settle(page, 2);
   const changes = await page.evaluate(() => window.__said);
   const seconds = (Date.now() - started) / 1000;
-  console.log('LIVE_REGION', JSON.stringify({ seconds, changes: changes.length, last: await live() }));
-  assert.ok(changes.length <= Math.ceil(seconds) + 1, `${changes.length} sentences in ${seconds} s`);
+  console.log('LIVE_REGION', JSON.stringify({ seconds, during, changes: changes.length, last: await live() }));
+  assert.ok(during.length >= 1 && during.length <= 3, `${during.length} sentences during the drag: ${during}`);
+  for (const d of during) assert.match(d, /^Target (reached|out of reach)/, 'a change of reach alone');
+  assert.match(during.at(-1), /^Target out of reach/);
+  const after = changes.slice(during.length).map(([, text]) => text);
+  assert.ok(after.length >= 1 && after.length <= 2, `the whole sentence after it: ${after}`);
+  for (const a of after) assert.match(a, /^UR10\. Tool at x /);
   for (let i = 1; i < changes.length; i++) assert.ok(changes[i][0] - changes[i - 1][0] >= 990, 'a second apart');
-  assert.match(await live(), /Target out of reach/);
+  assert.match(await live(), /^UR10\. Tool at x .* Target out of reach/);
   assert.deepEqual(errors, []);
   await page.context().close();
 });

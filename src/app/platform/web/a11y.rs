@@ -47,6 +47,8 @@ thread_local! {
     /// The live region: its element, what it said last and when (ms), and the canvas's
     /// name it was given.
     static LIVE: RefCell<Option<(web_sys::HtmlElement, String, f64, &'static str)>> = const { RefCell::new(None) };
+    /// The reach sentence the live region said last, alone or in its whole sentence.
+    static LIVE_REACH: RefCell<String> = const { RefCell::new(String::new()) };
     /// The nodes that label another (its `labelled_by`), and those found this pass.
     static LABELS: RefCell<std::collections::HashSet<NodeId>> = RefCell::new(std::collections::HashSet::new());
     static NEW_LABELS: RefCell<Vec<NodeId>> = const { RefCell::new(Vec::new()) };
@@ -167,10 +169,15 @@ const LIVE_EVERY_MS: f64 = 1000.0;
 
 /// Keeps the live region saying what the 3D view shows: `words` is asked for at most once
 /// a second and written only when it changed (a screen reader reads each change out).
-/// The canvas gets `name` and `description` (in the interface's language).
+/// While the target is `dragging` (by the pointer or held keys), only a change of `reach`
+/// is said, and the whole of `words` once the drag ends: a long sentence every second
+/// would drown the drag. The canvas gets `name` and `description` (in the interface's
+/// language).
 pub fn describe(
     ctx: &egui::Context,
     (name, description): (&'static str, &str),
+    dragging: bool,
+    reach: impl FnOnce() -> String,
     words: impl FnOnce() -> String,
 ) {
     LIVE.with(|l| {
@@ -194,11 +201,20 @@ pub fn describe(
             ctx.request_repaint_after(std::time::Duration::from_millis(LIVE_EVERY_MS as u64));
             return;
         }
-        let text = words();
+        let (text, reach) = if dragging {
+            let reach = reach();
+            if reach.is_empty() || LIVE_REACH.with(|r| *r.borrow() == reach) {
+                return;
+            }
+            (reach.clone(), reach)
+        } else {
+            (words(), reach())
+        };
         if text != *said {
             live.set_text_content(Some(&text));
             *said = text;
             *at = now;
+            LIVE_REACH.with(|r| *r.borrow_mut() = reach);
         }
     });
 }
