@@ -299,6 +299,13 @@ test('the live region and the names speak Finnish in the Finnish interface', asy
   const tree = await axTree(page);
   assert.ok(find(tree, 'slider', 'θ2'));
   assert.ok(tree.some((n) => n.name === 'Robottikäsivarsi 3D:nä'), 'the canvas is named in Finnish');
+  // The page's language and title follow the interface's (a synthesiser reads Finnish
+  // words with Finnish rules), and back to English when the language is switched.
+  const page0 = () => page.evaluate(() => [document.documentElement.lang, document.title]);
+  assert.deepEqual(await page0(), ['fi', 'ArmLab — robottikäsivarren kinematiikka selaimessa']);
+  await page.evaluate(() => { location.hash = '#robot=ur10&lang=en'; });
+  for (let i = 0; i < 50 && (await page0())[0] !== 'en'; i++) await settle(page, 2);
+  assert.deepEqual(await page0(), ['en', 'ArmLab — robot-arm kinematics in the browser']);
   assert.deepEqual(errors, []);
   await page.context().close();
 });
