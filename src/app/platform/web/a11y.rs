@@ -50,7 +50,7 @@ thread_local! {
     /// The reach sentence the live region said last, alone or in its whole sentence.
     static LIVE_REACH: RefCell<String> = const { RefCell::new(String::new()) };
     /// The nodes that label another (its `labelled_by`), and those found this pass.
-    static LABELS: RefCell<std::collections::HashSet<NodeId>> = RefCell::new(std::collections::HashSet::new());
+    static LABELS: RefCell<Vec<NodeId>> = const { RefCell::new(Vec::new()) };
     static NEW_LABELS: RefCell<Vec<NodeId>> = const { RefCell::new(Vec::new()) };
 }
 
@@ -606,7 +606,8 @@ fn table(el: &web_sys::HtmlElement, node: &Node) {
 /// [`hide_new_labels`] once the pass has put the elements in the page.
 fn hide_labels(node: &Node) {
     for id in node.labelled_by() {
-        if LABELS.with(|l| l.borrow_mut().insert(*id)) {
+        if LABELS.with(|l| !l.borrow().contains(id)) {
+            LABELS.with(|l| l.borrow_mut().push(*id));
             NEW_LABELS.with(|l| l.borrow_mut().push(*id));
         }
     }
