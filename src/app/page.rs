@@ -123,9 +123,14 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
         armlab_text::text(lang, armlab_text::Key::CanvasName),
         armlab_text::text(lang, armlab_text::Key::CanvasDescription),
     );
-    web::a11y::describe(ctx, canvas, || {
-        crate::app::state::view_words::view_words(app.model())
-    });
+    let words = crate::app::state::view_words::view_words;
+    web::a11y::describe(
+        ctx,
+        canvas,
+        moving_target(app, ctx),
+        || crate::app::state::view_words::reach_words(app.model()),
+        || words(app.model()),
+    );
     web::skip::update(
         armlab_text::text(lang, armlab_text::Key::SkipLinks),
         skip_links(app),
@@ -155,6 +160,23 @@ fn skip_links(app: &ArmLabApp) -> Vec<(String, Option<egui::Id>)> {
         )
     });
     std::iter::once(view).chain(panels).collect()
+}
+
+/// Whether the target is being moved: dragged by the pointer, or by a held arrow or page
+/// key while no control has the keyboard (the view's keys move the target then).
+fn moving_target(app: &ArmLabApp, ctx: &egui::Context) -> bool {
+    use egui::Key;
+    const KEYS: [Key; 6] = [
+        Key::ArrowLeft,
+        Key::ArrowRight,
+        Key::ArrowUp,
+        Key::ArrowDown,
+        Key::PageUp,
+        Key::PageDown,
+    ];
+    app.viewport().dragging()
+        || (ctx.memory(|m| m.focused().is_none())
+            && ctx.input(|i| !i.modifiers.alt && KEYS.iter().any(|k| i.key_down(*k))))
 }
 
 /// The lecture room, each frame before the panels: a link's `class=` part once the page

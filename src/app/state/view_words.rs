@@ -23,7 +23,25 @@ pub fn view_words(model: &Model) -> String {
         Key::ViewWordsTool,
         &[&model.robot().name, &x, &y, &z, &unit],
     );
-    let reach = match model.shown_reach() {
+    for sentence in [
+        reach_words(model),
+        branch(model),
+        singular(model),
+        workspace(model),
+    ] {
+        if !sentence.is_empty() {
+            words.push(' ');
+            words.push_str(&sentence);
+        }
+    }
+    words
+}
+
+/// Whether the target is reached, in one sentence (out of reach: with the joint at its
+/// limit that holds the arm back, if one does); empty while the target is not yet settled.
+/// The live region says this alone while the target is dragged.
+pub fn reach_words(model: &Model) -> String {
+    match model.shown_reach() {
         Reach::Reached => tr(model, Key::ViewWordsReached).to_owned(),
         Reach::OutOfReach => match model.rescue().and_then(|r| r.held) {
             Some((joint, at_max)) => {
@@ -33,14 +51,7 @@ pub fn view_words(model: &Model) -> String {
             None => tr(model, Key::ViewWordsOutOfReach).to_owned(),
         },
         _ => String::new(),
-    };
-    for sentence in [reach, branch(model), singular(model), workspace(model)] {
-        if !sentence.is_empty() {
-            words.push(' ');
-            words.push_str(&sentence);
-        }
     }
-    words
 }
 
 /// The closed-form branch the arm is in (the one it keeps, else the one of its pose), in
@@ -129,6 +140,22 @@ mod tests {
             words.contains("Työkalu kohdassa") && words.contains("Kohde ulottumattomissa"),
             "{words}"
         );
+    }
+
+    #[test]
+    fn the_reach_sentence_alone_is_the_full_sentences_reach_part() {
+        let mut model = ur10();
+        assert_eq!(reach_words(&model), "Target reached.");
+        let mut target = *model.target();
+        target.translation.vector *= 10.0;
+        model.set_target(target);
+        let reach = reach_words(&model);
+        assert!(reach.starts_with("Target out of reach"), "{reach}");
+        assert!(!reach.contains("Tool at"), "{reach}");
+        let words = view_words(&model);
+        assert!(words.contains(&format!(" {reach} ")), "{words}");
+        model.set_lang(Lang::Fi);
+        assert!(reach_words(&model).starts_with("Kohde ulottumattomissa"));
     }
 
     #[test]

@@ -47,6 +47,11 @@ thread_local! {
     /// The live region: its element, what it said last and when (ms), and the canvas's
     /// name it was given.
     static LIVE: RefCell<Option<(web_sys::HtmlElement, String, f64, &'static str)>> = const { RefCell::new(None) };
+    /// The reach sentence the live region said last, alone or in its whole sentence.
+    static LIVE_REACH: RefCell<String> = const { RefCell::new(String::new()) };
+    /// The nodes that label another (its `labelled_by`), and those found this pass.
+    static LABELS: RefCell<Vec<NodeId>> = const { RefCell::new(Vec::new()) };
+    static NEW_LABELS: RefCell<Vec<NodeId>> = const { RefCell::new(Vec::new()) };
 }
 
 /// The egui plugin that feeds the mirror from each pass's tree and the page's requests
@@ -166,10 +171,15 @@ const LIVE_EVERY_MS: f64 = 1000.0;
 
 /// Keeps the live region saying what the 3D view shows: `words` is asked for at most once
 /// a second and written only when it changed (a screen reader reads each change out).
-/// The canvas gets `name` and `description` (in the interface's language).
+/// While the target is `dragging` (by the pointer or held keys), only a change of `reach`
+/// is said, and the whole of `words` once the drag ends: a long sentence every second
+/// would drown the drag. The canvas gets `name` and `description` (in the interface's
+/// language).
 pub fn describe(
     ctx: &egui::Context,
     (name, description): (&'static str, &str),
+    dragging: bool,
+    reach: impl FnOnce() -> String,
     words: impl FnOnce() -> String,
 ) {
     LIVE.with(|l| {
@@ -193,11 +203,20 @@ pub fn describe(
             ctx.request_repaint_after(std::time::Duration::from_millis(LIVE_EVERY_MS as u64));
             return;
         }
-        let text = words();
+        let (text, reach) = if dragging {
+            let reach = reach();
+            if reach.is_empty() || LIVE_REACH.with(|r| *r.borrow() == reach) {
+                return;
+            }
+            (reach.clone(), reach)
+        } else {
+            (words(), reach())
+        };
         if text != *said {
             live.set_text_content(Some(&text));
             *said = text;
             *at = now;
+            LIVE_REACH.with(|r| *r.borrow_mut() = reach);
         }
     });
 }
@@ -327,6 +346,7 @@ impl Mirror {
         {
             let _ = self.root.append_child(&root.el);
         }
+        hide_new_labels();
         self.focus =
             Some(update.focus).filter(|f| self.nodes.get(f).is_some_and(|m| m.el.tab_index() >= 0));
         self.focus_target()
@@ -444,12 +464,16 @@ fn show(el: &web_sys::HtmlElement, node: &Node, scale: f32) {
     // A matrix stays a label in egui's tree (the UI tests read it so) with its rows and
     // columns counted: here it becomes a table.
     let matrix = node.row_count().is_some() && node.column_count().is_some();
+    let name = node.label().unwrap_or_default();
     let role = if matrix {
         Some("table")
+    } else if node.role() == Role::Window && name.is_empty() {
+        // egui's root is a window with no title: a dialog without a name would be said
+        // before every control; a titled window stays a dialog.
+        None
     } else {
         aria_role(node.role())
     };
-    let name = node.label().unwrap_or_default();
     let set = |k: &str, v: Option<&str>| {
         let _ = match v {
             Some(v) => el.set_attribute(k, v),
@@ -457,6 +481,7 @@ fn show(el: &web_sys::HtmlElement, node: &Node, scale: f32) {
         };
     };
     set("role", role);
+    hide_labels(node);
     if matrix {
         table(el, node);
     } else if role.is_some() {
@@ -471,6 +496,10 @@ fn show(el: &web_sys::HtmlElement, node: &Node, scale: f32) {
     } else if node.children().is_empty() {
         // A plain text node's words are its text (egui keeps a label's words as its value).
         el.set_text_content(node.value().or(node.label()));
+        let label = el.id().strip_prefix("a11y").and_then(|n| n.parse().ok());
+        if label.is_some_and(|n| LABELS.with(|l| l.borrow().contains(&NodeId(n)))) {
+            let _ = el.set_attribute("aria-hidden", "true");
+        }
     }
     states(el, node, role);
     if node.supports_action(Action::Focus) {
@@ -509,7 +538,9 @@ fn states(el: &web_sys::HtmlElement, node: &Node, role: Option<&str>) {
         num(node.max_numeric_value()).filter(|_| ranged).as_deref(),
     );
     set("aria-valuetext", node.value().filter(|_| ranged));
-    if role == Some("textbox") {
+    // A text field's and a combo box's value is their text in the browser's tree (a combo
+    // box's `aria-valuetext` is not read): the text typed, the choice shown.
+    if matches!(role, Some("textbox" | "combobox")) && node.children().is_empty() {
         el.set_text_content(node.value());
     }
     let checked = node.toggled().map(|t| match t {
@@ -553,7 +584,9 @@ fn table(el: &web_sys::HtmlElement, node: &Node) {
         el.set_text_content(Some(text));
         return;
     }
-    let mut html = String::new();
+    // The caption as the table's first child too: a screen reader's list of tables and
+    // its table commands say the caption, not the name.
+    let mut html = String::from("<div role=caption></div>");
     for row in entries.chunks(columns) {
         html.push_str("<div role=row>");
         for entry in row {
@@ -564,4 +597,32 @@ fn table(el: &web_sys::HtmlElement, node: &Node) {
         html.push_str("</div>");
     }
     el.set_inner_html(&html);
+    if let Some(c) = el.first_element_child() {
+        c.set_text_content(Some(caption));
+    }
+}
+
+/// Marks the plain labels that name node (its `labelled_by`) to be hidden from the tree,
+/// so that a screen reader says a joint's name with its slider and its field, not once
+/// more alone: a label shown later finds itself in `LABELS`, one already made is hidden by
+/// [`hide_new_labels`] once the pass has put the elements in the page.
+fn hide_labels(node: &Node) {
+    for id in node.labelled_by() {
+        if LABELS.with(|l| !l.borrow().contains(id)) {
+            LABELS.with(|l| l.borrow_mut().push(*id));
+            NEW_LABELS.with(|l| l.borrow_mut().push(*id));
+        }
+    }
+}
+
+/// Hides the labels [`hide_labels`] found this pass.
+fn hide_new_labels() {
+    let Some(doc) = web_sys::window().and_then(|w| w.document()) else {
+        return;
+    };
+    for id in NEW_LABELS.with(|l| std::mem::take(&mut *l.borrow_mut())) {
+        if let Some(el) = doc.get_element_by_id(&format!("a11y{}", id.0)) {
+            let _ = el.set_attribute("aria-hidden", "true");
+        }
+    }
 }

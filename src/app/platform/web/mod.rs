@@ -35,14 +35,32 @@ thread_local! {
 
 /// Keeps what the page's callbacks need from the frame: the egui context (to wake the app
 /// when something arrives from the page) and the interface language (for the crash
-/// sentence and the URDF module's sentences).
+/// sentence and the URDF module's sentences), and gives the page that language when it
+/// changes.
 pub fn remember_frame(ctx: &egui::Context, lang: armlab_text::Lang) {
     CTX.with(|c| {
         if c.borrow().is_none() {
             *c.borrow_mut() = Some(ctx.clone());
         }
     });
-    LANG.with(|l| l.set(lang));
+    if LANG.with(|l| l.replace(lang)) != lang {
+        page_language(lang);
+    }
+}
+
+/// Gives the page the interface's language: `<html lang>`, so that a screen reader's
+/// synthesiser reads the words with that language's rules, and the document's title.
+fn page_language(lang: armlab_text::Lang) {
+    let Some(doc) = web_sys::window().and_then(|w| w.document()) else {
+        return;
+    };
+    if let Some(html) = doc.document_element() {
+        warn_on_failure(
+            html.set_attribute("lang", lang.id()),
+            "setting the page's language",
+        );
+    }
+    doc.set_title(armlab_text::text(lang, armlab_text::Key::PageTitle));
 }
 
 /// The interface language at the last frame.
