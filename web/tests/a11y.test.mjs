@@ -2,7 +2,7 @@
 // Accessibility.getFullAXTree) of the built page at 1366×768, which the app fills by
 // mirroring egui's AccessKit tree into unseen DOM elements over the canvas. Checks each
 // panel's controls by role and name, a joint slider's value after the joint moves by its
-// arrow keys, a button pressed through the DOM, and the keyboard alone.
+// arrow keys, a button pressed through the DOM, the keyboard alone, and the skip links.
 //
 // Prints the named controls per panel (not asserted beyond the minimums below).
 import { test } from 'node:test';

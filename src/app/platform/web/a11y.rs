@@ -77,15 +77,18 @@ impl egui::Plugin for Plugin {
         }
         // egui builds the tree (and the mirror follows it) on a pass with a key or a
         // request from the page, so that focus and values follow the keyboard at once, and
-        // otherwise at most every TREE_EVERY_MS: a drag's frames stay as cheap as without
-        // the mirror, and a screen reader reads a value a fraction of a second late.
+        // otherwise at most every TREE_EVERY_MS, and not while a pointer button is held:
+        // a drag's frames cost what they cost without the mirror (screen readers and the
+        // keyboard hold no button), the tree follows once the button is let go, and a
+        // screen reader reads a value a fraction of a second late.
         let keys = input
             .events
             .iter()
             .any(|e| matches!(e, egui::Event::Key { .. }));
+        let held = ctx.input(|i| i.pointer.any_down());
         let now = crate::app::platform::clock::now_ms();
         let last = LAST_TREE.with(std::cell::Cell::get);
-        if from_page || keys || now - last >= TREE_EVERY_MS {
+        if from_page || keys || (!held && now - last >= TREE_EVERY_MS) {
             LAST_TREE.with(|t| t.set(now));
             ctx.enable_accesskit();
         } else {
