@@ -129,8 +129,11 @@ async function chooseFile(page, name, text) {
 const until = (page, check, what) => waitFor(page, check, what, { pause: 50, detail: (s) => s.message });
 
 test('the URDF module is built beside the page and outside its first load', async () => {
-  const files = fs.readdirSync(path.join(dist, 'urdf'));
+  // Beside each file its copies compressed ahead (`.br`, `.gz`), which a server sends instead.
+  const all = fs.readdirSync(path.join(dist, 'urdf'));
+  const files = all.filter((f) => !/\.(br|gz)$/.test(f));
   assert.equal(files.length, 2, `dist/urdf/ holds the glue and the wasm: ${files}`);
+  for (const f of files) for (const ext of ['br', 'gz']) assert.ok(all.includes(`${f}.${ext}`), `${f}.${ext} beside it`);
   assert.ok(files.includes('armlab_urdf.js'), `the glue: ${files}`);
   const wasm = files.find((f) => /^armlab_urdf-[0-9a-f]{16}_bg\.wasm$/.test(f));
   assert.ok(wasm, `the wasm, named by its hash: ${files}`);

@@ -50,18 +50,24 @@ async function look(page, all, where) {
     if (!all.has(id)) all.set(id, null);
     if (all.get(id) === null && seen(c, width, height)) all.set(id, where);
   }
-  return now.map((c) => `${c.box.el}@${Math.round(c.box.y)}`).join(' ');
+  // Something not seen yet that lies past the page's right edge at this height: the
+  // column scrolls sideways to it.
+  const wide = now.some((c) => all.get(`${c.box.el} ${c.key}`) === null && c.box.x + c.box.width > width + 0.5
+    && c.box.y < height && c.box.y + c.box.height > 0);
+  return { where: now.map((c) => `${c.box.el}@${Math.round(c.box.y)}`).join(' '), wide };
 }
 
-/** Scrolls the column or sheet under (`x`, `y`) to its end, looking after each step. */
+/** Scrolls the column or sheet under (`x`, `y`) to its end, looking after each step (at
+ * least 150 px, two fifths of a taller page: a control is whole in one of two neighbouring
+ * looks). */
 async function scrollThrough(page, all, x, y, where) {
+  const step = Math.max(150, Math.floor(page.viewportSize().height * 0.4));
   let before = '';
   for (let i = 0; i < 60; i++) {
     await page.mouse.move(x, y);
-    await page.mouse.wheel(0, 150);
-    const after = await look(page, all, `${where}, scrolled`);
-    if ([...all.values()].includes(null)) {
-      // Something not seen yet may lie past the column's right edge: it scrolls sideways.
+    await page.mouse.wheel(0, step);
+    const { where: after, wide } = await look(page, all, `${where}, scrolled`);
+    if (wide) {
       await page.mouse.move(x, y);
       await page.mouse.wheel(100000, 0);
       await look(page, all, `${where}, scrolled sideways`);

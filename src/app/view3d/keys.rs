@@ -29,35 +29,54 @@ pub const ZOOM_STEP: f64 = 1.25;
 /// A turning press's angle in degrees, coarse and fine (Shift).
 pub const TURN_DEG: (f64, f64) = (5.0, 1.0);
 
+/// The turning keys: each with the view axis it turns about (right, up, away) and the
+/// sign. (right, up, away) is left-handed: a right-hand turn about up swings the near side
+/// to the right, about right swings it down, about away turns the picture clockwise.
+const TURN_KEYS: [(Key, usize, f64); 6] = [
+    (Key::L, 1, 1.0),
+    (Key::J, 1, -1.0),
+    (Key::K, 0, 1.0),
+    (Key::I, 0, -1.0),
+    (Key::O, 2, 1.0),
+    (Key::U, 2, -1.0),
+];
+
+/// The moving keys: each with the view axis it moves along (right, up, away) and the sign.
+const MOVE_KEYS: [(Key, usize, f64); 6] = [
+    (Key::ArrowRight, 0, 1.0),
+    (Key::ArrowLeft, 0, -1.0),
+    (Key::ArrowUp, 1, 1.0),
+    (Key::ArrowDown, 1, -1.0),
+    (Key::PageUp, 2, 1.0),
+    (Key::PageDown, 2, -1.0),
+];
+
+/// The frame's presses of `keys` summed along their axes, leaving out those with Ctrl or
+/// Cmd (the browser's shortcuts) and, with `alt_too`, those with Alt.
+fn summed(i: &egui::InputState, keys: &[(Key, usize, f64)], alt_too: bool) -> Vector3<f64> {
+    let mut v = Vector3::zeros();
+    for e in &i.events {
+        if let egui::Event::Key {
+            key,
+            pressed: true,
+            modifiers,
+            ..
+        } = e
+            && !modifiers.command
+            && !(alt_too && modifiers.alt)
+            && let Some((_, axis, sign)) = keys.iter().find(|(k, ..)| k == key)
+        {
+            v[*axis] += sign;
+        }
+    }
+    v
+}
+
 /// The turning presses of the frame as turns (in presses) about the view's right, up and
 /// away axes, signed so that a positive turn is the right-hand rotation about that axis.
 fn turns(ctx: &egui::Context) -> Option<(Vector3<f64>, bool)> {
     ctx.input(|i| {
-        let mut t = Vector3::zeros();
-        for e in &i.events {
-            if let egui::Event::Key {
-                key,
-                pressed: true,
-                modifiers,
-                ..
-            } = e
-                && !modifiers.command
-                && !modifiers.alt
-            {
-                // (right, up, away) is left-handed: a right-hand turn about up swings the
-                // near side to the right, about right swings it down, about away turns
-                // the picture clockwise.
-                match key {
-                    Key::L => t.y += 1.0,
-                    Key::J => t.y -= 1.0,
-                    Key::K => t.x += 1.0,
-                    Key::I => t.x -= 1.0,
-                    Key::O => t.z += 1.0,
-                    Key::U => t.z -= 1.0,
-                    _ => {}
-                }
-            }
-        }
+        let t = summed(i, &TURN_KEYS, true);
         (t != Vector3::zeros()).then_some((t, i.modifiers.shift))
     })
 }
@@ -78,27 +97,7 @@ pub fn turn_rotation(axes: &[Vector3<f64>; 3], t: &Vector3<f64>, shift: bool) ->
 /// (the camera) or Shift (fine) was held.
 fn presses(ctx: &egui::Context) -> Option<(Vector3<f64>, bool, bool)> {
     ctx.input(|i| {
-        let mut d = Vector3::zeros();
-        for e in &i.events {
-            if let egui::Event::Key {
-                key,
-                pressed: true,
-                modifiers,
-                ..
-            } = e
-                && !modifiers.command
-            {
-                match key {
-                    Key::ArrowRight => d.x += 1.0,
-                    Key::ArrowLeft => d.x -= 1.0,
-                    Key::ArrowUp => d.y += 1.0,
-                    Key::ArrowDown => d.y -= 1.0,
-                    Key::PageUp => d.z += 1.0,
-                    Key::PageDown => d.z -= 1.0,
-                    _ => {}
-                }
-            }
-        }
+        let d = summed(i, &MOVE_KEYS, false);
         (d != Vector3::zeros()).then_some((d, i.modifiers.alt, i.modifiers.shift))
     })
 }
