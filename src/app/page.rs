@@ -146,20 +146,35 @@ pub fn publish(app: &mut ArmLabApp, ctx: &egui::Context) {
     );
 }
 
-/// The page's skip links: the 3D view, then each panel drawn this frame (to its first
-/// widget), in the interface's language.
-fn skip_links(app: &ArmLabApp) -> Vec<(String, Option<egui::Id>)> {
-    use armlab_text::Key;
+/// The page's skip links: where each leads (the 3D view, then each panel drawn this frame,
+/// to its first widget), what they say hashed (the language and the panels), and their
+/// words in the interface's language, made only when that hash changed.
+fn skip_links(
+    app: &ArmLabApp,
+) -> (
+    Vec<Option<egui::Id>>,
+    u64,
+    impl FnOnce() -> Vec<String> + '_,
+) {
+    use std::hash::{Hash, Hasher};
     let lang = app.model().settings().lang;
-    let view = (armlab_text::text(lang, Key::SkipToView).to_owned(), None);
-    let panels = app.panels.anchors.iter().map(|(kind, first)| {
-        let title = armlab_text::text(lang, crate::app::panels::shell::title(*kind));
-        (
-            armlab_text::fill(lang, Key::SkipToPanel, &[&title]),
-            Some(*first),
-        )
-    });
-    std::iter::once(view).chain(panels).collect()
+    let anchors = &app.panels.anchors;
+    let targets = std::iter::once(None)
+        .chain(anchors.iter().map(|(_, first)| Some(*first)))
+        .collect();
+    let mut said = std::hash::DefaultHasher::new();
+    lang.hash(&mut said);
+    anchors.iter().for_each(|(kind, _)| kind.hash(&mut said));
+    let words = move || {
+        use armlab_text::Key;
+        let view = armlab_text::text(lang, Key::SkipToView).to_owned();
+        let panels = anchors.iter().map(|(kind, _)| {
+            let title = armlab_text::text(lang, crate::app::panels::shell::title(*kind));
+            armlab_text::fill(lang, Key::SkipToPanel, &[&title])
+        });
+        std::iter::once(view).chain(panels).collect()
+    };
+    (targets, said.finish(), words)
 }
 
 /// Whether the target is being moved: dragged by the pointer, or by a held arrow or page

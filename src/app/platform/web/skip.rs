@@ -19,7 +19,8 @@ type Target = Option<egui::Id>;
 /// The links on the page and where each leads.
 struct Links {
     nav: web_sys::HtmlElement,
-    names: Vec<String>,
+    /// The hash of what the links say, as `update` was given it.
+    said: Option<u64>,
     targets: Vec<Target>,
 }
 
@@ -72,30 +73,35 @@ pub(super) fn install(doc: &web_sys::Document, body: &web_sys::HtmlElement) {
     LINKS.with(|l| {
         *l.borrow_mut() = Some(Links {
             nav,
-            names: Vec::new(),
+            said: None,
             targets: Vec::new(),
         });
     });
 }
 
-/// Keeps the links in step with the frame: `label` names the list, `links` are each link's
-/// words and where it leads (`None`: the 3D view). The page is touched only on a change.
-pub fn update(label: &str, links: Vec<(String, Target)>) {
+/// Keeps the links in step with the frame: `label` names the list; `targets` is where each
+/// link leads (`None`: the 3D view), `said` a hash of what they say, and `words` their
+/// words, asked for only when `said` changed (the page is touched only then).
+pub fn update(
+    label: &str,
+    (targets, said, words): (Vec<Target>, u64, impl FnOnce() -> Vec<String>),
+) {
     LINKS.with(|l| {
         let mut l = l.borrow_mut();
         let Some(l) = l.as_mut() else {
             return;
         };
-        l.targets = links.iter().map(|(_, t)| *t).collect();
-        if l.names.len() == links.len() && l.names.iter().zip(&links).all(|(a, (b, _))| a == b) {
+        l.targets = targets;
+        if l.said == Some(said) {
             return;
         }
+        l.said = Some(said);
         let _ = l.nav.set_attribute("aria-label", label);
         l.nav.set_inner_html("");
         let Some(doc) = l.nav.owner_document() else {
             return;
         };
-        for (i, (name, _)) in links.iter().enumerate() {
+        for (i, name) in words().iter().enumerate() {
             if let Ok(a) = doc.create_element("a") {
                 let _ = a.set_attribute("href", "#armlab_canvas");
                 let _ = a.set_attribute("data-skip", &i.to_string());
@@ -103,7 +109,6 @@ pub fn update(label: &str, links: Vec<(String, Target)>) {
                 let _ = l.nav.append_child(&a);
             }
         }
-        l.names = links.into_iter().map(|(n, _)| n).collect();
     });
 }
 
