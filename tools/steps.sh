@@ -10,6 +10,8 @@ STEP_LOG=""   # its log, while its counts are not yet in the totals
 passed=0
 failed=0
 SUITES=""
+TIMES=""      # each finished step's wall time, printed when the run ends
+STEP_START=$SECONDS
 
 # One awk, which prints "0 0" for a log without counts (a lint's, a build's): a grep that
 # matches nothing fails, and in a pipeline under pipefail and errexit that ended the script
@@ -31,6 +33,7 @@ not_run() { # ignored + filtered out (cargo), skipped + todo (node): tests that 
 }
 
 at() { # at NAME: what runs from here on is the step NAME, without a heading
+  step_time
   STEP="$1"
   STEP_LOG=""
 }
@@ -59,6 +62,24 @@ add() { # add NAME: the counts of the step NAME's log go into the totals; a suit
   $1: $p passed, $f failed, $skipped ignored, skipped or filtered out"
 }
 
+STEP_CPU=0
+step_time() { # the step running now ends: its wall time (and its processes' CPU time) goes into TIMES
+  local cpu
+  # `times` gives the shell's and then its finished children's user and system time; in
+  # this shell, not in a pipeline's or a substitution's subshell, whose children these are not.
+  times > "$LOG/times"
+  cpu=$(awk 'NR == 2 { gsub(/[ms]/, " "); print int(($1 * 60 + $2 + $3 * 60 + $4) + 0.5) }' "$LOG/times")
+  TIMES="$TIMES
+  $STEP: $((SECONDS - STEP_START)) s (CPU $((cpu - STEP_CPU)) s)"
+  STEP_START=$SECONDS
+  STEP_CPU=$cpu
+}
+
+print_times() { # the wall time of every step so far, the one running now last
+  step_time
+  printf '\nwall time per step:%s\n' "$TIMES"
+}
+
 fail() { # fail MESSAGE: ends the run here, as a failure of the step running now
   echo "FAILED: $*"
   exit 1
@@ -72,6 +93,7 @@ end_steps() {
   set +e
   stop_background
   if [ "$status" -ne 0 ]; then
+    print_times
     if [ -n "$STEP_LOG" ] && [ -f "$STEP_LOG" ]; then read -r p f < <(count "$STEP_LOG"); fi
     [ "$f" -gt 0 ] || f=1
     echo

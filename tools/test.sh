@@ -157,6 +157,7 @@ if [ "$(snapshots_hash)" != "$SNAPSHOTS_BEFORE" ]; then
   fail "a snapshot image in tests/snapshots changed during the run (a test must not write its reference)"
 fi
 
+print_times
 say "all tests passed in $((SECONDS - START)) s"
 printf 'suites:%s\n' "$SUITES"
 # The libraries' tests run twice (natively and as wasm): the distinct tests count them once.
