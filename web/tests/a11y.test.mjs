@@ -19,39 +19,24 @@ const PANELS = {
   en: ['Joints', 'Inverse kinematics', 'Robot', 'Matrices', 'Motion'],
 };
 
-/** Where a node's element is: its box's top left, in CSS pixels. */
-async function place(cdp, node) {
-  try {
-    const { model } = await cdp.send('DOM.getBoxModel', { backendNodeId: node.node.backendDOMNodeId });
-    return { x: model.content[0], y: model.content[1] };
-  } catch {
-    return null;
-  }
-}
-
 /** Named controls grouped by the panel they sit in: under the nearest panel title above
  * them in the same column; those above every title are the top bar's and the edge tabs'. */
 async function controlsByPanel(page, tree) {
-  const cdp = await page.context().newCDPSession(page);
   const ids = new Map(tree.map((n) => [n.id, n]));
-  const titles = [];
-  for (const n of tree) {
-    if (n.role === 'StaticText' && PANELS.en.includes(n.name)) {
-      const at = await place(cdp, ids.get(n.parent) ?? n);
-      if (at) titles.push({ name: n.name, ...at });
-    }
-  }
+  const titleNodes = tree.filter((n) => n.role === 'StaticText' && PANELS.en.includes(n.name));
+  const titleBoxes = await boxes(page, titleNodes.map((n) => ids.get(n.parent) ?? n));
+  const titles = titleNodes.map((n, i) => titleBoxes[i] && { name: n.name, ...titleBoxes[i] }).filter(Boolean);
+  const controls = tree.filter((n) => CONTROLS.has(n.role) && n.name);
+  const places = await boxes(page, controls);
   const panels = {};
-  for (const n of tree) {
-    if (!CONTROLS.has(n.role) || !n.name) continue;
-    const at = await place(cdp, n);
+  for (const [i, n] of controls.entries()) {
+    const at = places[i];
     const title = at && titles
       .filter((t) => t.y <= at.y + 1 && Math.abs(t.x - at.x) < 300)
       .sort((a, b) => b.y - a.y)[0];
     const panel = title?.name ?? 'top bar and edge tabs';
     (panels[panel] ??= []).push(`${n.role} "${n.name}"${n.value !== undefined && n.value !== '' ? ` = ${n.value}` : ''}`);
   }
-  await cdp.detach();
   return panels;
 }
 
@@ -294,7 +279,8 @@ async function tabTo(page, name, { back = false, most = 120 } = {}) {
   const seen = [];
   for (let i = 1; i <= most; i++) {
     await page.keyboard.press(back ? 'Shift+Tab' : 'Tab');
-    await settle(page, 2);
+    // A key makes the next frame build the tree, and the DOM focus follows egui's in it.
+    await settle(page, 1);
     const at = await page.evaluate(() => {
       const a = document.activeElement;
       const by = a?.getAttribute('aria-labelledby');
@@ -407,12 +393,11 @@ test('"Skip to the Inverse kinematics panel" gives the keyboard to that panel: t
   const tree = await axTree(page);
   const focused = tree.find((n) => n.props.focused && n.role !== 'RootWebArea');
   assert.ok(focused && CONTROLS.has(focused.role), `a control has the focus: ${focused?.role} "${focused?.name}"`);
-  const cdp = await page.context().newCDPSession(page);
-  const title = (name) => tree.find((n) => n.role === 'StaticText' && n.name === name);
-  const ik = await place(cdp, title('Inverse kinematics'));
-  const next = await place(cdp, title('Robot'));
-  const it = await place(cdp, focused);
-  await cdp.detach();
+  const title = (name) => {
+    const text = tree.find((n) => n.role === 'StaticText' && n.name === name);
+    return text && (tree.find((n) => n.id === text.parent) ?? text);
+  };
+  const [ik, next, it] = await boxes(page, [title('Inverse kinematics'), title('Robot'), focused]);
   console.log('SKIP_IK', JSON.stringify({ focused: `${focused.role} "${focused.name}"`, at: it, ik, next }));
   assert.ok(it.y > ik.y && (!next || it.y < next.y) && Math.abs(it.x - ik.x) < 300,
     `the focused control is in the IK panel: ${JSON.stringify({ it, ik, next })}`);

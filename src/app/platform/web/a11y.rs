@@ -52,6 +52,15 @@ thread_local! {
     /// The nodes that label another (its `labelled_by`), and those found this pass.
     static LABELS: RefCell<Vec<NodeId>> = const { RefCell::new(Vec::new()) };
     static NEW_LABELS: RefCell<Vec<NodeId>> = const { RefCell::new(Vec::new()) };
+    /// A script asked for the tree on the next pass (`window.armlab.mirrorNow()`).
+    static TREE_ASKED: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// The next pass builds the tree and the mirror follows it, as after a key: for scripts
+/// that read the mirror (`window.armlab.mirrorNow()`) without waiting for the next tree.
+pub fn ask_for_tree() {
+    TREE_ASKED.with(|t| t.set(true));
+    wake();
 }
 
 /// The egui plugin that feeds the mirror from each pass's tree and the page's requests
@@ -70,7 +79,7 @@ impl egui::Plugin for Plugin {
             input.events.append(&mut e);
             any
         });
-        let from_page = super::skip::step(ctx, input) || from_page;
+        let from_page = super::skip::step(ctx, input) || TREE_ASKED.with(|t| t.take()) || from_page;
         if focus_in_mirror() {
             // The canvas lost the DOM focus to the mirror, yet the keys are egui's.
             input.focused = true;

@@ -141,6 +141,8 @@ pub fn install(window: &web_sys::Window) {
             .unwrap_or(JsValue::NULL)
     });
     set_field(&obj, "memoryBytes", &memory.into_js_value());
+    let mirror = Closure::<dyn Fn()>::new(super::a11y::ask_for_tree);
+    set_field(&obj, "mirrorNow", &mirror.into_js_value());
     install_workspace_benchmark(&obj);
     install_collision_benchmark(&obj);
     // For the browser test of the crash screen: the next frame panics.
