@@ -42,6 +42,7 @@ mod overlays;
 mod panels;
 mod paths;
 mod screens;
+mod zoom;
 
 fn harness(hash: &str) -> Harness<'static, ArmLabApp> {
     app_harness::open_app(hash, SIZE)

@@ -1,13 +1,17 @@
-// The browser's zoom at 200 % on each screen of a lecture: the page at half the screen's
-// CSS width and height and twice its device pixel ratio, as the browser makes it. Nothing
-// may be lost: every named control in the accessibility tree (the top bar's, the edge or
-// bottom tabs', each panel's) is seen whole inside the page at some point while a person
-// opens the narrow layout's menu and each panel and scrolls each column or sheet to its end,
-// and sideways where something is not seen yet (a matrix, wider than most columns, is seen
-// when part of it is). Prints what was seen only by scrolling sideways. Leaves a screenshot of
-// each screen, of its menu and of each panel in web/tests/screenshots/zoom200-*.png.
+// The browser's zoom at 200 %: the page at half a screen's CSS width and height and twice
+// its device pixel ratio, as the browser makes it. Nothing may be lost: every named control
+// in Chromium's accessibility tree (the top bar's, the edge or bottom tabs', each panel's)
+// is seen whole inside the page at some point while a person opens the narrow layout's menu
+// and each panel and scrolls each column or sheet to its end, and sideways where something
+// is not seen yet (a matrix, wider than most columns, is seen when part of it is). Prints
+// what was seen only by scrolling sideways. Leaves a screenshot of each screen, of its menu
+// and of each panel in web/tests/screenshots/zoom200-*.png.
 //
-// Prints per screen how many controls it had and where each was seen (not asserted).
+// The test command walks the laptop (1366×768) here: the same walk at all six screens runs
+// natively in the UI tests (tests/ui/zoom.rs; egui lays out one point per CSS pixel, so
+// the layout is the same), and this one checks the browser's side of it, the zoom reaching
+// the page and the mirror placing its elements where the widgets are drawn. All six here
+// (about four minutes): ARMLAB_ZOOM_SCREENS=all node --test web/tests/zoom.test.mjs
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import path from 'node:path';
@@ -40,9 +44,12 @@ function seen(c, w, h) {
 /** Records every control in the tree now and which of them are seen; returns where the
  * controls are (to tell whether a scroll moved anything). */
 async function look(page, all, where) {
-  // While only the pointer moves, the mirror follows the interface twice a second.
-  await page.waitForTimeout(550);
-  await settle(page, 2);
+  // The frame that takes in what the test did (a scroll moves the column on the next),
+  // then one that places it and builds the tree for the mirror (while only the pointer
+  // moves it would follow twice a second).
+  await settle(page, 1);
+  await page.evaluate(() => window.armlab.mirrorNow());
+  await settle(page, 1);
   const { width, height } = page.viewportSize();
   const now = await controls(page);
   for (const c of now) {
@@ -57,11 +64,11 @@ async function look(page, all, where) {
   return { where: now.map((c) => `${c.box.el}@${Math.round(c.box.y)}`).join(' '), wide };
 }
 
-/** Scrolls the column or sheet under (`x`, `y`) to its end, looking after each step (at
- * least 150 px, two fifths of a taller page: a control is whole in one of two neighbouring
- * looks). */
-async function scrollThrough(page, all, x, y, where) {
-  const step = Math.max(150, Math.floor(page.viewportSize().height * 0.4));
+/** Scrolls the column or sheet under (`x`, `y`), `tall` CSS px of it in sight, to its end,
+ * looking after each step of three fifths of that: a control up to two fifths as tall is
+ * whole in one of two neighbouring looks. */
+async function scrollThrough(page, all, x, y, tall, where) {
+  const step = Math.max(60, Math.floor(tall * 0.6));
   let before = '';
   for (let i = 0; i < 60; i++) {
     await page.mouse.move(x, y);
@@ -92,16 +99,21 @@ async function press(page, role, name) {
 }
 
 // Found at 200 % and not fixed yet (the test runs and prints them, and fails nothing): on
-// these screens one control's box in the tree never lies whole inside the page.
+// these screens one control's element never lies whole inside the page, though the native
+// walk sees the widget whole: the mirror's box, not the layout.
 const OPEN = {
   'laptop-1920x1080': 'the Robot panel\'s Preset menu (left column): the screenshot shows it whole, its box in the tree is never whole in the page',
   'tablet-820x1180': 'the Motion sheet\'s "Drive to a typed q:" field is never seen whole',
 };
 
-for (const screen of SCREENS) {
+const WALKED = process.env.ARMLAB_ZOOM_SCREENS === 'all' ? SCREENS : SCREENS.filter((s) => s.name === 'laptop-1366x768');
+
+for (const screen of WALKED) {
   test(`${screen.name} at 200 %: every control is in the tree and can be seen`, { todo: OPEN[screen.name] }, async () => {
     const zoomed = { ...screen, width: screen.width / 2, height: screen.height / 2, dpr: (screen.dpr ?? 1) * 2 };
-    const { page, errors } = await openAt(zoomed, HASH);
+    // Scrolls land at once (egui animates them otherwise), so each look sees where a
+    // scroll step put the column.
+    const { page, errors } = await openAt(zoomed, HASH, { reducedMotion: 'reduce' });
     const shot = (part) => page.screenshot({ path: path.join(shots, `zoom200-${screen.name}${part}.png`) });
     const all = new Map();
     await look(page, all, 'first');
@@ -122,13 +134,15 @@ for (const screen of SCREENS) {
         await look(page, all, panel);
         await shot(`-${panel}`);
         const v = await page.evaluate(() => window.armlab.viewRect());
-        await scrollThrough(page, all, zoomed.width / 2, (v.y + v.height + tab.y) / 2, panel);
+        const sheet = { top: v.y + v.height, bottom: Math.min(tab.y, zoomed.height) };
+        await scrollThrough(page, all, zoomed.width / 2, (sheet.top + sheet.bottom) / 2, sheet.bottom - sheet.top, panel);
         await page.mouse.click(tab.x, tab.y);
         await settle(page, 3);
       }
     } else {
-      await scrollThrough(page, all, view.x / 2, view.y + view.height / 2, 'left column');
-      await scrollThrough(page, all, (view.x + view.width + zoomed.width) / 2, view.y + view.height / 2, 'right column');
+      const middle = view.y + view.height / 2;
+      await scrollThrough(page, all, view.x / 2, middle, view.height, 'left column');
+      await scrollThrough(page, all, (view.x + view.width + zoomed.width) / 2, middle, view.height, 'right column');
     }
     const lost = [...all].filter(([, where]) => where === null).map(([id]) => id);
     const sideways = [...all].filter(([, where]) => where?.endsWith('sideways')).map(([id]) => id.replace(/^\S+ /, ''));
