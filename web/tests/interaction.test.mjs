@@ -151,8 +151,11 @@ test('a bad DH cell typed with the keyboard shows a message and the robot stays'
 });
 
 // index.html's back-pressure: a frame starts only while fewer than two are unfinished on
-// the GPU. Without it, SwiftShader falls about 60 frames behind fast typing, each holding
-// its vertex upload in wasm memory: these six values would grow the memory by 3.6 MB.
+// the GPU. Without it, SwiftShader falls tens of frames behind fast typing, each holding
+// its vertex upload in wasm memory: these six values grew the memory by 3.1–4.5 MB (three
+// runs, the back-pressure taken out of the page); with it by 0.33–0.66 MB here and 1.1 MB
+// once on a loaded machine (each key also builds the accessibility tree: 0.2–0.4 MB
+// without the mirror). The bound lies between the two.
 test('DH values typed at full speed: the last one applies and the wasm memory does not grow', async () => {
   const { page, ctx, errors } = await open('#robot=ur10');
   await typeIntoDhCell(page, 'dh-1-2', '0.2');
@@ -172,7 +175,7 @@ test('DH values typed at full speed: the last one applies and the wasm memory do
   const grown = (await page.evaluate(() => window.armlab.memoryBytes())) - before;
   measurements.fast_typing_wasm_growth_bytes = grown;
   measurements.fast_typing_frames_held = await page.evaluate(() => window.armlabFramesHeld);
-  assert.ok(grown <= 1 << 20, `the wasm memory grew by ${grown} B while typing`);
+  assert.ok(grown <= 2 << 20, `the wasm memory grew by ${grown} B while typing`);
   assert.deepEqual(errors, []);
   await ctx.close();
 });
