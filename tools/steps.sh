@@ -10,8 +10,9 @@ STEP_LOG=""   # its log, while its counts are not yet in the totals
 passed=0
 failed=0
 SUITES=""
-TIMES=""      # each finished step's wall time, printed when the run ends
+TIMES=""      # each finished step's wall and CPU time, printed when the run ends
 STEP_START=$SECONDS
+STEP_CPU=0    # the CPU time of this shell's finished children when the step began (s)
 
 # One awk, which prints "0 0" for a log without counts (a lint's, a build's): a grep that
 # matches nothing fails, and in a pipeline under pipefail and errexit that ended the script
@@ -62,14 +63,13 @@ add() { # add NAME: the counts of the step NAME's log go into the totals; a suit
   $1: $p passed, $f failed, $skipped ignored, skipped or filtered out"
 }
 
-STEP_CPU=0
 step_time() { # the step running now ends: its wall time (and its processes' CPU time) goes into TIMES
   local cpu
   # `times` gives the shell's and then its finished children's user and system time; in
   # this shell, not in a pipeline's or a substitution's subshell, whose children these are not.
   times > "$LOG/times"
   cpu=$(awk 'NR == 2 { gsub(/[ms]/, " "); print int(($1 * 60 + $2 + $3 * 60 + $4) + 0.5) }' "$LOG/times")
-  TIMES="$TIMES
+  [ "$STEP" = start ] || TIMES="$TIMES
   $STEP: $((SECONDS - STEP_START)) s (CPU $((cpu - STEP_CPU)) s)"
   STEP_START=$SECONDS
   STEP_CPU=$cpu
