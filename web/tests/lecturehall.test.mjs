@@ -55,16 +55,21 @@ async function framesPerSecond(page, from, span, ms) {
  * Installed in the page: after each animation frame's callback (egui's paint), when
  * `window.__grab` asks for a picture of the kind (`moving`) with the target drawn at `at`,
  * copies the canvas in that same frame (a WebGL canvas keeps its picture only until the
- * frame ends) into `window.__grabbed`, a PNG data URL.
+ * frame ends) into `window.__grabbed`, a PNG data URL. Only a callback in which the app drew
+ * a frame counts.
  */
 function grabber() {
   const request = window.requestAnimationFrame;
   window.requestAnimationFrame = (callback) => request((time) => {
+    const before = window.__grab && JSON.parse(window.armlab.state()).frame;
     callback(time);
     const want = window.__grab;
     if (!want) return;
     const s = JSON.parse(window.armlab.state());
     const t = window.armlab.screenPoint('target');
+    // A callback that drew nothing leaves a canvas the browser has already shown and
+    // cleared: only a frame the app drew in this callback is copied.
+    if (s.frame === before) return;
     if (s.moving_picture !== want.moving || !t || Math.hypot(t.x - want.at.x, t.y - want.at.y) > 0.01) return;
     const canvas = document.querySelector('canvas');
     const copy = document.createElement('canvas');
