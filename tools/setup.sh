@@ -1,5 +1,5 @@
 # Sourced by tools/serve.sh and tools/test.sh: installs what is missing, skips what is
-# there in the right version (installing trunk or wasm-bindgen-cli costs ~10 min each on
+# there in the right version (trunk and wasm-bindgen-cli are compiled: about 3 min each on
 # 2 cores). Everything comes from crates.io, npm or Debian; nothing else is downloaded.
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -24,21 +24,34 @@ wasm_bindgen_version() {
   awk '/^name = "wasm-bindgen"$/ { getline; gsub(/version = |"/, ""); print; exit }' "$ROOT/Cargo.lock"
 }
 
-# The two installs below build in cargo's own temporary folder, not in CARGO_TARGET_DIR
-# (which cargo install would use): the tests' builds there would wait on its lock while
-# one runs in the background.
+# `install_tool OPT_LEVEL CRATE ARGS...`: cargo install with a quick release profile. Both
+# tools spend their time in the programs they start or in reading a few files, not in their
+# own code, so compiling them fast beats compiling them well. Trunk's own profile asks for
+# fat LTO and one codegen unit; without them it took 700 s of CPU at opt-level 1 and 300 s
+# at opt-level 0, and the opt-level 0 trunk builds the same page in the same 16 s.
+# wasm-bindgen parses and rewrites every wasm the tests and the page make (several MB
+# each), so it keeps opt-level 1 (310 s of CPU).
+# The build runs in cargo's own temporary folder, not in CARGO_TARGET_DIR (which cargo
+# install would use): the tests' builds there would wait on its lock while it runs in the
+# background.
+install_tool() {
+  local opt="$1"; shift
+  env -u CARGO_TARGET_DIR CARGO_PROFILE_RELEASE_OPT_LEVEL="$opt" CARGO_PROFILE_RELEASE_LTO=false \
+    CARGO_PROFILE_RELEASE_CODEGEN_UNITS=16 CARGO_PROFILE_RELEASE_DEBUG=false cargo install "$@"
+}
+
 ensure_wasm_bindgen() {
   local want; want="$(wasm_bindgen_version)"
   if ! wasm-bindgen --version 2>/dev/null | grep -q " $want\$"; then
-    say "installing wasm-bindgen-cli $want (about 10 minutes)"
-    env -u CARGO_TARGET_DIR cargo install wasm-bindgen-cli --version "$want"
+    say "installing wasm-bindgen-cli $want (about 3 minutes)"
+    install_tool 1 wasm-bindgen-cli --version "$want"
   fi
 }
 
 ensure_trunk() {
   if ! trunk --version 2>/dev/null | grep -q " $TRUNK_VERSION\$"; then
-    say "installing trunk $TRUNK_VERSION (about 10 minutes)"
-    env -u CARGO_TARGET_DIR cargo install trunk --version "$TRUNK_VERSION" --locked
+    say "installing trunk $TRUNK_VERSION (about 3 minutes)"
+    install_tool 0 trunk --version "$TRUNK_VERSION" --locked
   fi
 }
 
