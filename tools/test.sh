@@ -16,7 +16,7 @@ START=$SECONDS
 at "install the wasm32 target and web/'s npm packages"
 ensure_wasm_target
 ensure_npm
-# On a fresh machine the installs take about ten minutes of compiling and the Debian
+# On a fresh machine the installs take about ten minutes of one core's compiling and the Debian
 # packages a download: they run beside the lints and the core's tests, which need none of
 # them, and are awaited where first needed (apt: the UI tests; wasm-bindgen: the core's
 # wasm tests; trunk: the page). The EXIT trap stops the unfinished ones.
@@ -138,10 +138,13 @@ same_count libs-native libs-wasm "the libraries' tests (core, text, session, JSO
 add libs-wasm
 
 say "the JS API in Node"
-run js-api-build cargo rustc -p armlab-js --lib --crate-type cdylib --release --target wasm32-unknown-unknown
-run js-api-bindgen wasm-bindgen --target nodejs --out-dir "$CARGO_TARGET_DIR/armlab-node" --out-name armlab \
-  "$CARGO_TARGET_DIR/wasm32-unknown-unknown/release/armlab_js.wasm"
-export ARMLAB_NODE_PKG="$CARGO_TARGET_DIR/armlab-node/armlab.js"
+# In the libraries' wasm test profile, so that it reuses their wasm build of every crate it
+# needs (a release build compiled them all again: a minute on a fresh machine); debug
+# assertions stay on. Its own output folder: web/scripts/' benchmarks load the release build.
+run js-api-build cargo rustc -p armlab-js --lib --crate-type cdylib --profile wasm-test --target wasm32-unknown-unknown
+run js-api-bindgen wasm-bindgen --target nodejs --out-dir "$CARGO_TARGET_DIR/armlab-node-test" --out-name armlab \
+  "$CARGO_TARGET_DIR/wasm32-unknown-unknown/wasm-test/armlab_js.wasm"
+export ARMLAB_NODE_PKG="$CARGO_TARGET_DIR/armlab-node-test/armlab.js"
 run js-api node --test "${API_TESTS[@]}"
 add js-api
 
