@@ -44,7 +44,9 @@ ensure_wasm_bindgen() {
   local want; want="$(wasm_bindgen_version)"
   if ! wasm-bindgen --version 2>/dev/null | grep -q " $want\$"; then
     say "installing wasm-bindgen-cli $want (about 3 minutes)"
-    install_tool 1 wasm-bindgen-cli --version "$want"
+    # Without its default TLS (rustls and ring, for downloading a browser's WebDriver):
+    # the wasm tests run in Node.
+    install_tool 1 wasm-bindgen-cli --version "$want" --no-default-features
   fi
 }
 
