@@ -48,17 +48,22 @@ same_count() { # same_count NATIVE WASM WHAT: the wasm run of a suite passed as 
 
 # The library crates (everything but the app and the JS package): they build without the
 # GUI, natively and as wasm; their tests run both ways in equal numbers.
-LIBS=(-p armlab-core -p armlab-text -p armlab-session -p armlab-api -p armlab-urdf -p armlab-bench -p armlab-room)
+LIB_NAMES=(armlab-core armlab-text armlab-session armlab-api armlab-urdf armlab-bench armlab-room)
+LIBS=()
+for lib in "${LIB_NAMES[@]}"; do LIBS+=(-p "$lib"); done
 
 run fmt cargo fmt --all --check
-run clippy-native cargo clippy --workspace --all-targets --features armlab-js/urdf,armlab-bench/frame,armlab-bench/classroom -- -D warnings
+# Every feature of the workspace's crates; the docs take the same, so that they reuse the
+# lint's check of every dependency.
+FEATURES=armlab-js/urdf,armlab-bench/frame,armlab-bench/classroom
+run clippy-native cargo clippy --workspace --all-targets --features "$FEATURES" -- -D warnings
 run clippy-wasm-app cargo clippy --target wasm32-unknown-unknown -p armlab --lib --bins --tests -- -D warnings
 run clippy-wasm-libs cargo clippy --target wasm32-unknown-unknown "${LIBS[@]}" -p armlab-js --features armlab-js/urdf --lib --tests -- -D warnings
 
 # The manifests keep the boundaries (crates/armlab-core/Cargo.toml names no GUI, web or
 # text crate); this checks it a second time, on what cargo resolves and on the sources.
 step "the core has no GUI, web or text dependency; no library has a GUI or web one"
-for lib in armlab-core armlab-text armlab-session armlab-api armlab-urdf armlab-bench armlab-room; do
+for lib in "${LIB_NAMES[@]}"; do
   # The tree first, so that a failing cargo tree fails here instead of matching nothing.
   tree="$(cargo tree -p "$lib" -e normal --prefix none)"
   if grep -E '^(egui|eframe|wgpu|web-sys|wasm-bindgen|js-sys)[ -]' <<<"$tree"; then
@@ -75,7 +80,7 @@ if grep -rnE '\b(egui|eframe|wgpu|web_sys|wasm_bindgen|js_sys|armlab_text)::' cr
 fi
 
 say "the docs build without warnings"
-run doc env RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --workspace --features armlab-js/urdf -q
+run doc env RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --workspace --features "$FEATURES" -q
 
 step "every test file runs: a test binary of its crate or a module of one; a JS test in a suite's folder"
 for dir in . crates/*; do
@@ -116,9 +121,35 @@ while IFS= read -r f; do
   esac
 done < <(find web -path web/node_modules -prune -o -name '*.test.mjs' -print)
 
-run libs-native cargo test "${LIBS[@]}" --tests
+# Every native test program comes from one build: cargo gives a dependency the features
+# that the packages built together ask for, so the libraries, the classroom server and the
+# app, each built alone, compiled nalgebra, parry3d, serde and some 30 more crates two or
+# three times. Each suite then runs its packages' programs from that build.
+NATIVE=("${LIBS[@]}" -p armlab-classroom -p armlab)
+native_build() { # the JSON lists the test programs (native_tests); the words go to the log
+  cargo test "${NATIVE[@]}" --tests --no-run --message-format=json-render-diagnostics >"$LOG/native-tests.json"
+}
+native_tests() { # native_tests PACKAGE...: as cargo test runs them, in the package's folder, until one fails
+  local pkg dir exe
+  while IFS=$'\t' read -r pkg dir exe; do
+    case " $* " in *" $pkg "*) ;; *) continue ;; esac
+    echo "     Running ${exe#"$CARGO_TARGET_DIR"/} ($pkg)"
+    (cd "$dir" && CARGO_MANIFEST_DIR="$dir" CARGO_PKG_NAME="$pkg" "$exe") || return 1
+  done < <(node -e '
+    for (const line of require("fs").readFileSync(process.argv[1], "utf8").split("\n")) {
+      if (!line.startsWith("{")) continue;
+      const m = JSON.parse(line);
+      if (m.reason !== "compiler-artifact" || !m.profile.test || !m.executable) continue;
+      // "path+file:///dir#name@version", or "…/name#version" where the folder is named so.
+      const [url, tail] = m.package_id.split("#");
+      const name = tail.includes("@") ? tail.split("@")[0] : url.split("/").pop();
+      console.log([name, require("path").dirname(m.manifest_path), m.executable].join("\t"));
+    }' "$LOG/native-tests.json")
+}
+run native-build native_build
+run libs-native native_tests "${LIB_NAMES[@]}"
 add libs-native
-run libs-doc cargo test "${LIBS[@]}" --doc
+run libs-doc cargo test "${NATIVE[@]}" --doc
 add libs-doc
 
 at "install Debian packages (${DEBIAN_TEST_PACKAGES[*]}; in the background)"
@@ -126,14 +157,15 @@ await_background apt
 # The classroom server (not a library: tokio and axum, natively only): its relay, rules
 # and Redis tests on in-process servers (redis-server from Debian), and the fuzz of its
 # message decoding (1,000,000 messages).
-run classroom cargo test -p armlab-classroom
+run classroom native_tests armlab-classroom
 add classroom
-run ui cargo test -p armlab --lib --test ui --test ui_finnish
+run ui native_tests armlab
 add ui
 
 at "install wasm-bindgen-cli (in the background)"
 await_background wasm-bindgen
-run libs-wasm cargo test --profile wasm-test "${LIBS[@]}" --tests --target wasm32-unknown-unknown
+# With the QR encoder, as in the native build (where the app asks for it).
+run libs-wasm cargo test --profile wasm-test "${LIBS[@]}" --features armlab-room/qr --tests --target wasm32-unknown-unknown
 same_count libs-native libs-wasm "the libraries' tests (core, text, session, JSON API, URDF, benchmarks, lecture-room protocol)"
 add libs-wasm
 
