@@ -19,9 +19,23 @@ ensure_npm
 # On a fresh machine the installs take about ten minutes of one core's compiling and the Debian
 # packages a download: they run beside the lints and the core's tests, which need none of
 # them, and are awaited where first needed (apt: the UI tests; wasm-bindgen: the core's
-# wasm tests; trunk: the page). The EXIT trap stops the unfinished ones.
-in_background wasm-bindgen ensure_wasm_bindgen
-in_background trunk ensure_trunk
+# wasm tests). The page's release build follows trunk's install there, once wasm-bindgen
+# is there too, and is awaited by the browser tests: its single-threaded parts (the link
+# time optimisation, wasm-opt's two minutes in Node) leave a core the tests' builds take,
+# and the tests' serial parts leave one it takes. The EXIT trap stops the unfinished ones.
+wasm_bindgen_marked() { # ensure_wasm_bindgen, and a file in $LOG that says how it ended
+  if ensure_wasm_bindgen; then touch "$LOG/wasm-bindgen.ok"; else touch "$LOG/wasm-bindgen.failed"; return 1; fi
+}
+in_background wasm-bindgen wasm_bindgen_marked
+page_after_tools() {
+  ensure_trunk || return 1
+  until [ -e "$LOG/wasm-bindgen.ok" ]; do
+    [ ! -e "$LOG/wasm-bindgen.failed" ] || { echo "the page waits for wasm-bindgen-cli, whose install failed"; return 1; }
+    sleep 1
+  done
+  build_web
+}
+in_background page page_after_tools
 if apt_unattended; then
   in_background apt ensure_apt "${DEBIAN_TEST_PACKAGES[@]}"
 else
@@ -180,9 +194,8 @@ export ARMLAB_NODE_PKG="$CARGO_TARGET_DIR/armlab-node-test/armlab.js"
 run js-api node --test "${API_TESTS[@]}"
 add js-api
 
-at "install trunk (in the background)"
-await_background trunk
-run page-build build_web
+at "page-build (trunk's install and the page's build, in the background)"
+await_background page
 # Two test files at a time: a file's page often waits (a lecture room's student offline for
 # 30 s, the live region's once a second) while the other draws; 355 s against 452 s one at a
 # time. The frame times the tests print are then taken beside another page: the scripts in
