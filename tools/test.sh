@@ -20,9 +20,10 @@ ensure_npm
 # packages a download: they run beside the lints and the core's tests, which need none of
 # them, and are awaited where first needed (apt: the UI tests; wasm-bindgen: the core's
 # wasm tests). The page's release build follows trunk's install there, once wasm-bindgen
-# is there too, and is awaited by the browser tests: its single-threaded parts (the link
-# time optimisation, wasm-opt's two minutes in Node) leave a core the tests' builds take,
-# and the tests' serial parts leave one it takes. The EXIT trap stops the unfinished ones.
+# is there too, and is awaited by the browser tests, so that it takes whatever CPU the
+# tests leave. On a fresh machine that is little: the builds before keep both cores busy,
+# and the installs and the page finish mostly after the JS API's tests (docs/benchmarks.md).
+# The EXIT trap stops the unfinished ones.
 wasm_bindgen_marked() { # ensure_wasm_bindgen, and a file in $LOG that says how it ended
   if ensure_wasm_bindgen; then touch "$LOG/wasm-bindgen.ok"; else touch "$LOG/wasm-bindgen.failed"; return 1; fi
 }
