@@ -30,7 +30,7 @@ wasm_bindgen_version() {
 # fat LTO and one codegen unit; without them it took 700 s of CPU at opt-level 1 and 300 s
 # at opt-level 0, and the opt-level 0 trunk builds the same page in the same 16 s.
 # wasm-bindgen parses and rewrites every wasm the tests and the page make (several MB
-# each), so it keeps opt-level 1 (310 s of CPU).
+# each), so it keeps opt-level 1 (about 260 s of CPU without its TLS, 310 s with it).
 # The build runs in cargo's own temporary folder, not in CARGO_TARGET_DIR (which cargo
 # install would use): the tests' builds there would wait on its lock while it runs in the
 # background.
