@@ -73,8 +73,10 @@ run fmt cargo fmt --all --check
 # lint's check of every dependency.
 FEATURES=armlab-js/urdf,armlab-bench/frame,armlab-bench/classroom
 run clippy-native cargo clippy --workspace --all-targets --features "$FEATURES" -- -D warnings
-run clippy-wasm-app cargo clippy --target wasm32-unknown-unknown -p armlab --lib --bins --tests -- -D warnings
-run clippy-wasm-libs cargo clippy --target wasm32-unknown-unknown "${LIBS[@]}" -p armlab-js --features armlab-js/urdf --lib --tests -- -D warnings
+# The app, the libraries and the JS package in one check, so that the dependencies they
+# share are checked once, with their features joined.
+run clippy-wasm cargo clippy --target wasm32-unknown-unknown -p armlab "${LIBS[@]}" -p armlab-js --features armlab-js/urdf \
+  --lib --bin armlab --tests -- -D warnings
 
 # The manifests keep the boundaries (crates/armlab-core/Cargo.toml names no GUI, web or
 # text crate); this checks it a second time, on what cargo resolves and on the sources.
