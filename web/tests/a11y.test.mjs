@@ -405,6 +405,21 @@ test('"Skip to the Inverse kinematics panel" gives the keyboard to that panel: t
   await page.context().close();
 });
 
+test('"Skip to the Robot panel" gives the keyboard to its first control, the Preset menu; Tab goes on to the DH table', async () => {
+  const { page, errors } = await open('#robot=ur10&panels=joints,ik,robot,matrices');
+  await tabTo(page, 'Skip to the Robot panel', { most: 10 });
+  await page.keyboard.press('Enter');
+  await settle(page, 4);
+  const first = await focusedNode(page);
+  assert.equal(`${first?.role} ${first?.name}`, 'combobox Preset');
+  await page.keyboard.press('Tab');
+  await settle(page, 3);
+  const next = await focusedNode(page);
+  assert.equal(`${next?.role} ${next?.name}`, 'button DH table (editable)');
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});
+
 test('"Skip to the 3D view" leaves no control focused: the arrow keys move the target', async () => {
   const { page, errors } = await open('#robot=ur10&task=position');
   // From inside the panels: joint 2's slider has the keyboard (key 2), then the focus goes
