@@ -4,7 +4,9 @@
 // dist/. So the files listed here are exactly the build's files, with trunk's hashed names
 // (armlab-<hash>.js, armlab-<hash>_bg.wasm), and the worker is part of the same build.
 //
-// The worker (dist/service-worker.js) is web/page/service-worker.js preceded by one line,
+// The worker (dist/service-worker.js) is web/page/service-worker.js, minified by esbuild
+// (every browser's first visit fetches it: its comments were half its bytes), preceded by
+// one line,
 //   const ARMLAB_BUILD = {"version":"…","files":["icon.svg","index.html",…]};
 // `files`: every file of the build except the worker itself, dot files and the copies
 // compressed ahead (`.br`, `.gz`: web/build/precompress.mjs; a browser never asks for them
@@ -27,6 +29,7 @@ import crypto from 'node:crypto';
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { transformSync } from 'esbuild';
 
 const WORKER = 'service-worker.js';
 const PRECOMPRESSED = /\.(br|gz)$/;
@@ -54,5 +57,6 @@ if (!dir || !fs.existsSync(path.join(dir, 'index.html'))) {
 const files = buildFiles(dir);
 const version = sha256(files.map((f) => `${f}\n${sha256(fs.readFileSync(path.join(dir, f)))}\n`).join('')).slice(0, 16);
 const header = `const ARMLAB_BUILD = ${JSON.stringify({ version, files })};\n`;
-fs.writeFileSync(path.join(dir, WORKER), header + fs.readFileSync(template, 'utf8'));
+const { code } = transformSync(fs.readFileSync(template, 'utf8'), { minify: true, target: 'es2020', legalComments: 'none' });
+fs.writeFileSync(path.join(dir, WORKER), header + code);
 console.log(`service-worker-build: ${WORKER} caches ${files.length} files as version ${version}`);
