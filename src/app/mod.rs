@@ -349,7 +349,8 @@ impl ArmLabApp {
         egui::Panel::top("armlab_top")
             .frame(shell::panel_frame(ui.style()))
             .show(ui, |ui| {
-                if let Some(action) = top_bar::ui(&mut self.model, ui, narrow, &mut self.points) {
+                let modes = (narrow, self.viewport.drag_pans());
+                if let Some(action) = top_bar::ui(&mut self.model, ui, modes, &mut self.points) {
                     self.viewport.apply(action, ui.ctx());
                 }
                 self.class_panel

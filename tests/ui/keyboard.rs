@@ -211,6 +211,78 @@ fn the_zoom_buttons_change_the_cameras_distance_by_a_step_at_every_screen_size()
     }
 }
 
+/// A one-pointer drag in the view from `at` by `by`, a frame per event.
+fn drag_in_view(h: &mut Harness<'_, ArmLabApp>, at: egui::Pos2, by: egui::Vec2) {
+    let button = |pos, pressed| egui::Event::PointerButton {
+        pos,
+        button: egui::PointerButton::Primary,
+        pressed,
+        modifiers: egui::Modifiers::NONE,
+    };
+    h.event(egui::Event::PointerMoved(at));
+    h.run_steps(1);
+    h.event(button(at, true));
+    h.run_steps(1);
+    for step in 1..=4 {
+        h.event(egui::Event::PointerMoved(at + by * step as f32 / 4.0));
+        h.run_steps(1);
+    }
+    h.event(button(at + by, false));
+    h.run_steps(1);
+}
+
+#[test]
+fn drag_pans_in_the_view_menu_makes_one_pointer_pan_at_every_screen_size() {
+    for (size, _) in SCREENS {
+        for (lang, menu, view, pans) in [
+            ("en", "≡ Menu", "View", "Drag pans the view"),
+            ("fi", "≡ Valikko", "Näkymä", "Veto siirtää näkymää"),
+        ] {
+            let mut h = harness_at(&format!("#robot=ur10&lang={lang}"), size);
+            h.run_steps(2);
+            let rect = h.state().viewport().rect().expect("the view was laid out");
+            // Low in the view's left quarter: the floor, away from the target's handles.
+            let at = rect.left_bottom() + egui::vec2(rect.width() * 0.2, -rect.height() * 0.2);
+            let by = egui::vec2(60.0, -30.0);
+            let before = h.state().viewport().camera_pose();
+            drag_in_view(&mut h, at, by);
+            let orbited = h.state().viewport().camera_pose();
+            assert_ne!(orbited.yaw, before.yaw, "{size:?} {lang}: a drag orbits");
+            assert_eq!(
+                orbited.focus, before.focus,
+                "{size:?} {lang}: and keeps the focus"
+            );
+            // The narrow layout keeps the View menu in its menu.
+            if h.query_by_label(menu).is_some() {
+                h.get_by_label(menu).click();
+                h.run_steps(2);
+            }
+            h.get_by_label(view).click();
+            h.run_steps(2);
+            h.get_by_role_and_label(Role::CheckBox, pans).click();
+            h.run_steps(2);
+            h.key_press(egui::Key::Escape);
+            h.run_steps(2);
+            assert!(h.state().viewport().drag_pans(), "{size:?} {lang}: ticked");
+            drag_in_view(&mut h, at, by);
+            let panned = h.state().viewport().camera_pose();
+            assert_eq!(
+                (panned.yaw, panned.pitch, panned.distance),
+                (orbited.yaw, orbited.pitch, orbited.distance),
+                "{size:?} {lang}: a drag that pans leaves the camera's angles and distance"
+            );
+            assert!(
+                nalgebra::Vector3::from(panned.focus)
+                    .metric_distance(&nalgebra::Vector3::from(orbited.focus))
+                    > 1e-3 * orbited.distance,
+                "{size:?} {lang}: and moves its focus: {:?} to {:?}",
+                orbited.focus,
+                panned.focus
+            );
+        }
+    }
+}
+
 /// Where the IK panel's header lies (its top) one frame after the Joints panel's "Joint
 /// speeds" fold was clicked open, and once the fold has settled.
 fn fold_opening(reduced_motion: bool) -> (f32, f32) {

@@ -76,6 +76,7 @@ catalogue! {
     ViewFront: "Front" / "Edestä",
     ViewSide: "Side" / "Sivulta",
     View3d: "3D" / "3D-näkymä",
+    DragPans: "Drag pans the view" / "Veto siirtää näkymää",
     CopyLink: "Copy link" / "Kopioi linkki",
     CopyLinkHint: "A link that opens this robot, pose, target, settings and view" / "Linkki, joka avaa tämän robotin, asennon, kohteen, asetukset ja näkymän",
     LinkCopied: "The link is on the clipboard." / "Linkki on leikepöydällä.",

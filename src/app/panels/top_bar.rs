@@ -12,12 +12,13 @@ use crate::app::state::model::{Message, MessageKind, Model};
 use crate::app::state::tr;
 use crate::app::widgets::style;
 
-/// Draws the top bar; returns what it asks of the 3D view. The language menu and its
-/// choices go to `points` for the test hook.
+/// Draws the top bar; returns what it asks of the 3D view. `narrow`: the narrow layout's
+/// bar (its controls in a menu); `drag_pans`: the view's drag mode, which the View menu
+/// switches. The language menu and its choices go to `points` for the test hook.
 pub fn ui(
     model: &mut Model,
     ui: &mut egui::Ui,
-    narrow: bool,
+    (narrow, drag_pans): (bool, bool),
     points: &mut ScreenPoints,
 ) -> Option<ViewAction> {
     let mut action = None;
@@ -41,10 +42,10 @@ pub fn ui(
         action = action.or(zoom_buttons(model, ui));
         if narrow {
             ui.menu_button(tr(model, Key::Menu), |ui| {
-                action = action.or(controls(model, ui, points));
+                action = action.or(controls(model, ui, drag_pans, points));
             });
         } else {
-            action = action.or(controls(model, ui, points));
+            action = action.or(controls(model, ui, drag_pans, points));
         }
     });
     if let Some(message) = model.message().cloned() {
@@ -73,8 +74,14 @@ fn zoom_buttons(model: &Model, ui: &mut egui::Ui) -> Option<ViewAction> {
     action
 }
 
-/// The toggles, the language, the standard views and "Copy link".
-fn controls(model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) -> Option<ViewAction> {
+/// The toggles, the language, the View menu (the standard views and the drag mode) and
+/// "Copy link".
+fn controls(
+    model: &mut Model,
+    ui: &mut egui::Ui,
+    drag_pans: bool,
+    points: &mut ScreenPoints,
+) -> Option<ViewAction> {
     let mut action = None;
     settings_toggles(model, ui, points);
     ui.separator();
@@ -88,6 +95,12 @@ fn controls(model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) -> 
             if ui.button(tr(model, key)).clicked() {
                 action = Some(ViewAction::View(view));
             }
+        }
+        ui.separator();
+        // Panning otherwise takes two fingers (or a mouse's right button).
+        let mut pans = drag_pans;
+        if ui.checkbox(&mut pans, tr(model, Key::DragPans)).changed() {
+            action = Some(ViewAction::DragPans(pans));
         }
     });
     ui.separator();

@@ -51,6 +51,9 @@ pub enum ViewAction {
     View(StandardView),
     /// Zoom by [`keys::ZOOM_STEP`] a press, closer (1) or back (−1): pinch's alternative.
     Zoom(i8),
+    /// A one-pointer drag off the target pans (true) or orbits (false): the two-finger
+    /// pan's alternative for one finger.
+    DragPans(bool),
 }
 
 /// What the pointer is dragging.
@@ -66,6 +69,8 @@ pub struct Viewport {
     camera: OrbitCamera,
     renderer: Option<SceneRenderer>,
     drag: Option<Drag>,
+    /// Whether a primary drag off the target pans instead of orbiting ([`ViewAction::DragPans`]).
+    drag_pans: bool,
     hover: Option<Handle>,
     /// The model's reframe count and the view's size the camera last framed the arm at.
     framed_at: Option<(u64, egui::Vec2)>,
@@ -103,6 +108,7 @@ impl Viewport {
             camera: OrbitCamera::default(),
             renderer: render_state.map(SceneRenderer::new),
             drag: None,
+            drag_pans: false,
             hover: None,
             framed_at: None,
             framed_cloud: false,
@@ -173,15 +179,21 @@ impl Viewport {
         &self.camera
     }
 
+    /// Whether a one-pointer drag off the target pans the view ([`ViewAction::DragPans`]).
+    pub fn drag_pans(&self) -> bool {
+        self.drag_pans
+    }
+
     /// Carries out what the top bar asked.
     pub fn apply(&mut self, action: ViewAction, ctx: &egui::Context) {
         match action {
             // A zoom keeps the framing: framing anew would undo it.
             ViewAction::Zoom(n) => self.camera.zoom(keys::ZOOM_STEP.powi(n.into())),
             ViewAction::View(view) => self.camera.set_view(view),
+            ViewAction::DragPans(on) => self.drag_pans = on,
             ViewAction::Fit => {}
         }
-        if !matches!(action, ViewAction::Zoom(_)) {
+        if matches!(action, ViewAction::Fit | ViewAction::View(_)) {
             self.framed_at = None;
         }
         ctx.request_repaint();
@@ -454,7 +466,7 @@ impl Viewport {
                 &view,
                 to_array(p),
             )),
-            None if primary => Drag::Orbit,
+            None if primary && !self.drag_pans => Drag::Orbit,
             None => Drag::Pan,
         }
     }
