@@ -78,16 +78,17 @@ ensure_npm() {
   fi
 }
 
-# A slow job in the background: `in_background NICENESS NAME CMD...` starts CMD at that
-# CPU niceness (0: beside the foreground as an equal; 19: only in the time the foreground
-# leaves idle) with its output kept in a log, `await_background NAME` waits for it and
-# shows that log (and fails with it when CMD failed; a NAME never started is nothing to wait
-# for). On exit, unfinished ones are stopped (`stop_background`).
+# A slow install in the background at the lowest CPU priority, so that it takes the time the
+# foreground leaves idle (a single-threaded compile of the crate, a test run, a download)
+# instead of running before everything: `in_background NAME CMD...` starts CMD with its
+# output kept in a log, `await_background NAME` waits for it and shows that log (and fails
+# with it when CMD failed; a NAME never started is nothing to wait for). On exit, unfinished
+# ones are stopped (`stop_background`).
 declare -A BG_PID=() BG_LOG=()
 in_background() {
-  local nice="$1" name="$2"; shift 2
+  local name="$1"; shift
   BG_LOG[$name]="$(mktemp)"
-  (renice -n "$nice" -p "$BASHPID" >/dev/null 2>&1 || true; "$@") >"${BG_LOG[$name]}" 2>&1 &
+  (renice -n 19 -p "$BASHPID" >/dev/null 2>&1 || true; "$@") >"${BG_LOG[$name]}" 2>&1 &
   BG_PID[$name]=$!
 }
 await_background() {

@@ -16,19 +16,18 @@ START=$SECONDS
 at "install the wasm32 target and web/'s npm packages"
 ensure_wasm_target
 ensure_npm
-# On a fresh machine the tools' installs, the page's release build and the Debian packages'
-# download run beside the lints and the native tests, which need none of them, and are
-# awaited where first needed (apt: the UI tests; wasm-bindgen: the libraries' wasm tests;
-# the page: the browser tests). The compiles of both tools and the page run at the
-# foreground's priority: the foreground keeps both cores busy from start to end, so at the
-# lowest priority they ran only while it waited for them, and the page's single-threaded
-# wasm-opt then left a core idle for two minutes before the browser tests; beside it, that
-# minute overlaps the foreground's builds. apt, mostly a download, keeps the lowest.
+# On a fresh machine the installs take about ten minutes of one core's compiling and the Debian
+# packages a download: they run beside the lints and the core's tests, which need none of
+# them, and are awaited where first needed (apt: the UI tests; wasm-bindgen: the core's
+# wasm tests). The page's release build follows trunk's install there, once wasm-bindgen
+# is there too, and is awaited by the browser tests, so that it takes whatever CPU the
+# tests leave. On a fresh machine that is little: the builds before keep both cores busy,
+# and the installs and the page finish mostly after the JS API's tests (docs/benchmarks.md).
 # The EXIT trap stops the unfinished ones.
 wasm_bindgen_marked() { # ensure_wasm_bindgen, and a file in $LOG that says how it ended
   if ensure_wasm_bindgen; then touch "$LOG/wasm-bindgen.ok"; else touch "$LOG/wasm-bindgen.failed"; return 1; fi
 }
-in_background 0 wasm-bindgen wasm_bindgen_marked
+in_background wasm-bindgen wasm_bindgen_marked
 page_after_tools() {
   ensure_trunk || return 1
   until [ -e "$LOG/wasm-bindgen.ok" ]; do
@@ -37,9 +36,9 @@ page_after_tools() {
   done
   build_web
 }
-in_background 0 page page_after_tools
+in_background page page_after_tools
 if apt_unattended; then
-  in_background 19 apt ensure_apt "${DEBIAN_TEST_PACKAGES[@]}"
+  in_background apt ensure_apt "${DEBIAN_TEST_PACKAGES[@]}"
 else
   at "install Debian packages (${DEBIAN_TEST_PACKAGES[*]})"
   ensure_apt "${DEBIAN_TEST_PACKAGES[@]}"
