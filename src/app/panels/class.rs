@@ -126,7 +126,11 @@ impl ClassPanel {
     ) {
         title(room, model, ui, code);
         ui.label(trf(model, Key::ClassStudents, &[&room.students()]));
-        let join = ui.toggle_value(&mut self.join_open, tr(model, Key::ClassJoinDetails));
+        let join = crate::app::widgets::style::switch(
+            ui,
+            &mut self.join_open,
+            tr(model, Key::ClassJoinDetails),
+        );
         points.insert("class-join-link", join.rect.center());
         let ask = ui.menu_button(tr(model, Key::AskRoom), |ui| {
             if let Some((asked, question)) = ask_menu(model, ui, points) {

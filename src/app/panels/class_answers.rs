@@ -128,7 +128,7 @@ fn choice_buttons(
     ui.horizontal_wrapped(|ui| {
         for (index, option) in (0u32..).zip(options) {
             let mine = room.my_answer() == Some(Answer::Choice { index });
-            let button = ui.add(egui::Button::selectable(mine, option));
+            let button = ui.add(crate::app::widgets::style::choice(mine, option));
             points.insert(format!("class-option-{index}"), button.rect.center());
             if button.clicked() {
                 chosen = Some(Answer::Choice { index });

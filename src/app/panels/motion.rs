@@ -338,7 +338,10 @@ impl MotionPanel {
                 (SLOW_MOTION, Key::MotionSlow, "motion-slow"),
                 (0.0, Key::MotionPause, "motion-pause"),
             ] {
-                let r = ui.selectable_label(scale == value, tr(model, key));
+                let r = ui.add(crate::app::widgets::style::choice(
+                    scale == value,
+                    tr(model, key),
+                ));
                 points.insert(name, r.rect.center());
                 if r.clicked() {
                     let _ = model.set_time_scale(value);

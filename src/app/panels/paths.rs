@@ -147,7 +147,7 @@ fn kind_ui(model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoints) {
             (PathKind::Cartesian, Key::PathStraightLine, "path-line"),
         ] {
             let r = ui
-                .selectable_label(model.paths().kind() == kind, tr(model, key))
+                .add(style::choice(model.paths().kind() == kind, tr(model, key)))
                 .on_hover_text(tr(model, Key::PathKindHint));
             points.insert(name, r.rect.center());
             if r.clicked() {

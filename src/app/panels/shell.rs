@@ -162,7 +162,7 @@ impl SidePanels {
                         let size = egui::vec2(col.available_width(), 40.0);
                         let response = col.add_sized(
                             size,
-                            egui::Button::selectable(
+                            crate::app::widgets::style::choice(
                                 open,
                                 tab_label(col, t(model, tab_title(kind))),
                             ),

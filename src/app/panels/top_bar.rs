@@ -140,8 +140,7 @@ fn settings_toggles(model: &mut Model, ui: &mut egui::Ui, points: &mut ScreenPoi
         ),
     ];
     for (mut on, label, hint, set) in toggles {
-        if ui
-            .toggle_value(&mut on, tr(model, label))
+        if style::switch(ui, &mut on, tr(model, label))
             .on_hover_text(tr(model, hint))
             .changed()
         {

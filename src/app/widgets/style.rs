@@ -277,6 +277,30 @@ pub fn unless_out_of_sight<R>(
     Some(shown.inner)
 }
 
+/// One of a row of choices, or a switch, drawn as a button whose outline shows also while
+/// it is not chosen: egui's selectable buttons show only their text until hovered or
+/// chosen, and a control needs a boundary of 3:1 against the panel (WCAG 1.4.11; the
+/// idle outline's ratio is in [`crate::app::widgets::contrast`]). Chosen, it takes the
+/// selection's colours. Choices in a menu's list stay plain: the menu frames them.
+pub fn choice<'a>(selected: bool, text: impl egui::IntoAtoms<'a>) -> egui::Button<'a> {
+    egui::Button::selectable(selected, text).frame_when_inactive(true)
+}
+
+/// A [`choice`] that switches `on` when clicked (`changed()` then holds), as
+/// [`egui::Ui::toggle_value`] does.
+pub fn switch<'a>(
+    ui: &mut egui::Ui,
+    on: &mut bool,
+    text: impl egui::IntoAtoms<'a>,
+) -> egui::Response {
+    let mut response = ui.add(choice(*on, text));
+    if response.clicked() {
+        *on = !*on;
+        response.mark_changed();
+    }
+    response
+}
+
 /// [`egui::Ui::horizontal_wrapped`] that wraps at the visible [`room`] instead of the
 /// layout's (possibly widened) right edge.
 pub fn wrapped<R>(

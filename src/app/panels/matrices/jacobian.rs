@@ -33,10 +33,12 @@ pub(super) fn frame_switch(model: &Model, ui: &mut egui::Ui, tool_frame: &mut bo
     let hint = tr(model, Key::JacobianFrameHint);
     crate::app::widgets::style::wrapped(ui, |ui| {
         ui.label(tr(model, Key::JacobianFrame)).on_hover_text(hint);
-        ui.selectable_value(tool_frame, false, tr(model, Key::JacobianBase))
-            .on_hover_text(hint);
-        ui.selectable_value(tool_frame, true, tr(model, Key::JacobianTool))
-            .on_hover_text(hint);
+        for (tool, key) in [(false, Key::JacobianBase), (true, Key::JacobianTool)] {
+            let choice = crate::app::widgets::style::choice(*tool_frame == tool, tr(model, key));
+            if ui.add(choice).on_hover_text(hint).clicked() {
+                *tool_frame = tool;
+            }
+        }
     });
 }
 

@@ -211,8 +211,12 @@ impl MatricesPanel {
         self.revealed.retain(|h| hidden.contains(*h));
         if presenting {
             crate::app::widgets::style::wrapped(ui, |ui| {
-                ui.toggle_value(&mut self.choosing, tr(model, Key::HideMode))
-                    .on_hover_text(tr(model, Key::HideModeHint));
+                crate::app::widgets::style::switch(
+                    ui,
+                    &mut self.choosing,
+                    tr(model, Key::HideMode),
+                )
+                .on_hover_text(tr(model, Key::HideModeHint));
                 if !hidden.is_empty() {
                     ui.label(trf(model, Key::HiddenCount, &[&hidden.len()]));
                     if ui
