@@ -1,4 +1,4 @@
-// Minifies a release build's JavaScript: trunk runs this as a post_build hook (Trunk.toml),
+// Minifies a release build's JavaScript, icon and manifest: trunk runs this as a post_build hook (Trunk.toml),
 // before the service worker's hook, in its staging directory ($TRUNK_STAGING_DIR).
 //
 // Trunk's own minifier (minify = "on_release") handles the HTML but gives up on the
@@ -9,6 +9,10 @@
 // Integrity hash (sha384) for the glue it preloads, that hash is written anew for the
 // minified file: a browser refuses a preload whose hash does not match. (index.html asks
 // for none, data-integrity="none": the files are the page's own, from its own origin.)
+//
+// The icon (web/page/icon.svg) loses its comment and the white space between its tags, the
+// manifest its white space: both are fetched on every first visit, and stay readable in
+// web/page/.
 //
 // Only release builds (TRUNK_PROFILE=release): `trunk serve` keeps readable glue.
 // Run by hand on a built folder: TRUNK_PROFILE=release TRUNK_STAGING_DIR=dist node web/build/minify-build.mjs
@@ -42,5 +46,12 @@ for (const file of glue) {
   const old = sri(source);
   if (index.includes(old)) index = index.split(old).join(sri(code));
 }
-fs.writeFileSync(indexPath, index);
+// Trunk's minifier leaves the blank lines of the module script it writes into index.html.
+fs.writeFileSync(indexPath, index.replace(/\n{2,}/g, '\n'));
 console.log(`minify-build: ${glue.length} JS files, ${before} → ${after} bytes`);
+
+// Copies (not the sources): trunk copied web/page/'s files into the staging folder.
+const icon = path.join(dir, 'icon.svg');
+fs.writeFileSync(icon, fs.readFileSync(icon, 'utf8').replace(/<!--[\s\S]*?-->/g, '').replace(/>\s+</g, '><').trim());
+const manifest = path.join(dir, 'manifest.webmanifest');
+fs.writeFileSync(manifest, JSON.stringify(JSON.parse(fs.readFileSync(manifest, 'utf8'))));
