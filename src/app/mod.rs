@@ -349,8 +349,9 @@ impl ArmLabApp {
         egui::Panel::top("armlab_top")
             .frame(shell::panel_frame(ui.style()))
             .show(ui, |ui| {
-                let modes = (narrow, self.viewport.drag_pans());
-                if let Some(action) = top_bar::ui(&mut self.model, ui, modes, &mut self.points) {
+                let pans = self.viewport.drag_pans();
+                let bar = top_bar::ui(&mut self.model, ui, narrow, pans, &mut self.points);
+                if let Some(action) = bar {
                     self.viewport.apply(action, ui.ctx());
                 }
                 self.class_panel

@@ -18,7 +18,8 @@ use crate::app::widgets::style;
 pub fn ui(
     model: &mut Model,
     ui: &mut egui::Ui,
-    (narrow, drag_pans): (bool, bool),
+    narrow: bool,
+    drag_pans: bool,
     points: &mut ScreenPoints,
 ) -> Option<ViewAction> {
     let mut action = None;
