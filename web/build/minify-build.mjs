@@ -10,7 +10,7 @@
 // minified file: a browser refuses a preload whose hash does not match. (index.html asks
 // for none, data-integrity="none": the files are the page's own, from its own origin.)
 //
-// The icon (web/page/icon.svg) loses its comment and the white space between its tags, the
+// index.html's module script is minified the same way. The icon (web/page/icon.svg) loses its comment and the white space between its tags, the
 // manifest its white space: both are fetched on every first visit, and stay readable in
 // web/page/.
 //
@@ -46,8 +46,15 @@ for (const file of glue) {
   const old = sri(source);
   if (index.includes(old)) index = index.split(old).join(sri(code));
 }
-// Trunk's minifier leaves the blank lines of the module script it writes into index.html.
-fs.writeFileSync(indexPath, index.replace(/\n{2,}/g, '\n'));
+// Trunk's minifier leaves the module script it writes into index.html as written (blank
+// lines, long names): esbuild minifies it as it does the glue (its top-level await is ES2022,
+// in every browser with WebAssembly SIMD), without the `window.wasmBindings` it sets, which
+// nothing reads. The tags HTML lets a page leave out go too (</head><body> before the
+// canvas, </body></html> at the end): the parser builds the same document without them.
+const loader = (code) => code.replace(/window\.wasmBindings\s*=\s*bindings;?/, '');
+index = index.replace(/(<script type=module>)([\s\S]*?)(<\/script>)/, (_, open, code, close) =>
+  open + transformSync(loader(code), { minify: true, format: 'esm', target: 'es2022' }).code.trim() + close);
+fs.writeFileSync(indexPath, index.replace('</head><body>', '').replace(/<\/body><\/html>\s*$/, ''));
 console.log(`minify-build: ${glue.length} JS files, ${before} → ${after} bytes`);
 
 // Copies (not the sources): trunk copied web/page/'s files into the staging folder.
