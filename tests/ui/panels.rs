@@ -157,3 +157,38 @@ fn a_dh_cell_applies_no_value_met_while_typing() {
     h.run_steps(2);
     assert_eq!(h.state().model().robot().joints[1].dh.a, -600.0);
 }
+
+/// A joint slider's rail stands 3:1 apart from its panel (WCAG's non-text contrast), in the
+/// normal theme and in presentation mode, as drawn: egui's own rail had about 1.3:1.
+#[test]
+fn a_sliders_rail_has_3_to_1_on_its_panel() {
+    use armlab::app::widgets::contrast::ratio;
+    let pose = "#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3";
+    for hash in [
+        pose.to_string(),
+        format!("{pose}&present=on&ppanels=joints"),
+    ] {
+        let mut h = harness_at(&hash, [1366.0, 768.0]);
+        let rail = h.get_by_role_and_label(Role::Slider, "θ2").rect();
+        let image = h.render().expect("a frame");
+        let ppp = h.ctx.pixels_per_point();
+        let px = |p: egui::Pos2| {
+            let [r, g, b, _] = image.get_pixel((p.x * ppp) as u32, (p.y * ppp) as u32).0;
+            egui::Color32::from_rgb(r, g, b)
+        };
+        // Above the rail, inside the slider's row: the panel.
+        let panel = px(rail.left_top() + egui::vec2(1.0, 1.0));
+        // Both ends (θ2 is far from either limit, so the handle covers neither).
+        for end in [
+            rail.left_center() + egui::vec2(2.0, 0.0),
+            rail.right_center() - egui::vec2(2.0, 0.0),
+        ] {
+            let contrast = ratio(px(end), panel);
+            assert!(
+                contrast >= 3.0,
+                "{hash}: the rail {:?} on the panel {panel:?}: {contrast:.2}:1",
+                px(end)
+            );
+        }
+    }
+}

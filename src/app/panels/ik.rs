@@ -252,7 +252,7 @@ fn replay_ui(model: &mut Model, ui: &mut egui::Ui) {
     let mut step = replay.step.min(last);
     let name = (tr(model, Key::Iteration), tr(model, Key::ReplayHint));
     let changed = style::named_slider(ui, name, &last.to_string(), |ui| {
-        ui.add(egui::Slider::new(&mut step, 0..=last))
+        style::slider(ui, egui::Slider::new(&mut step, 0..=last))
     })
     .changed();
     let s = &run.trace[step];

@@ -195,7 +195,8 @@ fn joints_rail(ui: &mut egui::Ui, model: &Model) -> f32 {
 fn self_motion_slider(ui: &mut egui::Ui, model: &Model, s: &mut f64) -> egui::Response {
     let (name, hint) = (tr(model, Key::SelfMotion), tr(model, Key::SelfMotionHint));
     style::named_slider(ui, (name, hint), "-3.00 rad", |ui| {
-        ui.add(
+        style::slider(
+            ui,
             egui::Slider::new(s, -3.0..=3.0)
                 .suffix(" rad")
                 .step_by(0.05)
@@ -414,7 +415,7 @@ fn joint_slider(
     if let Some(d) = decimals {
         slider = slider.fixed_decimals(d);
     }
-    let mut response = ui.add(slider);
+    let mut response = style::slider(ui, slider);
     if typed {
         response.mark_changed();
     }
@@ -457,9 +458,8 @@ fn speed_rows(model: &mut Model, ui: &mut egui::Ui) -> Vec<f64> {
             for (i, joint) in model.robot().joints.iter().enumerate() {
                 let range = speed_range(model, joint);
                 ui.label(format!("q̇{}", i + 1));
-                changed |= ui
-                    .add(egui::Slider::new(&mut speeds[i], -range..=range))
-                    .changed();
+                changed |=
+                    style::slider(ui, egui::Slider::new(&mut speeds[i], -range..=range)).changed();
                 ui.end_row();
             }
         });

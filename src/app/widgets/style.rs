@@ -223,6 +223,21 @@ pub fn fit_rail(ui: &mut egui::Ui, name_width: f32, value: &str) -> f32 {
     left
 }
 
+/// Adds `slider` with its rail in the idle controls' outline grey ([`CONTROL_OUTLINE`]):
+/// egui fills a rail with an idle control's fill, about 1.3:1 on the panel, under the 3:1
+/// a control needs to be seen. Only the slider's: check boxes and radio buttons keep that
+/// fill inside their outline. The idle handle takes the same grey; its light rim and its
+/// size, above and below the rail, set it apart.
+pub fn slider(ui: &mut egui::Ui, slider: egui::Slider<'_>) -> egui::Response {
+    let idle = std::mem::replace(
+        &mut ui.visuals_mut().widgets.inactive.bg_fill,
+        CONTROL_OUTLINE,
+    );
+    let response = ui.add(slider);
+    ui.visuals_mut().widgets.inactive.bg_fill = idle;
+    response
+}
+
 /// A slider (`add` draws it) after its name (with its hover `hint`), the rail fitted to
 /// the visible room ([`fit_rail`]; values up to `widest` wide): beside the name where the
 /// row leaves the rail 60 points, else under it (a projector's column). The slider is
