@@ -13,7 +13,9 @@ import { dist, shots, state, settle, until, point, pageOpener, pixels, at, close
 import { CONTROLS, axTree, boxes } from './axtree.mjs';
 
 const suite = browserSuite(dist);
-const { open } = pageOpener(suite, { view: { width: 1366, height: 768 } });
+const { open, openKept } = pageOpener(suite, { view: { width: 1366, height: 768 } });
+// The pose the tests that only read the tree share one page of.
+const SHOWN = '#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3';
 
 const PANELS = {
   en: ['Joints', 'Inverse kinematics', 'Robot', 'Matrices', 'Motion'],
@@ -53,7 +55,7 @@ async function valueText(page, node) {
 const find = (tree, role, name) => tree.find((n) => n.role === role && n.name === name);
 
 test('every panel\'s controls are in the accessibility tree with their roles, names and values', async () => {
-  const { page, errors } = await open('#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3');
+  const { page, errors } = await openKept(SHOWN);
   const tree = await axTree(page);
   const panels = await controlsByPanel(page, tree);
   console.log('NAMED_CONTROLS', JSON.stringify(Object.fromEntries(Object.entries(panels).map(([k, v]) => [k, v.length]))));
@@ -80,18 +82,16 @@ test('every panel\'s controls are in the accessibility tree with their roles, na
   const cells = rows.map((r) => tree.filter((n) => n.parent === r.id && n.role === 'cell').map((c) => c.name));
   assert.deepEqual(cells[3], ['0.000', '0.000', '0.000', '1.000']);
   assert.deepEqual(errors, []);
-  await page.context().close();
 });
 
 test('the tree\'s root is no unnamed dialog: a screen reader says none before the controls', async () => {
-  const { page, errors } = await open('#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3');
+  const { page, errors } = await openKept(SHOWN);
   const tree = await axTree(page);
   const dialogs = tree.filter((n) => n.role === 'dialog' && !n.name);
   assert.equal(dialogs.length, 0, `unnamed dialogs: ${dialogs.length}`);
   // The controls are still there, under the mirror's root.
   assert.ok(find(tree, 'button', 'Solve'));
   assert.deepEqual(errors, []);
-  await page.context().close();
 });
 
 test('a combo box has the choice it shows as its value', async () => {
@@ -107,7 +107,7 @@ test('a combo box has the choice it shows as its value', async () => {
 });
 
 test('a joint\'s name is said with its slider and its field, not once more as a text alone', async () => {
-  const { page, errors } = await open('#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3');
+  const { page, errors } = await openKept(SHOWN);
   const tree = await axTree(page);
   for (let j = 1; j <= 6; j++) {
     const name = `θ${j}`;
@@ -117,11 +117,10 @@ test('a joint\'s name is said with its slider and its field, not once more as a 
     assert.equal(alone.length, 0, `${name} as a text of its own: ${alone.length}`);
   }
   assert.deepEqual(errors, []);
-  await page.context().close();
 });
 
 test('a matrix table has its caption as its first child', async () => {
-  const { page, errors } = await open('#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3');
+  const { page, errors } = await openKept(SHOWN);
   const tree = await axTree(page);
   for (const name of ['T06 (tool pose, mm)', 'J (6×n, base frame)']) {
     const table = find(tree, 'table', name);
@@ -132,11 +131,10 @@ test('a matrix table has its caption as its first child', async () => {
     assert.equal(words, name, 'the caption says the name');
   }
   assert.deepEqual(errors, []);
-  await page.context().close();
 });
 
 test('a matrix table\'s cells are laid out in its box, row by row', async () => {
-  const { page, errors } = await open('#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3');
+  const { page, errors } = await openKept(SHOWN);
   await settle(page, 5);
   // Each cell has a box of its own inside the table's (a highlight or a magnifier shows it).
   const boxes = await page.evaluate(() => [...document.querySelectorAll('#armlab_a11y [role=table]')]
@@ -155,7 +153,6 @@ test('a matrix table\'s cells are laid out in its box, row by row', async () => 
   // Row by row: the fourth row below the first, the fourth column right of the first.
   assert.ok(boxes.cells[12][1] > boxes.cells[0][1] && boxes.cells[3][0] > boxes.cells[0][0]);
   assert.deepEqual(errors, []);
-  await page.context().close();
 });
 
 test('a joint slider focused through the DOM moves on the arrow keys, and its value follows', async () => {

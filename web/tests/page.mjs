@@ -2,6 +2,7 @@
 // built page is, reading the test hook (window.armlab, docs/test-hook.md), waiting for the
 // app's frames, and opening a fresh page with its errors collected. Not a *.test.mjs file,
 // so the test command does not run it on its own.
+import { after } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
@@ -133,6 +134,9 @@ export async function newPage(browser, { context, view = VIEW, contextOptions = 
  *
  * `openAt` opens `hash` in a context at `screen`'s size and device pixel ratio, a touch
  * screen emulated as a mobile one.
+ *
+ * `openKept` opens `hash` as `open` does the first time and returns that same page to
+ * every later call: for tests that only read the page (they leave it open and unchanged).
  */
 export function pageOpener(suite, defaults = {}) {
   async function open(hash = '', options = {}) {
@@ -163,7 +167,18 @@ export function pageOpener(suite, defaults = {}) {
     });
     return open(hash, { context });
   }
-  return { open, openAt };
+  // One page per hash for the tests that only read what it shows: a page load is about
+  // 5 s of CPU on the software renderer, and the suite makes some 70.
+  const kept = new Map();
+  after(async () => { // before the browser closes, or with it (browserSuite's hook)
+    if (!suite.browser?.isConnected()) return;
+    for (const opened of kept.values()) await (await opened).ctx.close();
+  });
+  function openKept(hash) {
+    if (!kept.has(hash)) kept.set(hash, open(hash));
+    return kept.get(hash);
+  }
+  return { open, openAt, openKept };
 }
 
 /** Pixels of a PNG (as RGBA rows) decoded by the browser itself. The bytes come back as
