@@ -23,11 +23,17 @@ pub fn state_json(app: &ArmLabApp) -> String {
     json!({
         "robot": robot.name,
         "preset": match model.source() { RobotSource::Preset(id) => Some(id.clone()), RobotSource::Custom => None },
-        // The exercise, never its table: its id, whether solved, the last verdict (English).
+        // The exercise, never its table: its id, whether solved, the last verdict (English),
+        // a check under way or one that could not run.
         "exercise": model.exercise().map(|e| json!({
             "id": e.id.id(),
             "solved": e.solved,
             "verdict": e.verdict.map(|v| v.sentence(armlab_text::Lang::En)),
+            "check": match (&e.checking, &e.check_failed) {
+                (Some(_), _) => Some("checking".to_string()),
+                (None, Some(why)) => Some(format!("failed: {why}")),
+                (None, None) => None,
+            },
         })),
         "dof": robot.dof(),
         "reduced_motion": model.reduced_motion(),

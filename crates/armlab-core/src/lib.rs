@@ -12,6 +12,7 @@ pub mod convention;
 pub mod edit;
 pub mod error;
 pub mod exercise;
+pub mod exercise_wire;
 pub mod file;
 pub mod fk;
 pub mod ik;

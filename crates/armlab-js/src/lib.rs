@@ -299,6 +299,24 @@ fn symbolic_tables_json(robot: &str) -> Result<String, String> {
     Ok(armlab_core::symbolic_tables::symbolic_tables(&robot).to_text())
 }
 
+/// For the page's DH exercise (the page loads this module when a table is checked): the
+/// exercise's robot file and the student's (JSON text, as the page writes a robot)
+/// checked by `armlab_core::exercise::check_table`; the verdict's numbers
+/// (`armlab_core::exercise_wire`). A bad robot file throws the core's sentence. Feature
+/// `urdf`.
+#[cfg(feature = "urdf")]
+#[wasm_bindgen(skip_typescript)]
+pub fn check_table(reference: JsValue, student: JsValue) -> Result<Vec<f64>, JsError> {
+    let file = |v: &JsValue| {
+        let text = v
+            .as_string()
+            .ok_or_else(|| wrong_argument("check_table", Takes::RobotFile, v))?;
+        armlab_core::robot_from_json(&text).map_err(|e| JsError::new(&e.sentence(Lang::En)))
+    };
+    let verdict = armlab_core::exercise::check_table(&file(&reference)?, &file(&student)?);
+    Ok(armlab_core::exercise_wire::encode_verdict(&verdict))
+}
+
 /// For the lecture room's join window (the page loads this module when a lecturer's
 /// page shows it): the QR code of `text` (the join link) as lines of `1` (dark) and `0`
 /// (light) modules (`armlab_room::QrModules::to_text`); "" when the text is too long for

@@ -587,6 +587,8 @@ catalogue! {
     ExerciseIntro: "The view draws each joint axis and the distances and angles between them. Write the robot's DH table in either convention and press Check. Its own table stays hidden until yours is right." / "Näkymä piirtää nivelakselit sekä niiden väliset etäisyydet ja kulmat. Kirjoita robotin DH-taulukko kummalla tahansa konventiolla ja paina Tarkista. Robotin oma taulukko pysyy piilossa, kunnes omasi on oikein.",
     ExerciseCheck: "Check" / "Tarkista",
     ExerciseCheckHint: "Compares your table's tool pose with the robot's at 100 random joint vectors" / "Vertaa taulukkosi työkalun asentoa robotin asentoon 100 satunnaisella nivelvektorilla",
+    ExerciseChecking: "Checking your table…" / "Tarkistetaan taulukkoasi…",
+    ExerciseCheckFailed: "The check could not be loaded ({0}). Press Check to try again." / "Tarkistusta ei voitu ladata ({0}). Paina Tarkista yrittääksesi uudelleen.",
     ExerciseEnd: "End the exercise" / "Lopeta harjoitus",
     ExerciseShareHint: "Copy link shares this exercise: the link names only the exercise, not its table." / "Kopioi linkki jakaa tämän harjoituksen: linkissä on vain harjoitus, ei sen taulukkoa.",
     ExerciseOwnTable: "The robot's own table ({0}):" / "Robotin oma taulukko ({0}):",

@@ -59,6 +59,7 @@ impl ExercisePanel {
             self.answer = blank_answer(model.robot());
             self.loads = Some(model.robot_loads());
         }
+        model.poll_exercise_check();
         ui.strong(tr(model, Key::ExerciseTitle));
         ui.label(egui::RichText::new(tr(model, Key::ExerciseIntro)).small());
         self.answer_table(model, ui, points);
@@ -78,6 +79,14 @@ impl ExercisePanel {
             return;
         };
         // Sentences wrap at the column's visible edge (the table may be wider and scroll).
+        if exercise.checking.is_some() {
+            style::sentence(ui, egui::RichText::new(tr(model, Key::ExerciseChecking)));
+        }
+        if let Some(why) = &exercise.check_failed {
+            let why = armlab_text::echo::text_within(why, 60);
+            let sentence = trf(model, Key::ExerciseCheckFailed, &[&why]);
+            style::sentence(ui, egui::RichText::new(sentence).color(style::ERROR));
+        }
         if let Some(verdict) = exercise.verdict {
             let color = match verdict {
                 Verdict::Correct => style::REACHED,

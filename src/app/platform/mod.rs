@@ -1,12 +1,13 @@
 //! The web and the native side of the app: its clock, whether the collision checker has
 //! loaded, the symbolic matrices (made natively, by a lazily loaded module in the page),
-//! the join link's QR code (the same way), the last session's storage (`native`: a file;
+//! the DH exercise's check and the join link's QR code (the same way), the last session's storage (`native`: a file;
 //! `web`: localStorage), and in the page its
 //! message box, the test hook, files and the lazily loaded modules. Nothing here imports
 //! the app above it.
 
 pub mod checker;
 pub mod clock;
+pub mod exercise;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod native;
 pub mod qr;

@@ -1,8 +1,8 @@
 //! The lazily loaded modules: the URDF module (fetched by the visit's first URDF file or
 //! download), the collision check's use of it (dist/urdf/ holds the collision library;
-//! the page's own wasm does not), with its state and retry, and the symbolic matrices and
-//! the join link's QR code it makes (the page's own wasm holds neither the symbolic
-//! algebra nor a QR encoder).
+//! the page's own wasm does not), with its state and retry, and the symbolic matrices, the
+//! DH exercise's verdicts and the join link's QR code it makes (the page's own wasm holds
+//! neither the symbolic algebra, the exercise's check nor a QR encoder).
 
 use std::cell::{Cell, RefCell};
 
@@ -10,6 +10,7 @@ use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
 use super::{js_error_text, wake};
+use crate::app::platform::exercise::Checked;
 use crate::app::platform::symbolic::Tables;
 use std::rc::Rc;
 
@@ -29,6 +30,9 @@ thread_local! {
     static SYMBOLIC: RefCell<Option<(String, Tables)>> = const { RefCell::new(None) };
     /// The QR code of the text last asked for: `None` inside while it is being made, or
     /// when it could not be.
+    /// The exercise check last asked for (the reference's and the student's robot files)
+    /// and where it is.
+    static CHECK: RefCell<Option<(String, Checked)>> = const { RefCell::new(None) };
     static QR: RefCell<Option<(String, Option<Rc<QrModules>>)>> = const { RefCell::new(None) };
 }
 
@@ -91,10 +95,7 @@ pub(super) fn call_urdf_module(
     name: &str,
     args: &[&str],
 ) -> Result<String, String> {
-    let function: js_sys::Function = js_sys::Reflect::get(module, &name.into())
-        .map_err(|e| js_error_text(&e))?
-        .dyn_into()
-        .map_err(|_| format!("the URDF module has no {name}"))?;
+    let function = module_function(module, name)?;
     let args: js_sys::Array = args.iter().map(|a| JsValue::from_str(a)).collect();
     let answer = function
         .apply(&JsValue::NULL, &args)
@@ -102,6 +103,14 @@ pub(super) fn call_urdf_module(
     answer
         .as_string()
         .ok_or_else(|| format!("{name} gave no text"))
+}
+
+/// The module's function `name`.
+fn module_function(module: &JsValue, name: &str) -> Result<js_sys::Function, String> {
+    js_sys::Reflect::get(module, &name.into())
+        .map_err(|e| js_error_text(&e))?
+        .dyn_into()
+        .map_err(|_| format!("the URDF module has no {name}"))
 }
 
 /// The collision check's use of the module (dist/urdf/, which holds the collision
@@ -121,12 +130,10 @@ enum CollideModule {
 fn load_collision_module() {
     COLLIDE.with(|c| *c.borrow_mut() = CollideModule::Loading);
     wasm_bindgen_futures::spawn_local(async {
-        let state = match urdf_module(|| ()).await.and_then(|m| {
-            js_sys::Reflect::get(&m, &"collide_parts".into())
-                .ok()
-                .and_then(|f| f.dyn_into::<js_sys::Function>().ok())
-                .ok_or_else(|| "the module has no collide_parts".to_string())
-        }) {
+        let state = match urdf_module(|| ())
+            .await
+            .and_then(|m| module_function(&m, "collide_parts"))
+        {
             Ok(f) => CollideModule::Ready(f),
             Err(e) => CollideModule::Failed(e),
         };
@@ -221,6 +228,69 @@ pub fn symbolic_tables(robot: &armlab_core::Robot) -> Tables {
         wake();
     });
     Tables::Loading
+}
+
+/// The verdict on `student`'s table against `reference`, from the module: the first call
+/// for the pair starts the check (and loading the module) and answers
+/// [`Checked::Loading`], as every call does until the answer is there.
+pub fn check_table(reference: &armlab_core::Robot, student: &armlab_core::Robot) -> Checked {
+    let files = [reference, student].map(armlab_core::robot_to_json);
+    let key = files.join("\n");
+    let known = CHECK.with(|c| match &*c.borrow() {
+        Some((made_for, checked)) if *made_for == key => Some(checked.clone()),
+        _ => None,
+    });
+    if let Some(checked) = known {
+        return checked;
+    }
+    CHECK.with(|c| *c.borrow_mut() = Some((key.clone(), Checked::Loading)));
+    wasm_bindgen_futures::spawn_local(async move {
+        let answer = match urdf_module(|| ()).await {
+            Ok(module) => call_check(&module, &files),
+            Err(e) => Err(e),
+        };
+        let checked = match answer {
+            Ok(verdict) => Checked::Ready(verdict),
+            Err(e) => Checked::Failed(e),
+        };
+        CHECK.with(|c| {
+            if let Some((made_for, state)) = &mut *c.borrow_mut()
+                && *made_for == key
+            {
+                *state = checked;
+            }
+        });
+        wake();
+    });
+    Checked::Loading
+}
+
+/// The module's `check_table` of the two robot files: the verdict its numbers encode.
+fn call_check(
+    module: &JsValue,
+    files: &[String; 2],
+) -> Result<armlab_core::exercise::Verdict, String> {
+    let function = module_function(module, "check_table")?;
+    let answer = function
+        .call2(
+            &JsValue::NULL,
+            &files[0].as_str().into(),
+            &files[1].as_str().into(),
+        )
+        .map_err(|e| js_error_text(&e))?;
+    let numbers = js_sys::Float64Array::new(&answer).to_vec();
+    armlab_core::exercise_wire::decode_verdict(&numbers)
+        .ok_or_else(|| "an unreadable verdict".to_string())
+}
+
+/// After a failure: the next check asks the module again.
+pub fn retry_check() {
+    CHECK.with(|c| {
+        let mut c = c.borrow_mut();
+        if matches!(&*c, Some((_, Checked::Failed(_)))) {
+            *c = None;
+        }
+    });
 }
 
 /// The QR code of `text`, from the module: the first call for a text starts making it

@@ -3,11 +3,13 @@
 
 use armlab_core::Robot;
 
-use armlab_core::exercise::{Verdict, check_table};
+use armlab_core::exercise::Verdict;
 use armlab_session::exercise::ExerciseId;
 use armlab_session::session::RobotSource;
 
 use super::Model;
+use crate::app::platform;
+use crate::app::platform::exercise::Checked;
 
 /// An open DH-table exercise (docs/kinematics.md §15): the model's robot is its reference,
 /// whose table stays hidden until a checked table is right.
@@ -19,6 +21,24 @@ pub struct ExerciseState {
     pub verdict: Option<Verdict>,
     /// A check said "correct": the robot's table shows everywhere again.
     pub solved: bool,
+    /// The table being checked: in the page the check runs in the lazily loaded module,
+    /// and its verdict comes a few frames later ([`Model::poll_exercise_check`]).
+    pub checking: Option<Robot>,
+    /// The last check could not run (the module did not load): the browser's words.
+    pub check_failed: Option<String>,
+}
+
+impl ExerciseState {
+    /// The exercise `id` as it opens: nothing checked yet.
+    pub fn open(id: ExerciseId) -> Self {
+        ExerciseState {
+            id,
+            verdict: None,
+            solved: false,
+            checking: None,
+            check_failed: None,
+        }
+    }
 }
 
 impl Model {
@@ -49,22 +69,42 @@ impl Model {
     pub fn start_exercise(&mut self, id: ExerciseId) -> Result<(), armlab_core::RobotError> {
         let robot = id.robot()?;
         self.load_robot(robot, RobotSource::Custom);
-        self.exercise = Some(ExerciseState {
-            id,
-            verdict: None,
-            solved: false,
-        });
+        self.exercise = Some(ExerciseState::open(id));
         Ok(())
     }
 
     /// Grades a student's table against the exercise's robot (`check_table`); a correct
-    /// one solves the exercise. `None` when no exercise is open.
+    /// one solves the exercise. The verdict, or `None` when no exercise is open or, in the
+    /// page, until the lazily loaded module has answered ([`Model::poll_exercise_check`]).
     pub fn check_exercise(&mut self, student: &Robot) -> Option<Verdict> {
         let exercise = self.exercise.as_mut()?;
-        let verdict = check_table(&self.robot, student);
-        exercise.verdict = Some(verdict);
-        exercise.solved |= verdict == Verdict::Correct;
-        Some(verdict)
+        if exercise.check_failed.take().is_some() {
+            platform::exercise::retry_check();
+        }
+        exercise.verdict = None;
+        exercise.checking = Some(student.clone());
+        self.poll_exercise_check()
+    }
+
+    /// Takes the verdict of the table being checked once it is there (called every frame
+    /// the exercise is shown; nothing to do while no check is under way).
+    pub fn poll_exercise_check(&mut self) -> Option<Verdict> {
+        let exercise = self.exercise.as_mut()?;
+        let student = exercise.checking.as_ref()?;
+        match platform::exercise::check_table(&self.robot, student) {
+            Checked::Ready(verdict) => {
+                exercise.checking = None;
+                exercise.verdict = Some(verdict);
+                exercise.solved |= verdict == Verdict::Correct;
+                Some(verdict)
+            }
+            Checked::Loading => None,
+            Checked::Failed(why) => {
+                exercise.checking = None;
+                exercise.check_failed = Some(why);
+                None
+            }
+        }
     }
 
     /// Ends the exercise: the robot stays, with its own names again, and its table shows

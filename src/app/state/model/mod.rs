@@ -517,11 +517,7 @@ impl Model {
             self.camera = session.camera;
             self.camera_loads += 1;
         }
-        self.exercise = session.exercise.map(|id| ExerciseState {
-            id,
-            verdict: None,
-            solved: false,
-        });
+        self.exercise = session.exercise.map(ExerciseState::open);
         self.robot = session.robot;
         self.source = session.source;
         self.q = session.q;
