@@ -450,3 +450,32 @@ test('the page takes the system\'s reduced motion, and leaves motion on without 
     await page.context().close();
   }
 });
+
+test('a label that comes into sight names its control once: "Preset", not "Preset Preset"', async () => {
+  // 1920×1080 at 200 %: the Robot panel's Preset menu lies below the fold; scrolled into
+  // sight, egui gives its label the words as a part of its own.
+  const view = { width: 960, height: 540 };
+  const { page, errors } = await open('#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3&task=position',
+    { view, contextOptions: { deviceScaleFactor: 2, reducedMotion: 'reduce' } });
+  const rect = await page.evaluate(() => window.armlab.viewRect());
+  let preset;
+  for (let i = 0; i < 8 && !(preset?.box?.y + preset?.box?.height < view.height); i++) {
+    await page.mouse.move(rect.x / 2, rect.y + rect.height / 2);
+    await page.mouse.wheel(0, 150);
+    await settle(page, 1);
+    await page.evaluate(() => window.armlab.mirrorNow());
+    await settle(page, 1);
+    const tree = await axTree(page);
+    const node = tree.find((n) => n.role === 'combobox' && /Preset/.test(n.name));
+    preset = node && { name: node.name, box: (await boxes(page, [node]))[0] };
+  }
+  assert.ok(preset?.box && preset.box.y + preset.box.height < view.height, `the menu in sight: ${JSON.stringify(preset)}`);
+  assert.equal(preset.name, 'Preset');
+  // No element of the mirror says words of its own beside its parts.
+  const both = await page.evaluate(() => [...document.querySelectorAll('#armlab_a11y *')]
+    .filter((e) => e.children.length > 0 && [...e.childNodes].some((c) => c.nodeType === Node.TEXT_NODE && c.textContent.trim()))
+    .map((e) => e.textContent));
+  assert.deepEqual(both, []);
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});

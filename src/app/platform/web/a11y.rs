@@ -340,6 +340,12 @@ impl Mirror {
             let Some(parent) = self.nodes.get(&id).map(|m| m.el.clone()) else {
                 continue;
             };
+            if !children.is_empty() && parent.first_element_child().is_none() {
+                // A text gaining parts (egui gives a label its text once it is drawn in
+                // sight) keeps only theirs: its own words besides would name the control it
+                // labels twice, "Preset Preset".
+                parent.set_text_content(None);
+            }
             for child in children {
                 if let Some(c) = self.nodes.get(&child) {
                     let _ = parent.append_child(&c.el);
