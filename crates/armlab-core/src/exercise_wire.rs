@@ -181,6 +181,9 @@ fn decode_diagnosis(kind: u8, f: &Fields<'_>) -> Option<Diagnosis> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    // On wasm the tests are wasm_bindgen_tests, run in Node like the other core tests.
+    #[cfg(target_arch = "wasm32")]
+    use wasm_bindgen_test::wasm_bindgen_test as test;
 
     /// One verdict of each kind, with fields that tell a swap apart.
     fn every_kind() -> Vec<Verdict> {
