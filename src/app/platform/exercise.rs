@@ -5,16 +5,8 @@
 use armlab_core::Robot;
 use armlab_core::exercise::Verdict;
 
-/// Where a check is.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Checked {
-    /// Its verdict.
-    Ready(Verdict),
-    /// Being made by the module, which may itself still be loading.
-    Loading,
-    /// The module could not be loaded, or it threw: the words.
-    Failed(String),
-}
+/// Where a check is: its verdict once made.
+pub type Checked = super::Answer<Verdict>;
 
 /// The verdict on `student`'s table against `reference`: natively at once; in the page the
 /// first call for the pair asks the module and answers [`Checked::Loading`] until its

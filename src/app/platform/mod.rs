@@ -15,6 +15,18 @@ pub mod symbolic;
 #[cfg(target_arch = "wasm32")]
 pub mod web;
 
+/// Where a result is that the page asks its lazily loaded module for (natively it is
+/// made at once): the symbolic tables, the exercise's verdict, the join link's QR code.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Answer<T> {
+    /// Made.
+    Ready(T),
+    /// Being made by the module, which may itself still be loading.
+    Loading,
+    /// The module could not be loaded, or it threw: the words.
+    Failed(String),
+}
+
 /// A link to this state: the page's address with the hash replaced.
 pub fn share_link(hash: &str) -> String {
     #[cfg(target_arch = "wasm32")]

@@ -8,15 +8,7 @@ use armlab_core::Robot;
 use armlab_core::symbolic_tables::SymbolicTables;
 
 /// Where a robot's symbolic tables are.
-#[derive(Debug, Clone)]
-pub enum Tables {
-    /// Made.
-    Ready(Rc<SymbolicTables>),
-    /// Being made by the module, which may itself still be loading.
-    Loading,
-    /// The module could not be loaded, or it threw: the words.
-    Failed(String),
-}
+pub type Tables = super::Answer<Rc<SymbolicTables>>;
 
 /// The symbolic tables of `robot`: natively at once; in the page the first call for a
 /// robot asks the module and answers [`Tables::Loading`] until its answer is there (the

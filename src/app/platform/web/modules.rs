@@ -5,13 +5,16 @@
 //! neither the symbolic algebra, the exercise's check nor a QR encoder).
 
 use std::cell::{Cell, RefCell};
+use std::thread::LocalKey;
 
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
 use super::{js_error_text, wake};
+use crate::app::platform::Answer;
 use crate::app::platform::exercise::Checked;
 use crate::app::platform::symbolic::Tables;
+use armlab_core::exercise::Verdict;
 use std::rc::Rc;
 
 use armlab_core::symbolic::EntryText;
@@ -27,13 +30,13 @@ thread_local! {
     /// The collision check's side of the module: its `collide_parts` once loaded.
     static COLLIDE: RefCell<CollideModule> = const { RefCell::new(CollideModule::Idle) };
     /// The symbolic tables of the robot last asked for (its robot file) and where they are.
-    static SYMBOLIC: RefCell<Option<(String, Tables)>> = const { RefCell::new(None) };
-    /// The QR code of the text last asked for: `None` inside while it is being made, or
-    /// when it could not be.
+    static SYMBOLIC: Slot<Rc<SymbolicTables>> = const { RefCell::new(None) };
     /// The exercise check last asked for (the reference's and the student's robot files)
     /// and where it is.
-    static CHECK: RefCell<Option<(String, Checked)>> = const { RefCell::new(None) };
-    static QR: RefCell<Option<(String, Option<Rc<QrModules>>)>> = const { RefCell::new(None) };
+    static CHECK: Slot<Verdict> = const { RefCell::new(None) };
+    /// The QR code of the text last asked for and where it is (failed, too, for a text too
+    /// long for a QR code).
+    static QR: Slot<Rc<QrModules>> = const { RefCell::new(None) };
 }
 
 /// The URDF module's glue, beside the page (tools/setup.sh, `build_urdf_module`).
@@ -193,145 +196,115 @@ pub fn retry_collision_module() {
     });
 }
 
-/// The symbolic tables of `robot`, from the module: the first call for a robot starts
-/// making them (and loading the module) and answers [`Tables::Loading`], as every call does
-/// until the answer is there.
-pub fn symbolic_tables(robot: &armlab_core::Robot) -> Tables {
-    let file = armlab_core::robot_to_json(robot);
-    let known = SYMBOLIC.with(|s| match &*s.borrow() {
-        Some((made_for, tables)) if *made_for == file => Some(tables.clone()),
+/// One answer the module makes, kept for the key (a robot file, a text) it was last asked
+/// for.
+type Slot<T> = RefCell<Option<(String, Answer<T>)>>;
+
+/// The answer for `key` in `slot`: the one kept when `key` was asked last; otherwise `key`
+/// takes the slot as loading and the module is asked (`ask` with the module, once it is
+/// loaded, and `key`), and its answer fills the slot when it comes, if `key` is still the
+/// one asked for (the robot may have changed meanwhile: its own request is under way). The
+/// frame is woken then. A frame that finds its answer kept allocates nothing.
+fn from_module<T: Clone + 'static>(
+    slot: &'static LocalKey<Slot<T>>,
+    key: &str,
+    ask: fn(&JsValue, &str) -> Result<T, String>,
+) -> Answer<T> {
+    let known = slot.with(|s| match &*s.borrow() {
+        Some((asked, answer)) if asked == key => Some(answer.clone()),
         _ => None,
     });
-    if let Some(tables) = known {
-        return tables;
+    if let Some(answer) = known {
+        return answer;
     }
-    SYMBOLIC.with(|s| *s.borrow_mut() = Some((file.clone(), Tables::Loading)));
+    let key = key.to_string();
+    slot.with(|s| *s.borrow_mut() = Some((key.clone(), Answer::Loading)));
     wasm_bindgen_futures::spawn_local(async move {
-        let answer = match urdf_module(|| ()).await {
-            Ok(module) => call_urdf_module(&module, "symbolic_tables", &[&file]).and_then(|text| {
-                SymbolicTables::from_text(&text).ok_or_else(|| "unreadable tables".to_string())
-            }),
-            Err(e) => Err(e),
+        let answer = match urdf_module(|| ()).await.and_then(|m| ask(&m, &key)) {
+            Ok(made) => Answer::Ready(made),
+            Err(e) => Answer::Failed(e),
         };
-        let tables = match answer {
-            Ok(tables) => Tables::Ready(std::rc::Rc::new(tables)),
-            Err(e) => Tables::Failed(e),
-        };
-        SYMBOLIC.with(|s| {
-            // The robot may have changed meanwhile: its own request is under way.
-            if let Some((made_for, state)) = &mut *s.borrow_mut()
-                && *made_for == file
+        slot.with(|s| {
+            if let Some((asked, kept)) = &mut *s.borrow_mut()
+                && *asked == key
             {
-                *state = tables;
+                *kept = answer;
             }
         });
         wake();
     });
-    Tables::Loading
+    Answer::Loading
+}
+
+/// After a failure kept in `slot`: the next call asks the module again.
+fn forget_failure<T>(slot: &'static LocalKey<Slot<T>>) {
+    slot.with(|s| {
+        let mut s = s.borrow_mut();
+        if matches!(&*s, Some((_, Answer::Failed(_)))) {
+            *s = None;
+        }
+    });
+}
+
+/// The symbolic tables of `robot`, from the module: the first call for a robot starts
+/// making them (and loading the module) and answers [`Answer::Loading`], as every call does
+/// until the answer is there.
+pub fn symbolic_tables(robot: &armlab_core::Robot) -> Tables {
+    from_module(
+        &SYMBOLIC,
+        &armlab_core::robot_to_json(robot),
+        |module, file| {
+            let text = call_urdf_module(module, "symbolic_tables", &[file])?;
+            SymbolicTables::from_text(&text)
+                .map(Rc::new)
+                .ok_or_else(|| "unreadable tables".to_string())
+        },
+    )
 }
 
 /// The verdict on `student`'s table against `reference`, from the module: the first call
 /// for the pair starts the check (and loading the module) and answers
-/// [`Checked::Loading`], as every call does until the answer is there.
+/// [`Answer::Loading`], as every call does until the answer is there.
 pub fn check_table(reference: &armlab_core::Robot, student: &armlab_core::Robot) -> Checked {
-    let files = [reference, student].map(armlab_core::robot_to_json);
-    let key = files.join("\n");
-    let known = CHECK.with(|c| match &*c.borrow() {
-        Some((made_for, checked)) if *made_for == key => Some(checked.clone()),
-        _ => None,
-    });
-    if let Some(checked) = known {
-        return checked;
-    }
-    CHECK.with(|c| *c.borrow_mut() = Some((key.clone(), Checked::Loading)));
-    wasm_bindgen_futures::spawn_local(async move {
-        let answer = match urdf_module(|| ()).await {
-            Ok(module) => call_check(&module, &files),
-            Err(e) => Err(e),
-        };
-        let checked = match answer {
-            Ok(verdict) => Checked::Ready(verdict),
-            Err(e) => Checked::Failed(e),
-        };
-        CHECK.with(|c| {
-            if let Some((made_for, state)) = &mut *c.borrow_mut()
-                && *made_for == key
-            {
-                *state = checked;
-            }
-        });
-        wake();
-    });
-    Checked::Loading
-}
-
-/// The module's `check_table` of the two robot files: the verdict its numbers encode.
-fn call_check(
-    module: &JsValue,
-    files: &[String; 2],
-) -> Result<armlab_core::exercise::Verdict, String> {
-    let function = module_function(module, "check_table")?;
-    let answer = function
-        .call2(
-            &JsValue::NULL,
-            &files[0].as_str().into(),
-            &files[1].as_str().into(),
-        )
-        .map_err(|e| js_error_text(&e))?;
-    let numbers = js_sys::Float64Array::new(&answer).to_vec();
-    armlab_core::exercise_wire::decode_verdict(&numbers)
-        .ok_or_else(|| "an unreadable verdict".to_string())
+    // The two robot files apart by a NUL, which JSON text never holds unescaped.
+    let files = [reference, student]
+        .map(armlab_core::robot_to_json)
+        .join("\0");
+    from_module(&CHECK, &files, |module, files| {
+        let (reference, student) = files.split_once('\0').ok_or("no student's table")?;
+        let answer = module_function(module, "check_table")?
+            .call2(&JsValue::NULL, &reference.into(), &student.into())
+            .map_err(|e| js_error_text(&e))?;
+        let numbers = js_sys::Float64Array::new(&answer).to_vec();
+        armlab_core::exercise_wire::decode_verdict(&numbers)
+            .ok_or_else(|| "an unreadable verdict".to_string())
+    })
 }
 
 /// After a failure: the next check asks the module again.
 pub fn retry_check() {
-    CHECK.with(|c| {
-        let mut c = c.borrow_mut();
-        if matches!(&*c, Some((_, Checked::Failed(_)))) {
-            *c = None;
-        }
-    });
+    forget_failure(&CHECK);
 }
 
 /// The QR code of `text`, from the module: the first call for a text starts making it
 /// (and loading the module) and answers `None`, as every call does until it is there. A
 /// text too long for a QR code, or a module that failed, stays `None` for that text.
 pub fn qr_code(text: &str) -> Option<Rc<QrModules>> {
-    let known = QR.with(|q| match &*q.borrow() {
-        Some((made_for, code)) if made_for == text => Some(code.clone()),
-        _ => None,
+    let answer = from_module(&QR, text, |module, text| {
+        let code = call_urdf_module(module, "qr_code", &[text])?;
+        QrModules::from_text(&code)
+            .map(Rc::new)
+            .ok_or_else(|| "too long for a QR code".to_string())
     });
-    if let Some(code) = known {
-        return code;
+    match answer {
+        Answer::Ready(code) => Some(code),
+        Answer::Loading | Answer::Failed(_) => None,
     }
-    let text = text.to_string();
-    QR.with(|q| *q.borrow_mut() = Some((text.clone(), None)));
-    wasm_bindgen_futures::spawn_local(async move {
-        let code = match urdf_module(|| ()).await {
-            Ok(module) => call_urdf_module(&module, "qr_code", &[&text]).ok(),
-            Err(_) => None,
-        };
-        let code = code.and_then(|c| QrModules::from_text(&c)).map(Rc::new);
-        QR.with(|q| {
-            if let Some((made_for, state)) = &mut *q.borrow_mut()
-                && *made_for == text
-            {
-                *state = code;
-            }
-        });
-        wake();
-    });
-    None
 }
 
 /// After a failure: the next call asks the module again.
 pub fn retry_symbolic_tables() {
-    SYMBOLIC.with(|s| {
-        let mut s = s.borrow_mut();
-        if matches!(&*s, Some((_, Tables::Failed(_)))) {
-            *s = None;
-        }
-    });
+    forget_failure(&SYMBOLIC);
 }
 
 /// The symbolic tables' state for the test hook (see `platform::symbolic`).
