@@ -84,11 +84,17 @@ test('every panel\'s controls are in the accessibility tree with their roles, na
   assert.deepEqual(errors, []);
 });
 
-test('the tree\'s root is no unnamed dialog: a screen reader says none before the controls', async () => {
+test('the tree\'s root is no unnamed dialog, and no field is nameless: a screen reader says none before the controls', async () => {
   const { page, errors } = await openKept(SHOWN);
   const tree = await axTree(page);
   const dialogs = tree.filter((n) => n.role === 'dialog' && !n.name);
   assert.equal(dialogs.length, 0, `unnamed dialogs: ${dialogs.length}`);
+  // eframe's hidden text field, which takes the keys while no control has them, is said
+  // by the 3D view's name.
+  assert.equal(await page.evaluate(() => document.querySelector('#armlab_canvas+input')?.getAttribute('aria-labelledby')), 'armlab_canvas');
+  const fields = tree.filter((n) => n.role === 'textbox');
+  assert.deepEqual(fields.filter((n) => !n.name).length, 0, `nameless fields among ${fields.length}`);
+  assert.ok(find(tree, 'textbox', 'The robot arm in 3D'), 'the keys\' field has the view\'s name');
   // The controls are still there, under the mirror's root.
   assert.ok(find(tree, 'button', 'Solve'));
   assert.deepEqual(errors, []);

@@ -204,9 +204,14 @@ pub fn describe(
                 .owner_document()
                 .and_then(|d| d.get_element_by_id("armlab_canvas"))
         {
-            let _ = canvas.set_attribute("role", "img");
             let _ = canvas.set_attribute("aria-label", name);
             let _ = canvas.set_attribute("aria-description", description);
+            // eframe's hidden text field beside the canvas takes the keys while no control
+            // has them (the 3D view's): it is said by the view's name, not as a nameless
+            // "entry".
+            if let Some(keys) = canvas.next_element_sibling() {
+                let _ = keys.set_attribute("aria-labelledby", "armlab_canvas");
+            }
             *named = name;
         }
         let now = crate::app::platform::clock::now_ms();
