@@ -33,13 +33,16 @@ const indexPath = path.join(dir, 'index.html');
 let index = fs.readFileSync(indexPath, 'utf8');
 // The page's glue (the first load). The URDF module's glue in urdf/ stays as wasm-bindgen
 // wrote it: it loads only when a URDF file is opened or saved.
+/** `code` (an ES module) minified for browsers of `target`'s year. */
+const minify = (code, target = 'es2020') =>
+  transformSync(code, { minify: true, format: 'esm', target, legalComments: 'none' }).code;
 const glue = fs.readdirSync(dir).filter((f) => f.endsWith('.js') && f !== 'service-worker.js');
 let before = 0;
 let after = 0;
 for (const file of glue) {
   const full = path.join(dir, file);
   const source = fs.readFileSync(full, 'utf8');
-  const { code } = transformSync(source, { minify: true, format: 'esm', target: 'es2020', legalComments: 'none' });
+  const code = minify(source);
   fs.writeFileSync(full, code);
   before += source.length;
   after += code.length;
@@ -53,7 +56,7 @@ for (const file of glue) {
 // canvas, </body></html> at the end): the parser builds the same document without them.
 const loader = (code) => code.replace(/window\.wasmBindings\s*=\s*bindings;?/, '');
 index = index.replace(/(<script type=module>)([\s\S]*?)(<\/script>)/, (_, open, code, close) =>
-  open + transformSync(loader(code), { minify: true, format: 'esm', target: 'es2022' }).code.trim() + close);
+  open + minify(loader(code), 'es2022').trim() + close);
 fs.writeFileSync(indexPath, index.replace('</head><body>', '').replace(/<\/body><\/html>\s*$/, ''));
 console.log(`minify-build: ${glue.length} JS files, ${before} → ${after} bytes`);
 
