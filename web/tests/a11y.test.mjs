@@ -464,8 +464,9 @@ test('a label that comes into sight names its control once: "Preset", not "Prese
   const { page, errors } = await open('#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3&task=position',
     { view, contextOptions: { deviceScaleFactor: 2, reducedMotion: 'reduce' } });
   const rect = await page.evaluate(() => window.armlab.viewRect());
+  const inSight = (found) => Boolean(found?.box) && found.box.y + found.box.height < view.height;
   let preset;
-  for (let i = 0; i < 8 && !(preset?.box?.y + preset?.box?.height < view.height); i++) {
+  for (let i = 0; i < 8 && !inSight(preset); i++) {
     await page.mouse.move(rect.x / 2, rect.y + rect.height / 2);
     await page.mouse.wheel(0, 150);
     await settle(page, 1);
@@ -475,7 +476,7 @@ test('a label that comes into sight names its control once: "Preset", not "Prese
     const node = tree.find((n) => n.role === 'combobox' && /Preset/.test(n.name));
     preset = node && { name: node.name, box: (await boxes(page, [node]))[0] };
   }
-  assert.ok(preset?.box && preset.box.y + preset.box.height < view.height, `the menu in sight: ${JSON.stringify(preset)}`);
+  assert.ok(inSight(preset), `the menu in sight: ${JSON.stringify(preset)}`);
   assert.equal(preset.name, 'Preset');
   // No element of the mirror says words of its own beside its parts.
   const both = await page.evaluate(() => [...document.querySelectorAll('#armlab_a11y *')]
