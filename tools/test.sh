@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every test (installing what is missing): fmt, clippy (every crate, native and
-# wasm32), the libraries' tests natively and as wasm in Node (same counts), the UI tests
-# (egui_kittest on lavapipe), the JS API in Node, and the built page in headless Chromium.
+# wasm32; natively within the test build), the docs, the libraries' tests natively and as
+# wasm in Node (same counts), the UI tests (egui_kittest on lavapipe), the JS API in Node,
+# and the built page in headless Chromium.
 # Each part is a named step (tools/steps.sh): when one fails, the run ends naming it, with
 # the totals line `N passed, M failed`.
 set -euo pipefail
@@ -68,12 +69,11 @@ LIBS=()
 for lib in "${LIB_NAMES[@]}"; do LIBS+=(-p "$lib"); done
 
 run fmt cargo fmt --all --check
-# Every feature of the workspace's crates; the docs take the same, so that they reuse the
-# lint's check of every dependency.
+# Every feature of the workspace's crates.
 FEATURES=armlab-js/urdf,armlab-bench/frame,armlab-bench/classroom
-run clippy-native cargo clippy --workspace --all-targets --features "$FEATURES" -- -D warnings
 # The app, the libraries and the JS package in one check, so that the dependencies they
-# share are checked once, with their features joined.
+# share are checked once, with their features joined. The native lint is part of the native
+# test build below.
 run clippy-wasm cargo clippy --target wasm32-unknown-unknown -p armlab "${LIBS[@]}" -p armlab-js --features armlab-js/urdf \
   --lib --bin armlab --tests -- -D warnings
 
@@ -97,7 +97,14 @@ if grep -rnE '\b(egui|eframe|wgpu|web_sys|wasm_bindgen|js_sys|armlab_text)::' cr
 fi
 
 say "the docs build without warnings"
-run doc env RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --workspace --features "$FEATURES" -q
+# For wasm32, where rustdoc reads the dependencies as the wasm lint above checked them; a
+# native doc would check every native dependency first, which nothing else does natively
+# (the native lint is a build): about 5 min of CPU on a new machine. The classroom server,
+# which has no wasm build, natively. The app's desktop-only code (platform/native) is then
+# not in the docs; the native lint reads it.
+run doc env RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --target wasm32-unknown-unknown \
+  -p armlab "${LIBS[@]}" -p armlab-js --features armlab-js/urdf -q
+run doc-server env RUSTDOCFLAGS="-D warnings" cargo doc --no-deps -p armlab-classroom -q
 
 step "every test file runs: a test binary of its crate or a module of one; a JS test in a suite's folder"
 for dir in . crates/*; do
@@ -142,9 +149,16 @@ done < <(find web -path web/node_modules -prune -o -name '*.test.mjs' -print)
 # that the packages built together ask for, so the libraries, the classroom server and the
 # app, each built alone, compiled nalgebra, parry3d, serde and some 30 more crates two or
 # three times. Each suite then runs its packages' programs from that build.
-NATIVE=("${LIBS[@]}" -p armlab-classroom -p armlab)
+# The same build is the native lint: cargo hands the workspace's own crates to
+# tools/lint-rustc (clippy-driver, with -D warnings) in place of rustc, as `cargo clippy`
+# does, and clippy-driver compiles each crate once it has linted it. `cargo clippy` itself
+# checks every dependency without compiling it, work no build can reuse (on a new machine
+# about 5 min of CPU). Hence every target of every crate, with every feature: the
+# benchmarks and the binaries are linted too, though only the test programs run.
+NATIVE=(--workspace --features "$FEATURES")
+native_cargo() { RUSTC_WORKSPACE_WRAPPER="$ROOT/tools/lint-rustc" cargo "$@"; }
 native_build() { # the JSON lists the test programs (native_tests); the words go to the log
-  cargo test "${NATIVE[@]}" --tests --no-run --message-format=json-render-diagnostics >"$LOG/native-tests.json"
+  native_cargo test "${NATIVE[@]}" --all-targets --no-run --message-format=json-render-diagnostics >"$LOG/native-tests.json"
 }
 native_tests() { # native_tests PACKAGE...: as cargo test runs them, in the package's folder, until one fails
   local pkg dir exe
@@ -156,17 +170,18 @@ native_tests() { # native_tests PACKAGE...: as cargo test runs them, in the pack
     for (const line of require("fs").readFileSync(process.argv[1], "utf8").split("\n")) {
       if (!line.startsWith("{")) continue;
       const m = JSON.parse(line);
-      if (m.reason !== "compiler-artifact" || !m.profile.test || !m.executable) continue;
+      // The targets cargo test runs: not the benchmarks, nor the binaries without tests.
+      if (m.reason !== "compiler-artifact" || !m.profile.test || !m.target.test || !m.executable) continue;
       // "path+file:///dir#name@version", or "…/name#version" where the folder is named so.
       const [url, tail] = m.package_id.split("#");
       const name = tail.includes("@") ? tail.split("@")[0] : url.split("/").pop();
       console.log([name, require("path").dirname(m.manifest_path), m.executable].join("\t"));
     }' "$LOG/native-tests.json")
 }
-run native-build native_build
+run native-clippy-build native_build
 run libs-native native_tests "${LIB_NAMES[@]}"
 add libs-native
-run libs-doc cargo test "${NATIVE[@]}" --doc
+run libs-doc native_cargo test "${NATIVE[@]}" --doc
 add libs-doc
 
 at "install Debian packages (${DEBIAN_TEST_PACKAGES[*]}; in the background)"
