@@ -7,6 +7,7 @@ fn main() -> eframe::Result {
         viewport: egui::ViewportBuilder::default()
             .with_title("ArmLab")
             .with_inner_size([1400.0, 860.0]),
+        dithering: armlab::app::DITHERING,
         ..Default::default()
     };
     // A hash on the command line opens that state, like a shared link: `armlab '#robot=ur10'`.

@@ -56,6 +56,13 @@ pub struct Preferences {
     pub reduced_motion: bool,
 }
 
+/// Whether egui dithers its colours (eframe's `dithering`, in the page and the desktop app).
+/// Off: the 3D view's picture and the theme are 8-bit colours, which dithering leaves as
+/// they are; on an anti-aliased edge it moves a pixel by one level at most, while its
+/// noise cost about a fifth of a frame's CPU on a software renderer. The UI tests'
+/// renderer never dithers either.
+pub const DITHERING: bool = false;
+
 /// The first character of a session stored as JSON (an object), written as an escape.
 const JSON_OBJECT: char = '\u{7b}';
 

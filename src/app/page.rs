@@ -7,7 +7,7 @@ use wasm_bindgen::JsCast;
 
 use crate::app::platform::clock::now_ms;
 use crate::app::platform::web::{self, hook, room, storage};
-use crate::app::{ArmLabApp, Preferences};
+use crate::app::{ArmLabApp, DITHERING, Preferences};
 
 /// Starts the app on `#armlab_canvas`; replaces the loading text by the app, or by a
 /// sentence when the browser has no WebGL2 (the page draws through wgpu's WebGL2 backend).
@@ -34,6 +34,7 @@ pub fn start() {
             // preventDefault inside passive event listener". The canvas's CSS
             // `touch-action: none` already keeps the page from scrolling or zooming.
             should_prevent_default: Box::new(|e| !matches!(e, egui::Event::PointerMoved(_))),
+            dithering: DITHERING,
             ..eframe::WebOptions::default()
         };
         let preferences = browser_preferences(&window);

@@ -76,12 +76,15 @@ test('WebGL2 colours match the native (lavapipe) snapshot', async () => {
   // Navigation to the first drawn frame (performance.now() counts from navigation start).
   measurements.first_frame_ms = Math.round(await page.evaluate(() => window.armlab.firstFrameAt()));
   measurements.ready_wall_ms = Date.now() - started;
-  // index.html's shim gives egui's fragment shader the page's value of its snapshot-only
-  // option (0) in place of the uniform it reads, so that SwiftShader does not run the
-  // unused side for every pixel. If an egui or naga update renames what the GLSL reads,
-  // the shim finds nothing: this fails, and the colours below check the folded shader.
-  const folds = await page.evaluate(() => window.armlabShaderFolds ?? 0);
-  assert.ok(folds >= 1, `egui's fragment shader was folded by index.html's shim (${folds} times)`);
+  // index.html's shim gives egui's fragment shader the page's values of two options (0:
+  // no snapshot-test filtering, no dithering) in place of the uniforms it reads, so that
+  // SwiftShader does not run the unused sides for every pixel. If an egui or naga update
+  // renames what the GLSL reads, the shim finds nothing: this fails, and the colours below
+  // check the folded shader.
+  const folds = await page.evaluate(() => window.armlabShaderFolds ?? {});
+  for (const option of ['predictable_texture_filtering', 'dithering']) {
+    assert.ok(folds[option] >= 1, `egui's fragment shader's ${option} was folded by index.html's shim (${JSON.stringify(folds)})`);
+  }
   const web = await pixels(page, await page.screenshot());
   const native = await pixels(page, fs.readFileSync(snapshot));
   assert.equal(native.width, web.width);
