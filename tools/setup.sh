@@ -183,16 +183,17 @@ build_urdf_module() {
   if [ "${TRUNK_PROFILE:-release}" = release ]; then flags+=(--release); else profile=debug; fi
   (cd "$ROOT" && CARGO_TARGET_DIR="$target" cargo rustc -q "${flags[@]}") || return 1
   local wasm="$target/wasm32-unknown-unknown/$profile/armlab_js.wasm"
-  local hash; hash="$(sha256sum "$wasm" | cut -c1-16)"
+  # The page's wasm-opt settings, which the module's build is kept under too.
+  local level params
+  level="$(sed -n 's/.*data-wasm-opt="\([^"]*\)".*/\1/p' "$ROOT/index.html" | head -1)"
+  params="$(sed -n 's/.*data-wasm-opt-params="\([^"]*\)".*/\1/p' "$ROOT/index.html" | head -1)"
+  local hash; hash="$({ cat "$wasm"; echo "$profile $level $params"; } | sha256sum | cut -c1-16)"
   local kept="$target/bindgen/$hash"
   if [ ! -f "$kept/armlab_urdf.js" ]; then
     rm -rf "$target/bindgen" && mkdir -p "$kept.tmp" || return 1
     wasm-bindgen --target web --no-typescript --out-dir "$kept.tmp" --out-name "armlab_urdf-$hash" "$wasm" || return 1
     mv "$kept.tmp/armlab_urdf-$hash.js" "$kept.tmp/armlab_urdf.js"
     if [ "$profile" = release ]; then
-      local level params
-      level="$(sed -n 's/.*data-wasm-opt="\([^"]*\)".*/\1/p' "$ROOT/index.html" | head -1)"
-      params="$(sed -n 's/.*data-wasm-opt-params="\([^"]*\)".*/\1/p' "$ROOT/index.html" | head -1)"
       # shellcheck disable=SC2086 # params is a list of flags
       wasm-opt "-O${level:-z}" $params "$kept.tmp/armlab_urdf-${hash}_bg.wasm" -o "$kept.tmp/armlab_urdf-${hash}_bg.wasm" || return 1
     fi
