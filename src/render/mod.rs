@@ -456,7 +456,12 @@ impl SceneRenderer {
         let stale = self.targets.as_ref().is_none_or(|t| t.size != size);
         if stale {
             let targets = make_targets(&render_state.device, size, self.sample_count);
-            self.texture_id = Some(show_texture(render_state, &targets, self.texture_id));
+            self.texture_id = Some(show_texture(
+                render_state,
+                &targets,
+                self.texture_id,
+                Quality::Full,
+            ));
             self.drawn.clear();
             self.changed_at = None;
             self.targets = Some(targets);
@@ -473,12 +478,12 @@ impl SceneRenderer {
         let moving = self.moving.get_or_insert_with(|| {
             let pipelines = Pipelines::new(device, layout, 1);
             let targets = make_targets(device, size, 1);
-            let id = show_texture(render_state, &targets, None);
+            let id = show_texture(render_state, &targets, None, Quality::Moving);
             (pipelines, Some(targets), id)
         });
         if moving.1.as_ref().is_none_or(|t| t.size != size) {
             let targets = make_targets(device, size, 1);
-            moving.2 = show_texture(render_state, &targets, Some(moving.2));
+            moving.2 = show_texture(render_state, &targets, Some(moving.2), Quality::Moving);
             moving.1 = Some(targets);
         }
         moving.2
