@@ -12,7 +12,7 @@ import path from 'node:path';
 import { dist, shots, state, settle, until, point, pageOpener, pixels, at, close } from './page.mjs';
 import { CONTROLS, axTree, boxes } from './axtree.mjs';
 
-const suite = browserSuite(dist);
+const suite = browserSuite(dist, { untimed: true });
 const { open, openKept } = pageOpener(suite, { view: { width: 1366, height: 768 } });
 // The pose the tests that only read the tree share one page of.
 const SHOWN = '#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3';

@@ -13,6 +13,7 @@ import path from 'node:path';
 
 import { dist, newPage, ready, settle, state, point } from './page.mjs';
 import { launchChromium } from './static-server.mjs';
+import { UNTIMED } from './browser-suite.mjs';
 
 /** The classroom server the test command's classroom step built (debug), unless named. */
 const SERVER = process.env.ARMLAB_CLASSROOM_BIN
@@ -57,7 +58,7 @@ before(async () => {
   assert.ok(fs.existsSync(SERVER), `the classroom server is built (${SERVER}: cargo test -p armlab-classroom builds it)`);
   port = await freePort();
   server = await startServer();
-  browser = await launchChromium();
+  browser = await launchChromium(UNTIMED);
 });
 
 after(async () => {

@@ -11,7 +11,7 @@ import { dist, shots, state, settle, click, until, moduleRequests, pageOpener } 
 
 const VIEW = { width: 1280, height: 720 }; // a lecture-hall projector
 
-const suite = browserSuite(dist);
+const suite = browserSuite(dist, { untimed: true });
 // Uncaught exceptions count as errors here, not what the page logs to the console. No
 // service worker: it would fetch the lazily loaded module for the cache after the first
 // frame, and the tests count the page's own fetches of it.

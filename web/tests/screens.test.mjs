@@ -13,7 +13,7 @@ import { dist, shots, SCREENS, state, point, settle, typeIntoDhCell, pageOpener 
 
 const measurements = {};
 
-const suite = browserSuite(dist, { label: 'ARMLAB_SCREENS_MEASUREMENTS', measurements });
+const suite = browserSuite(dist, { label: 'ARMLAB_SCREENS_MEASUREMENTS', measurements, untimed: true });
 const { openAt } = pageOpener(suite);
 
 after(() => fs.writeFileSync(path.join(shots, 'screens-measurements.json'), JSON.stringify(measurements, null, 2)));

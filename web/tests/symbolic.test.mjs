@@ -16,7 +16,7 @@ import { dist, state, until as waitFor, point, moduleRequests, pageOpener } from
 // Tall enough that the Matrices panel's "symbolic" tick is on screen below the Jacobian.
 const VIEW = { width: 1400, height: 1400 };
 
-const suite = browserSuite(dist);
+const suite = browserSuite(dist, { untimed: true });
 const { open } = pageOpener(suite, {
   view: VIEW, contextOptions: { serviceWorkers: 'block' }, consoleErrors: false, waitUntil: 'load', settled: false,
 });

@@ -95,7 +95,7 @@ const BROKEN_URDF = `<?xml version="1.0"?>
 const READY = [0, -Math.PI / 4, 0, -3 * Math.PI / 4, 0, Math.PI / 2, Math.PI / 4];
 const READY_FLANGE = [0.3069, 0, 0.5903];
 
-const suite = browserSuite(dist);
+const suite = browserSuite(dist, { untimed: true });
 
 /** A fresh page on `hash` (own storage, no service worker), every request's URL and the
  * console errors recorded. */
