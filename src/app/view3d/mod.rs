@@ -24,6 +24,7 @@ pub mod scene;
 pub mod workspace;
 
 use eframe::egui_wgpu::RenderState;
+use egui::emath::GuiRounding;
 use egui::{Color32, Pos2, Rect, Sense};
 use nalgebra::{Point3, Vector3};
 
@@ -666,16 +667,11 @@ fn draw_labels(
 const EXERCISE_FILL: f64 = 0.72;
 
 /// `rect` on whole pixels: the view's picture is drawn at its size in pixels and shown
-/// one texel to a pixel, sharp (egui places panels on 1/32 of a point). Ties go to even,
-/// one wasm instruction; and out of line, since inlined into the view's `ui` it cost the
-/// page about 60 B more.
+/// one texel to a pixel, sharp (egui places panels on 1/32 of a point). Out of line:
+/// inlined into the view's `ui` it cost the page about 60 B more.
 #[inline(never)]
 fn on_pixels(rect: Rect, ppp: f32) -> Rect {
-    let px = |v: f32| (v * ppp).round_ties_even() / ppp;
-    Rect::from_min_max(
-        Pos2::new(px(rect.min.x), px(rect.min.y)),
-        Pos2::new(px(rect.max.x), px(rect.max.y)),
-    )
+    rect.round_to_pixels(ppp)
 }
 
 /// Pans and zooms so the picture of `points` is centred in a view of `size` and fills
