@@ -82,9 +82,26 @@ export async function until(page, check, what, { tries = 600, pause = 20, x, det
   throw new Error(`waited ${(tries * pause) / 1000} s for ${what}: ${JSON.stringify(detail(await state(page)))}`);
 }
 
-/** Clicks where the app drew `name`, then waits for `frames` more frames (none: no wait). */
+/**
+ * Where the app drew `name` in two frames running: a panel that is still laying itself out
+ * (its first frames, a fold opening, a line appearing above) moves its widgets between
+ * frames, and a click at the older place misses.
+ */
+export async function steadyPoint(page, name) {
+  let p = await point(page, name);
+  for (let i = 0; i < 20; i++) {
+    await settle(page, 1);
+    const q = await point(page, name);
+    if (q.x === p.x && q.y === p.y) return q;
+    p = q;
+  }
+  throw new Error(`"${name}" kept moving for 20 frames`);
+}
+
+/** Clicks where the app draws `name` (steadyPoint), then waits for `frames` more frames
+ * (none: no wait). */
 export async function click(page, name, frames = 3) {
-  const p = await point(page, name);
+  const p = await steadyPoint(page, name);
   await page.mouse.click(p.x, p.y);
   if (frames > 0) await settle(page, frames);
 }
