@@ -3,7 +3,6 @@
 //! its answers. The room's state is [`Classroom`]; this draws it and turns clicks into
 //! its calls.
 
-use armlab_core::JointKind;
 use armlab_room::Question;
 use armlab_text::Key;
 
@@ -298,10 +297,7 @@ fn ask_menu(
     }
     for (i, joint) in model.robot().joints.iter().enumerate() {
         let (_, suffix, _) = joints::shown(model, joint);
-        let symbol = match joint.kind {
-            JointKind::Revolute => format!("θ{}", i + 1),
-            JointKind::Prismatic => format!("d{}", i + 1),
-        };
+        let symbol = crate::app::widgets::math::joint_symbol(i, joint.kind);
         let prompt = trf(model, Key::AskJoint, &[&symbol]);
         asks.push((Asked::Joint(i), number(prompt, suffix.trim())));
     }

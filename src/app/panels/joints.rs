@@ -382,10 +382,7 @@ fn joint_slider(
     value: &mut f64,
     stacked: bool,
 ) -> egui::Response {
-    let symbol = match joint.kind {
-        JointKind::Revolute => format!("θ{}", i + 1),
-        JointKind::Prismatic => format!("d{}", i + 1),
-    };
+    let symbol = crate::app::widgets::math::joint_symbol(i, joint.kind);
     let (scale, suffix, decimals) = shown(model, joint);
     let range = joint.limits.min * scale..=joint.limits.max * scale;
     let mut v = *value * scale;

@@ -2,6 +2,7 @@
 //! subscripts, `x^2` and `T^{-1}` superscripts (smaller, lowered or raised); a letter
 //! standing alone (a variable: `a`, `θ`, `A`) is italic, words (`DH`, `min`) upright.
 
+use armlab_core::JointKind;
 use egui::text::{LayoutJob, TextFormat};
 use egui::{Align, Color32, FontId};
 
@@ -104,4 +105,18 @@ pub fn plain(source: &str) -> String {
         .chars()
         .filter(|c| !matches!(c, '_' | '^' | '\u{7b}' | '\u{7d}'))
         .collect()
+}
+
+/// The letter of a joint's variable: θ for a revolute joint, d for a prismatic one.
+pub fn joint_variable(kind: JointKind) -> &'static str {
+    match kind {
+        JointKind::Revolute => "θ",
+        JointKind::Prismatic => "d",
+    }
+}
+
+/// Joint `i`'s (from 0) variable with its number, as its slider and the Jacobian's column
+/// are named: θ2, d3.
+pub fn joint_symbol(i: usize, kind: JointKind) -> String {
+    format!("{}{}", joint_variable(kind), i + 1)
 }
