@@ -75,12 +75,15 @@ test('every panel\'s controls are in the accessibility tree with their roles, na
   const fold = find(tree, 'button', 'Jacobian');
   assert.equal(fold.props.expanded, true, 'a fold says whether it is open');
   assert.equal(find(tree, 'button', 'DH table (editable)').props.expanded, false);
-  // The matrix is a table: 4 rows of 4 cells, entry by entry.
+  // The matrix is a table: a row of column headers (a frame's axes and origin), then 4 rows,
+  // each with its header and 4 cells, entry by entry.
   const table = find(tree, 'table', 'T06 (tool pose, mm)');
   const rows = tree.filter((n) => n.parent === table.id && n.role === 'row');
-  assert.equal(rows.length, 4);
-  const cells = rows.map((r) => tree.filter((n) => n.parent === r.id && n.role === 'cell').map((c) => c.name));
-  assert.deepEqual(cells[3], ['0.000', '0.000', '0.000', '1.000']);
+  assert.equal(rows.length, 5);
+  const named = (r, role) => tree.filter((n) => n.parent === r.id && n.role === role).map((c) => c.name);
+  assert.deepEqual(named(rows[0], 'columnheader').filter(Boolean), ['x axis', 'y axis', 'z axis', 'origin']);
+  assert.deepEqual(rows.slice(1).map((r) => named(r, 'rowheader')), [['x'], ['y'], ['z'], ['homogeneous']]);
+  assert.deepEqual(named(rows[4], 'cell'), ['0.000', '0.000', '0.000', '1.000']);
   assert.deepEqual(errors, []);
 });
 
@@ -119,22 +122,50 @@ test('a joint\'s name is said with its slider and its field, not once more as a 
     const name = `θ${j}`;
     assert.ok(find(tree, 'slider', name), `slider ${name}`);
     assert.ok(find(tree, 'spinbutton', name), `field ${name}`);
-    const alone = tree.filter((n) => n.role === 'StaticText' && n.name === name);
+    // (The Jacobian's column header for the joint is a text of its own, in its table.)
+    const header = (n) => tree.find((p) => p.id === n.parent)?.role === 'columnheader';
+    const alone = tree.filter((n) => n.role === 'StaticText' && n.name === name && !header(n));
     assert.equal(alone.length, 0, `${name} as a text of its own: ${alone.length}`);
   }
   assert.deepEqual(errors, []);
 });
 
-test('a matrix table has its caption as its first child', async () => {
+test('a matrix table is named by its caption, its first line', async () => {
   const { page, errors } = await openKept(SHOWN);
   const tree = await axTree(page);
   for (const name of ['T06 (tool pose, mm)', 'J (6×n, base frame)']) {
     const table = find(tree, 'table', name);
     assert.ok(table, name);
+    const from = table.node.name.sources?.find((s) => s.type === 'relatedElement' && s.value);
+    assert.equal(from?.attribute, 'aria-labelledby', `${name}: named by its caption`);
     const first = tree.find((n) => n.parent === table.id);
     assert.equal(first.role, 'caption', `${name}: the first child is a ${first.role}`);
     const words = tree.filter((n) => n.parent === first.id).map((n) => n.name).join('');
     assert.equal(words, name, 'the caption says the name');
+  }
+  // In the page, each table's caption is its first child, and its name.
+  const tables = await page.evaluate(() => [...document.querySelectorAll('#armlab_a11y [role=table]')]
+    .map((t) => [t.firstElementChild?.getAttribute('role'), t.getAttribute('aria-labelledby') === t.firstElementChild?.id]));
+  assert.equal(tables.length, 14);
+  assert.deepEqual(tables.filter(([role, names]) => role !== 'caption' || !names), []);
+  assert.deepEqual(errors, []);
+});
+
+test('every matrix is a table in the tree, those scrolled out of sight too, and stays one frame after frame', async () => {
+  const { page, errors } = await openKept(SHOWN);
+  // T06, J, and each link's A_i and T_0i (the link fold is open): 14, most below the fold.
+  const titles = ['T06 (tool pose, mm)', 'J (6×n, base frame)'];
+  for (let i = 1; i <= 6; i++) titles.push(`T0${i}`);
+  for (let pass = 0; pass < 2; pass++) {
+    await settle(page, 3);
+    await page.evaluate(() => window.armlab.mirrorNow());
+    await settle(page, 2);
+    const tree = await axTree(page);
+    const tables = tree.filter((n) => n.role === 'table');
+    assert.equal(tables.length, 14, `tables: ${tables.map((t) => t.name).join(' | ')}`);
+    for (const title of titles) assert.ok(find(tree, 'table', title), title);
+    const last = find(tree, 'table', 'T06');
+    assert.equal(tree.filter((n) => n.parent === last.id && n.role === 'row').length, 5, 'T06 with its headers');
   }
   assert.deepEqual(errors, []);
 });
@@ -144,7 +175,7 @@ test('a matrix table\'s cells are laid out in its box, row by row', async () => 
   await settle(page, 5);
   // Each cell has a box of its own inside the table's (a highlight or a magnifier shows it).
   const boxes = await page.evaluate(() => [...document.querySelectorAll('#armlab_a11y [role=table]')]
-    .filter((t) => t.getAttribute('aria-label').startsWith('T06 ')).map((t) => {
+    .filter((t) => t.querySelector('[role=caption]').textContent.startsWith('T06 ')).map((t) => {
       const r = (e) => { const b = e.getBoundingClientRect(); return [b.left, b.top, b.right, b.bottom]; };
       return { table: r(t), cells: [...t.querySelectorAll('[role=cell]')].map(r) };
     })[0]);
@@ -342,8 +373,11 @@ test('a lecture by the keyboard alone: robot, joint, target, solve, the Jacobian
   const table = find(tree, 'table', 'J (6×n, base frame)');
   assert.ok(table, 'the Jacobian is a table');
   const rows = tree.filter((n) => n.parent === table.id && n.role === 'row');
-  assert.equal(rows.length, 6);
-  const entry = tree.find((n) => n.parent === rows[5].id && n.role === 'cell');
+  assert.equal(rows.length, 7, 'a row of headers and six rows');
+  const header = (r, role) => tree.filter((n) => n.parent === r.id && n.role === role).map((n) => n.name);
+  assert.deepEqual(header(rows[0], 'columnheader').filter(Boolean), ['θ1', 'θ2', 'θ3', 'θ4', 'θ5', 'θ6']);
+  assert.deepEqual(header(rows[6], 'rowheader'), ['angular velocity z']);
+  const entry = tree.find((n) => n.parent === rows[6].id && n.role === 'cell');
   assert.match(entry.name, /^-?\d+\.\d+$/, `J's entry (6, 1) reads as a number: ${entry?.name}`);
   console.log('KEYBOARD_LECTURE', JSON.stringify({ tabs: steps, joint2: [q0[1], moved.q[1]], target: [t0, t1], entry61: entry.name }));
   assert.deepEqual(errors, []);

@@ -15,6 +15,38 @@ use crate::app::widgets::numbers::number_table;
 use crate::app::widgets::style;
 use armlab_session::settings::Hidden;
 
+/// What a matrix's rows and columns stand for: the headers a screen reader says with an
+/// entry (the panel shows none, the page's mirror of the accessibility tree has them).
+#[derive(Clone, Copy)]
+pub(super) enum Axes<'a> {
+    /// A homogeneous transform: its columns are a frame's x, y and z axes and its origin,
+    /// its rows their x, y and z components and the homogeneous row.
+    Pose,
+    /// The Jacobian: a row per component of the tool's velocity and angular velocity, a
+    /// column per joint.
+    Jacobian(&'a [armlab_core::Joint]),
+}
+
+impl Axes<'_> {
+    /// The row headers and the column headers, each list separated by `|`: the form the
+    /// page's mirror reads from the table's node (`row_index_text`, `column_index_text`).
+    fn headers(self, lang: Lang) -> (String, String) {
+        let (rows, columns) = match self {
+            Axes::Pose => (Key::PoseRowHeaders, Key::PoseColumnHeaders),
+            Axes::Jacobian(joints) => {
+                let symbols: Vec<String> = (joints.iter().enumerate())
+                    .map(|(i, j)| crate::app::widgets::math::joint_symbol(i, j.kind))
+                    .collect();
+                return (
+                    text(lang, Key::JacobianRowHeaders).into(),
+                    symbols.join("|"),
+                );
+            }
+        };
+        (text(lang, rows).into(), text(lang, columns).into())
+    }
+}
+
 /// A matrix with copy buttons; returns true when it is hovered.
 ///
 /// Blocks scrolled out of sight keep their last size without being laid out
@@ -27,7 +59,7 @@ pub(super) fn matrix_block(
     hover: &str,
     m: &DMatrix<f64>,
     decimals: usize,
-    highlighted: bool,
+    (highlighted, axes): (bool, Axes<'_>),
     (target, hiding): (Target, &mut Hiding),
 ) -> bool {
     let frame = egui::Frame::group(ui.style()).stroke(if highlighted {
@@ -41,7 +73,7 @@ pub(super) fn matrix_block(
             .show(ui, |ui| {
                 let over_header =
                     matrix_header(ui, lang, (title, hover), m, decimals, target, hiding);
-                let over_body = matrix_body(ui, lang, title, m, decimals, (target, hiding));
+                let over_body = matrix_body(ui, (lang, axes), title, m, decimals, (target, hiding));
                 over_header || over_body
             })
             .inner
@@ -108,7 +140,7 @@ fn matrix_header(
 /// one column fits does it scroll sideways, with its scroll bar always shown.
 fn matrix_body(
     ui: &mut egui::Ui,
-    lang: Lang,
+    (lang, axes): (Lang, Axes<'_>),
     title: &str,
     m: &DMatrix<f64>,
     decimals: usize,
@@ -139,10 +171,15 @@ fn matrix_body(
                 let plain = || to_plain(m, decimals);
                 let texts = (texts.as_slice(), m.nrows());
                 let response = number_table(ui, texts, &plain, columns, font, advances);
-                // The matrix's name is the table's caption.
-                ui.ctx().accesskit_node_builder(response.id, |node| {
-                    node.set_description(crate::app::widgets::math::plain(title));
-                });
+                // The matrix's name is the table's caption; its axes, the headers.
+                if labelled {
+                    ui.ctx().accesskit_node_builder(response.id, |node| {
+                        node.set_description(crate::app::widgets::math::plain(title));
+                        let (rows, columns) = axes.headers(lang);
+                        node.set_row_index_text(rows);
+                        node.set_column_index_text(columns);
+                    });
+                }
                 response.hovered()
             }
         };

@@ -68,7 +68,7 @@ pub(super) fn jacobian_block(
         tr(model, Key::JacobianHint),
         &jm,
         decimals,
-        false,
+        (false, super::block::Axes::Jacobian(&model.robot().joints)),
         (Target::Jacobian, hiding),
     );
     let text = trf(

@@ -19,7 +19,7 @@ mod symbolic;
 
 use nalgebra::DMatrix;
 
-use armlab_core::{Convention, JacobianAnalysis, JointKind, Orientation, Robot, Task};
+use armlab_core::{Convention, JacobianAnalysis, Orientation, Robot, Task};
 use armlab_text::Key;
 
 use crate::app::panels::Panel;
@@ -29,7 +29,7 @@ use crate::app::state::tr;
 use crate::app::state::trf;
 use armlab_core::symbolic_tables::{SymbolicTable, SymbolicTables};
 use armlab_session::settings::{Hidden, MatrixId};
-use block::matrix_block;
+use block::{Axes, matrix_block};
 use jacobian::jacobian_block;
 use orientation::orientation_block;
 use predict::{Hiding, Target};
@@ -107,7 +107,7 @@ impl Panel for MatricesPanel {
             tr(model, Key::ToolPoseHint),
             &homogeneous(&model.fk().base_from_tool),
             decimals,
-            false,
+            (false, Axes::Pose),
             (Target::Matrix(MatrixId::Tool), &mut hiding),
         );
         orientation_block(
@@ -264,10 +264,7 @@ fn link_blocks(
     let joint_under = model.hovered_link().and_then(|l| l.checked_sub(1));
     for (i, joint) in model.robot().joints.iter().enumerate() {
         let highlighted = model.hovered_link() == Some(i + 1);
-        let variable = match joint.kind {
-            JointKind::Revolute => "θ",
-            JointKind::Prismatic => "d",
-        };
+        let variable = crate::app::widgets::math::joint_variable(joint.kind);
         if let Some((a, t)) =
             symbolic.and_then(|s| s.link_transforms.get(i).zip(s.base_from_frames.get(i)))
         {
@@ -292,7 +289,7 @@ fn link_blocks(
             tr(model, Key::FrameInPrevious),
             &a,
             decimals,
-            highlighted,
+            (highlighted, Axes::Pose),
             (Target::Matrix(MatrixId::Link(i + 1)), &mut *hiding),
         ) {
             hovered = Some(i + 1);
@@ -301,7 +298,8 @@ fn link_blocks(
         let title = format!("T_0{}", i + 1);
         let hover = tr(model, Key::FrameInBase);
         let target = (Target::Matrix(MatrixId::Frame(i + 1)), &mut *hiding);
-        if matrix_block(ui, lang, &title, hover, &t, decimals, highlighted, target) {
+        let shown = (highlighted, Axes::Pose);
+        if matrix_block(ui, lang, &title, hover, &t, decimals, shown, target) {
             hovered = Some(i + 1);
         }
     }

@@ -425,6 +425,7 @@ fn hashes(node: &Node, scale: f32) -> (u64, u64) {
     node.description().hash(&mut h);
     node.labelled_by().iter().for_each(|n| n.0.hash(&mut h));
     (node.row_count(), node.column_count()).hash(&mut h);
+    (node.row_index_text(), node.column_index_text()).hash(&mut h);
     for v in [
         node.numeric_value(),
         node.min_numeric_value(),
@@ -485,11 +486,11 @@ fn aria_role(role: Role) -> Option<&'static str> {
 /// Writes node's role, name, value, state and place into its element.
 fn show(el: &web_sys::HtmlElement, node: &Node, scale: f32) {
     // A matrix stays a label in egui's tree (the UI tests read it so) with its rows and
-    // columns counted: here it becomes a table.
+    // columns counted: here its element holds a table.
     let matrix = node.row_count().is_some() && node.column_count().is_some();
     let name = node.label().unwrap_or_default();
     let role = if matrix {
-        Some("table")
+        None
     } else if node.role() == Role::Window && name.is_empty() {
         // egui's root is a window with no title: a dialog without a name would be said
         // before every control; a titled window stays a dialog.
@@ -591,9 +592,16 @@ fn states(el: &web_sys::HtmlElement, node: &Node, role: Option<&str>) {
     set("aria-disabled", node.is_disabled().then_some("true"));
 }
 
-/// A matrix as a table: its caption (the node's description), and its entries from its
-/// text (a label's value), the matrix as plain text, row by row (`row_count` ×
-/// `column_count` numbers).
+/// A matrix as a table inside its node's element: its caption (the node's description),
+/// its column and row headers (the node's `column_index_text` and `row_index_text`, each
+/// list separated by `|`), and its entries from its text (a label's value), the matrix as
+/// plain text, row by row (`row_count` × `column_count` numbers).
+///
+/// A change makes the table anew and puts it in the old one's place at once: for a screen
+/// reader that is two events, where writing each changed entry was two per entry, and the
+/// fourteen tables of a six-joint arm changing together were more events than Orca takes
+/// in at once (it drops what comes while its queue holds a hundred: the live region's
+/// sentence too).
 fn table(el: &web_sys::HtmlElement, node: &Node) {
     let (rows, columns) = (
         node.row_count().unwrap_or(0),
@@ -601,28 +609,59 @@ fn table(el: &web_sys::HtmlElement, node: &Node) {
     );
     let text = node.value().or(node.label()).unwrap_or_default();
     let entries: Vec<&str> = text.split_whitespace().collect();
-    let caption = node.description().unwrap_or_default();
-    let _ = el.set_attribute("aria-label", caption);
     if rows == 0 || entries.len() != rows * columns {
         el.set_text_content(Some(text));
         return;
     }
-    // The caption as the table's first child too: a screen reader's list of tables and
-    // its table commands say the caption, not the name.
-    let mut html = String::from("<div role=caption></div>");
-    for row in entries.chunks(columns) {
+    // Both lists of headers, or neither.
+    let headed =
+        headers(node.row_index_text(), rows).zip(headers(node.column_index_text(), columns));
+    // The caption is the table's first line and its name, as an HTML table's caption is:
+    // Orca's table commands say the caption, other screen readers and their lists of
+    // tables the name. (Orca's Say all says both, as it does for any captioned HTML table;
+    // hidden from reading, the caption was not said by Orca's table commands at all.)
+    let caption_id = format!("{}c", el.id());
+    let caption = escaped(node.description().unwrap_or_default());
+    let mut html = format!(
+        "<div role=table aria-labelledby={caption_id}><div role=caption id={caption_id}>{caption}</div>"
+    );
+    let cell = |html: &mut String, role: &str, words: &str| {
+        html.push_str(&format!("<div role={role}>{}</div>", escaped(words)));
+    };
+    if let Some((_, column_headers)) = &headed {
+        // Over the row headers, the header row's first cell heads their column: empty.
         html.push_str("<div role=row>");
-        for entry in row {
-            html.push_str("<div role=cell>");
-            html.push_str(entry);
-            html.push_str("</div>");
+        for words in std::iter::once(&"").chain(column_headers) {
+            cell(&mut html, "columnheader", words);
         }
         html.push_str("</div>");
     }
-    el.set_inner_html(&html);
-    if let Some(c) = el.first_element_child() {
-        c.set_text_content(Some(caption));
+    for (r, row) in entries.chunks(columns).enumerate() {
+        html.push_str("<div role=row>");
+        if let Some((row_headers, _)) = &headed {
+            cell(&mut html, "rowheader", row_headers[r]);
+        }
+        for entry in row {
+            cell(&mut html, "cell", entry);
+        }
+        html.push_str("</div>");
     }
+    html.push_str("</div>");
+    el.set_inner_html(&html);
+}
+
+/// `words` as HTML text: a robot file's joint names are in some captions.
+fn escaped(words: &str) -> String {
+    words
+        .replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+/// The `n` headers in `list` (separated by `|`); `None` when there are not `n`.
+fn headers(list: Option<&str>, n: usize) -> Option<Vec<&str>> {
+    let headers: Vec<&str> = list?.split('|').collect();
+    (headers.len() == n).then_some(headers)
 }
 
 /// Marks the plain labels that name node (its `labelled_by`) to be hidden from the tree,
