@@ -144,16 +144,21 @@ ensure_apt() {
 # A panic in the page aborts into the crash screen, which says what to do in words: the
 # file, line and column of every place that can panic (a bounds check, an `expect`) are
 # bytes no visitor reads. `-Zlocation-detail=none` leaves them out, `-Zfmt-debug=shallow`
-# makes a derived `Debug` print its type's or variant's name without the fields (the page
-# writes no `{:?}` a person reads: its sentences come from the catalogue, and its logs are
-# compiled out), and the crates' paths that remain are written without the folder cargo
-# unpacks them into. Stable rustc takes these -Z flags with RUSTC_BOOTSTRAP, set for the
-# page's build alone. They replace .cargo/config.toml's for wasm32, so they repeat its SIMD
-# flag.
+# makes a derived `Debug` print its type's or variant's name without the fields, and
+# tools/page-rustc (the build's RUSTC_WRAPPER) makes `{:?}` print nothing in every crate
+# but the few whose `{:?}` is read (the page writes no `{:?}` a person reads: its sentences
+# come from the catalogue, and its logs are compiled out); the crates' paths that remain
+# are written without the folder cargo unpacks them into. Stable rustc takes these -Z
+# flags with RUSTC_BOOTSTRAP, set for the page's build alone. They replace
+# .cargo/config.toml's for wasm32, so they repeat its SIMD flag.
 build_web() {
   say "building the page (trunk build --release)"
   (cd "$ROOT" && cargo fetch --target wasm32-unknown-unknown -q) || return 1
-  local flags="-Ctarget-feature=+simd128 -Zlocation-detail=none -Zfmt-debug=shallow" registry
+  # Cargo does not see what a RUSTC_WRAPPER adds to a crate's flags: page-rustc's text keys
+  # the build's cache (its checksum as a -C metadata, which only mixes into the crates'
+  # hashes), so that a change to it compiles every crate again.
+  local key; key="$(cksum < "$ROOT/tools/page-rustc" | cut -d' ' -f1)"
+  local flags="-Ctarget-feature=+simd128 -Zlocation-detail=none -Zfmt-debug=shallow -Cmetadata=page-rustc-$key" registry
   for registry in "${CARGO_HOME:-$HOME/.cargo}"/registry/src/*/; do
     flags="$flags --remap-path-prefix=$registry="
   done
@@ -161,7 +166,7 @@ build_web() {
        CARGO_PROFILE_RELEASE_LTO=fat \
        CARGO_PROFILE_RELEASE_CODEGEN_UNITS=1 \
        CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUSTFLAGS="$flags" RUSTC_BOOTSTRAP=1 \
-       trunk build --release --offline "$@")
+       RUSTC_WRAPPER="$ROOT/tools/page-rustc" trunk build --release --offline "$@")
 }
 
 # The URDF module: the JS package (armlab-js) built with its feature urdf (no GUI) as a second wasm module
@@ -181,7 +186,9 @@ build_urdf_module() {
   local target="$CARGO_TARGET_DIR/urdf-module" profile=release
   local flags=(-p armlab-js --lib --crate-type cdylib --target wasm32-unknown-unknown --features urdf --locked)
   if [ "${TRUNK_PROFILE:-release}" = release ]; then flags+=(--release); else profile=debug; fi
-  (cd "$ROOT" && CARGO_TARGET_DIR="$target" cargo rustc -q "${flags[@]}") || return 1
+  # Without build_web's RUSTC_WRAPPER: the module's `{:?}` stays (a broken URDF file's
+  # sentence quotes the XML parser's words).
+  (cd "$ROOT" && CARGO_TARGET_DIR="$target" env -u RUSTC_WRAPPER cargo rustc -q "${flags[@]}") || return 1
   local wasm="$target/wasm32-unknown-unknown/$profile/armlab_js.wasm"
   # The page's wasm-opt settings, which the module's build is kept under too.
   local level params

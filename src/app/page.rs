@@ -60,7 +60,7 @@ pub fn start() {
                 room::probe(&window);
             }
             Err(e) => {
-                let detail = e.as_string().unwrap_or_else(|| format!("{e:?}"));
+                let detail = web::js_error_text(&e);
                 web::set_message(
                     &format!(
                         "ArmLab needs WebGL2 to draw the robot, and this browser does not offer it \

@@ -37,6 +37,23 @@ pub enum Field {
     Choice,
 }
 
+impl Field {
+    /// The field's name in the protocol's words (the page is built with `{:?}` printing
+    /// nothing, so an error's text does not rely on `Debug`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Field::Code => "code",
+            Field::Token => "token",
+            Field::Link => "link",
+            Field::Camera => "camera",
+            Field::Options => "options",
+            Field::Point => "point",
+            Field::Number => "number",
+            Field::Choice => "choice",
+        }
+    }
+}
+
 /// Why a message was not decoded.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum DecodeError {
@@ -64,7 +81,7 @@ impl fmt::Display for DecodeError {
             Self::Malformed { line, column } => {
                 write!(f, "malformed message at line {line}, column {column}")
             }
-            Self::Invalid(field) => write!(f, "field out of bounds: {field:?}"),
+            Self::Invalid(field) => write!(f, "field out of bounds: {}", field.name()),
         }
     }
 }

@@ -21,7 +21,7 @@ pub fn download(name: &str, text: &str) -> Result<(), String> {
 
 /// Offers `text` as a download named `name`, of the MIME type `mime`.
 fn download_typed(name: &str, text: &str, mime: &str) -> Result<(), String> {
-    let fail = |e: JsValue| format!("{e:?}");
+    let fail = |e: JsValue| super::js_error_text(&e);
     let window = web_sys::window().ok_or("no window")?;
     let document = window.document().ok_or("no document")?;
     let parts = js_sys::Array::of1(&JsValue::from_str(text));

@@ -208,10 +208,13 @@ fn set_field(object: &JsValue, key: &str, value: &JsValue) {
     );
 }
 
-/// A thrown JS value's words: an `Error`'s message, or the value as text.
-fn js_error_text(e: &JsValue) -> String {
+/// A thrown JS value's words: an `Error`'s message, a string, the value as JSON, or its
+/// type. Not `{:?}`: the page is built with `Debug` printing nothing.
+pub(crate) fn js_error_text(e: &JsValue) -> String {
     e.dyn_ref::<js_sys::Error>()
         .map(|e| String::from(e.message()))
         .or_else(|| e.as_string())
-        .unwrap_or_else(|| format!("{e:?}"))
+        .or_else(|| js_sys::JSON::stringify(e).ok()?.as_string())
+        .or_else(|| e.js_typeof().as_string())
+        .unwrap_or_default()
 }
