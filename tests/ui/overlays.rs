@@ -168,14 +168,11 @@ fn every_ur10_branch_is_listed_and_a_click_on_its_ghost_moves_the_arm_there() {
 fn the_rrr_symbolic_t03_reads_like_the_lecture_and_highlights_the_hovered_joint() {
     let mut h = harness("#robot=rrr&panels=joints,matrices");
     let panel = show_symbolic(&mut h);
-    // T_03 is below the fold, where blocks are laid out only for the accessibility tree
-    // (a screen reader reads the whole panel): the panel is scrolled to it, as a person
-    // would, and back to the top.
-    let entry = h.get_by_label("c1(222.1 c2 + 136.2 c23)").rect();
-    let window = h.ctx.content_rect();
+    // T_03 is below the fold, where blocks are not laid out: the panel is scrolled to it,
+    // as a person would, and back to the top.
     assert!(
-        entry.top() > window.bottom(),
-        "T_03's x entry below the window {window:?}: {entry:?}"
+        h.query_by_label("c1(222.1 c2 + 136.2 c23)").is_none(),
+        "T_03 out of sight is not laid out"
     );
     app_harness::wheel(&mut h, panel, -2000.0);
     // SPEC §1.4: x = c1(222.1 c2 + 136.2 c23).
@@ -348,8 +345,7 @@ fn the_jacobian_shows_in_the_tool_frame_and_symbolically() {
     h.get_by_label("base").click();
     h.run_steps(2);
     app_harness::wheel(&mut h, panel, -6000.0);
-    // The numeric J, scrolled out of sight, and the symbolic one: both in the base frame.
-    assert_eq!(h.query_all_by_label("J  (6×n, base frame)").count(), 2);
+    assert!(h.query_by_label("J  (6×n, base frame)").is_some());
     assert!(
         h.query_by_label("92.2 c6").is_none(),
         "the base frame's J differs"

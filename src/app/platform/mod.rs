@@ -27,6 +27,22 @@ pub enum Answer<T> {
     Failed(String),
 }
 
+/// Whether this pass builds the accessibility tree for the page's mirror, the screen
+/// readers' copy of the interface: the panels then lay out what is scrolled out of sight
+/// too ([`crate::app::widgets::style::unless_out_of_sight`]). Natively never: the UI
+/// tests' harness builds the tree in every frame, where laying out every block cost the
+/// tests about 40 s (the desktop app keeps egui's tree of what is in sight).
+pub fn mirror_pass() -> bool {
+    #[cfg(target_arch = "wasm32")]
+    {
+        web::a11y::tree_this_pass()
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        false
+    }
+}
+
 /// A link to this state: the page's address with the hash replaced.
 pub fn share_link(hash: &str) -> String {
     #[cfg(target_arch = "wasm32")]

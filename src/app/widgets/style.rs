@@ -272,9 +272,10 @@ pub fn named_slider(
 /// that rect at the cursor is wholly outside the visible (clipped) area, the space is
 /// allocated empty and `add` is not called (`None`). Scrolled or resized into sight, it is
 /// laid out again in the same frame, so nothing on screen is ever missing. A pass that
-/// builds the accessibility tree lays it out wherever it is: a screen reader reads the
-/// whole panel, not only what is scrolled into view (the page builds the tree at most twice
-/// a second, on a key, or when a script asks, and not during a pointer drag).
+/// builds the page's tree for screen readers lays it out wherever it is: a screen reader
+/// reads the whole panel, not only what is scrolled into view (the page builds that tree
+/// at most twice a second, on a key, or when a script asks, and not during a pointer
+/// drag; [`crate::app::platform::mirror_pass`]).
 pub fn unless_out_of_sight<R>(
     ui: &mut egui::Ui,
     id: egui::Id,
@@ -282,8 +283,8 @@ pub fn unless_out_of_sight<R>(
 ) -> Option<R> {
     let width = ui.available_width();
     let known: Option<(f32, egui::Vec2)> = ui.data(|d| d.get_temp(id));
-    let tree = ui.ctx().has_accesskit_node(egui::accesskit_root_id());
-    if let Some((_, size)) = known.filter(|(w, _)| *w == width && !tree) {
+    let mirror = crate::app::platform::mirror_pass();
+    if let Some((_, size)) = known.filter(|(w, _)| *w == width && !mirror) {
         let rect = egui::Rect::from_min_size(ui.cursor().min, size);
         if !ui.is_rect_visible(rect) {
             ui.allocate_exact_size(size, egui::Sense::hover());

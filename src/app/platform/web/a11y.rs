@@ -54,6 +54,13 @@ thread_local! {
     static NEW_LABELS: RefCell<Vec<NodeId>> = const { RefCell::new(Vec::new()) };
     /// A script asked for the tree on the next pass (`window.armlab.mirrorNow()`).
     static TREE_ASKED: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    /// This pass builds the tree for the mirror.
+    static TREE_PASS: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Whether this pass builds egui's tree for the mirror.
+pub fn tree_this_pass() -> bool {
+    TREE_PASS.with(std::cell::Cell::get)
 }
 
 /// The next pass builds the tree and the mirror follows it, as after a key: for scripts
@@ -97,7 +104,9 @@ impl egui::Plugin for Plugin {
         let held = ctx.input(|i| i.pointer.any_down());
         let now = crate::app::platform::clock::now_ms();
         let last = LAST_TREE.with(std::cell::Cell::get);
-        if from_page || keys || (!held && now - last >= TREE_EVERY_MS) {
+        let tree = from_page || keys || (!held && now - last >= TREE_EVERY_MS);
+        TREE_PASS.with(|t| t.set(tree));
+        if tree {
             LAST_TREE.with(|t| t.set(now));
             ctx.enable_accesskit();
         } else {
@@ -597,11 +606,11 @@ fn states(el: &web_sys::HtmlElement, node: &Node, role: Option<&str>) {
 /// list separated by `|`), and its entries from its text (a label's value), the matrix as
 /// plain text, row by row (`row_count` × `column_count` numbers).
 ///
-/// A change makes the table anew and puts it in the old one's place at once: for a screen
-/// reader that is two events, where writing each changed entry was two per entry, and the
-/// fourteen tables of a six-joint arm changing together were more events than Orca takes
-/// in at once (it drops what comes while its queue holds a hundred: the live region's
-/// sentence too).
+/// A change of what it says makes the table anew and puts it in the old one's place at
+/// once: for a screen reader that is two events, where writing each changed entry was two
+/// per entry, and the fourteen tables of a six-joint arm changing together were more
+/// events than Orca takes in at once (it drops what comes while its queue holds a hundred:
+/// the live region's sentence too). The table moving (the panel scrolled) keeps it.
 fn table(el: &web_sys::HtmlElement, node: &Node) {
     let (rows, columns) = (
         node.row_count().unwrap_or(0),
@@ -610,9 +619,18 @@ fn table(el: &web_sys::HtmlElement, node: &Node) {
     let text = node.value().or(node.label()).unwrap_or_default();
     let entries: Vec<&str> = text.split_whitespace().collect();
     if rows == 0 || entries.len() != rows * columns {
+        let _ = el.remove_attribute("data-said");
         el.set_text_content(Some(text));
         return;
     }
+    let mut h = std::hash::DefaultHasher::new();
+    (text, node.description(), rows, columns).hash(&mut h);
+    (node.row_index_text(), node.column_index_text()).hash(&mut h);
+    let said = h.finish().to_string();
+    if el.get_attribute("data-said").as_deref() == Some(said.as_str()) {
+        return;
+    }
+    let _ = el.set_attribute("data-said", &said);
     // Both lists of headers, or neither.
     let headed =
         headers(node.row_index_text(), rows).zip(headers(node.column_index_text(), columns));
