@@ -31,19 +31,19 @@ impl Axes<'_> {
     /// The row headers and the column headers, each list separated by `|`: the form the
     /// page's mirror reads from the table's node (`row_index_text`, `column_index_text`).
     fn headers(self, lang: Lang) -> (String, String) {
-        let (rows, columns) = match self {
-            Axes::Pose => (Key::PoseRowHeaders, Key::PoseColumnHeaders),
-            Axes::Jacobian(joints) => {
-                let symbols: Vec<String> = (joints.iter().enumerate())
+        match self {
+            Axes::Pose => (
+                text(lang, Key::PoseRowHeaders).into(),
+                text(lang, Key::PoseColumnHeaders).into(),
+            ),
+            Axes::Jacobian(joints) => (
+                text(lang, Key::JacobianRowHeaders).into(),
+                (joints.iter().enumerate())
                     .map(|(i, j)| crate::app::widgets::math::joint_symbol(i, j.kind))
-                    .collect();
-                return (
-                    text(lang, Key::JacobianRowHeaders).into(),
-                    symbols.join("|"),
-                );
-            }
-        };
-        (text(lang, rows).into(), text(lang, columns).into())
+                    .collect::<Vec<_>>()
+                    .join("|"),
+            ),
+        }
     }
 }
 
