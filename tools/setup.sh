@@ -154,10 +154,10 @@ ensure_apt() {
 build_web() {
   say "building the page (trunk build --release)"
   (cd "$ROOT" && cargo fetch --target wasm32-unknown-unknown -q) || return 1
-  # Cargo does not see what a RUSTC_WRAPPER adds to a crate's flags: page-rustc's text keys
-  # the build's cache (its checksum as a -C metadata, which only mixes into the crates'
-  # hashes), so that a change to it compiles every crate again.
-  local key; key="$(cksum < "$ROOT/tools/page-rustc" | cut -d' ' -f1)"
+  # Cargo does not see what a RUSTC_WRAPPER adds to a crate's flags: page-rustc's code (not
+  # its comments) keys the build's cache (its checksum as a -C metadata, which only mixes
+  # into the crates' hashes), so that a change to it compiles every crate again.
+  local key; key="$(grep -v '^#' "$ROOT/tools/page-rustc" | cksum | cut -d' ' -f1)"
   local flags="-Ctarget-feature=+simd128 -Zlocation-detail=none -Zfmt-debug=shallow -Cmetadata=page-rustc-$key" registry
   for registry in "${CARGO_HOME:-$HOME/.cargo}"/registry/src/*/; do
     flags="$flags --remap-path-prefix=$registry="
