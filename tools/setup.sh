@@ -83,18 +83,22 @@ ensure_npm() {
 # instead of running before everything: `in_background NAME CMD...` starts CMD with its
 # output kept in a log, `await_background NAME` waits for it and shows that log (and fails
 # with it when CMD failed; a NAME never started is nothing to wait for). On exit, unfinished
-# ones are stopped (`stop_background`).
+# ones are stopped (`stop_background`). `in_background --idle NAME CMD...` runs CMD in the
+# idle scheduling class instead (chrt; no privilege needed): it gets only the CPU that no
+# other process, a niced one included, wants.
 declare -A BG_PID=() BG_LOG=()
 in_background() {
+  local class=(renice -n 19 -p)
+  if [ "$1" = --idle ]; then class=(chrt --idle -p 0); shift; fi
   local name="$1"; shift
   BG_LOG[$name]="$(mktemp)"
-  (renice -n 19 -p "$BASHPID" >/dev/null 2>&1 || true; "$@") >"${BG_LOG[$name]}" 2>&1 &
+  ("${class[@]}" "$BASHPID" >/dev/null 2>&1 || true; "$@") >"${BG_LOG[$name]}" 2>&1 &
   BG_PID[$name]=$!
 }
 await_background() {
   local name="$1" status=0
   [ -n "${BG_PID[$name]:-}" ] || return 0
-  kill -0 "${BG_PID[$name]}" 2>/dev/null && say "waiting for $name (installing in the background)"
+  kill -0 "${BG_PID[$name]}" 2>/dev/null && say "waiting for $name (in the background)"
   wait "${BG_PID[$name]}" || status=$?
   unset "BG_PID[$name]"
   cat "${BG_LOG[$name]}" && rm -f "${BG_LOG[$name]}"

@@ -19,8 +19,8 @@ ensure_wasm_target
 ensure_npm
 # On a fresh machine the installs take about ten minutes of one core's compiling and the Debian
 # packages a download: they run beside the lints and the core's tests, which need none of
-# them, and are awaited where first needed (apt: the UI tests; wasm-bindgen: the core's
-# wasm tests). The page's release build follows trunk's install there, once wasm-bindgen
+# them, and are awaited where first needed (apt: the classroom server's Redis test;
+# wasm-bindgen: the core's wasm tests). The page's release build follows trunk's install there, once wasm-bindgen
 # is there too, and is awaited by the browser tests, so that it takes whatever CPU the
 # tests leave. On a fresh machine that is little: the builds before keep both cores busy,
 # and the installs and the page finish mostly after the JS API's tests (docs/benchmarks.md).
@@ -191,8 +191,6 @@ await_background apt
 # message decoding (1,000,000 messages).
 run classroom native_tests armlab-classroom
 add classroom
-run ui native_tests armlab
-add ui
 
 at "install wasm-bindgen-cli (in the background)"
 await_background wasm-bindgen
@@ -212,8 +210,18 @@ export ARMLAB_NODE_PKG="$CARGO_TARGET_DIR/armlab-node-test/armlab.js"
 run js-api node --test "${API_TESTS[@]}"
 add js-api
 
+# The UI tests (egui_kittest) run beside the page's release build, in the idle scheduling
+# class, so that they take no CPU the build wants: on a fresh machine the build ends on one
+# core (the page's link-time optimisation, then wasm-opt: about 3 min), and they fill the
+# other. Awaited before the browser tests, which would draw beside them.
+ui_tests() { native_tests armlab 2>&1 | tee "$LOG/ui.log"; }
+in_background --idle ui ui_tests
 at "page-build (trunk's install and the page's build, in the background)"
 await_background page
+step "ui (begun in the background beside the page's build)"
+STEP_LOG="$LOG/ui.log"
+await_background ui
+add ui
 # Two test files at a time: a file's page often waits (a lecture room's student offline for
 # 30 s, the live region's once a second) while the other draws; 355 s against 452 s one at a
 # time. The frame times the tests print are then taken beside another page: the scripts in
