@@ -191,19 +191,29 @@ await_background apt
 # message decoding (1,000,000 messages).
 run classroom native_tests armlab-classroom
 add classroom
+# The JS package's own tests (its feature urdf, which the native build has).
+run js-native native_tests armlab-js
+add js-native
 
 at "install wasm-bindgen-cli (in the background)"
 await_background wasm-bindgen
 # With the QR encoder, as in the native build (where the app asks for it).
-run libs-wasm cargo test --profile wasm-test "${LIBS[@]}" --features armlab-room/qr --tests --target wasm32-unknown-unknown
+# With the JS package (whose tests need its feature urdf, natively below): the JS API's
+# Node build then comes from this call's dependencies, built once with one set of features.
+# Built alone, cargo gave serde, approx, wasm-bindgen and js-sys other features without the
+# libraries' test dependencies, and compiled them and nalgebra, parry3d and the workspace's
+# crates again (about 80 s of CPU on a fresh machine).
+WASM_TESTS=(--profile wasm-test "${LIBS[@]}" -p armlab-js --features armlab-room/qr --target wasm32-unknown-unknown)
+run libs-wasm cargo test "${WASM_TESTS[@]}" --tests
 same_count libs-native libs-wasm "the libraries' tests (core, text, session, JSON API, URDF, benchmarks, lecture-room protocol)"
 add libs-wasm
 
 say "the JS API in Node"
-# In the libraries' wasm test profile, so that it reuses their wasm build of every crate it
-# needs (a release build compiled them all again: a minute on a fresh machine); debug
-# assertions stay on. Its own output folder: web/scripts/' benchmarks load the release build.
-run js-api-build cargo rustc -p armlab-js --lib --crate-type cdylib --profile wasm-test --target wasm32-unknown-unknown
+# The package's module from the libraries' wasm test build above (the same call, with its
+# libraries: --lib links armlab-js's cdylib, and cargo finds every other crate built), in
+# their profile (a release build compiled every crate again); debug assertions stay on. Its
+# own output folder: web/scripts/' benchmarks load the release build.
+run js-api-build cargo build "${WASM_TESTS[@]}" --tests --lib
 run js-api-bindgen wasm-bindgen --target nodejs --out-dir "$CARGO_TARGET_DIR/armlab-node-test" --out-name armlab \
   "$CARGO_TARGET_DIR/wasm32-unknown-unknown/wasm-test/armlab_js.wasm"
 export ARMLAB_NODE_PKG="$CARGO_TARGET_DIR/armlab-node-test/armlab.js"
