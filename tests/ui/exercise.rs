@@ -211,6 +211,7 @@ fn predict_then_reveal_hides_entries_until_a_click_and_the_link_keeps_them() {
     // carries it.
     h.get_by_label("Choose what to hide").click();
     h.run_steps(2);
+    // In T_0n alone: T_03 below the fold (the RRR's T_03 is T_0n) is not laid out.
     assert_eq!(
         h.query_all_by_label(&z).count(),
         1,
