@@ -159,7 +159,12 @@ pub fn install(ctx: &egui::Context) {
         .and_then(|e| e.dyn_into::<web_sys::HtmlElement>().ok())
     {
         live.set_id("armlab_live");
-        let _ = live.set_attribute("role", "status");
+        // A polite live region read whole, without the status role: Orca's Say all read an
+        // element with that role as "statusbar" alone, not its sentence; a plain element
+        // with the same two attributes is read as text there and announced the same way
+        // when it changes.
+        let _ = live.set_attribute("aria-live", "polite");
+        let _ = live.set_attribute("aria-atomic", "true");
         let _ = root.append_child(&live);
         LIVE.with(|l| *l.borrow_mut() = Some((live, String::new(), f64::NEG_INFINITY, "")));
     }
