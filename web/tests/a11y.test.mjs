@@ -9,7 +9,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { browserSuite } from './browser-suite.mjs';
 import path from 'node:path';
-import { dist, shots, state, settle, until, point, pageOpener, pixels, at, close } from './page.mjs';
+import { dist, shots, state, settle, drawnTo, until, point, pageOpener, pixels, at, close } from './page.mjs';
 import { CONTROLS, axTree, boxes } from './axtree.mjs';
 
 const suite = browserSuite(dist, { untimed: true });
@@ -241,10 +241,17 @@ test('Tab from the canvas walks the controls, and the DOM focus follows egui\'s'
   await page.context().close();
 });
 
+/** Waits (up to 20 s) until the live region's text matches `pattern`, sending no input:
+ * the app draws the frames that write it by itself, as for a screen reader's user, who
+ * moves no pointer. */
+const liveSays = (page, pattern) => page.waitForFunction(
+  (source) => new RegExp(source).test(document.getElementById('armlab_live')?.textContent ?? ''),
+  pattern.source, { timeout: 20000 });
+
 test('the live region says what the view shows, once a second at most, and out of reach when the target leaves', async () => {
   const { page, errors } = await open('#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3&task=position');
   const live = () => page.evaluate(() => document.getElementById('armlab_live')?.textContent ?? '');
-  for (let i = 0; i < 100 && !(await live()).includes('Target reached'); i++) await settle(page, 2);
+  await liveSays(page, /Target reached/);
   const said = await live();
   assert.match(said, /^UR10\. Tool at x -?\d+, y -?\d+, z -?\d+ mm\. Target reached\. Branch: shoulder/);
   // The tree has it as a polite live region read whole (as text in a screen reader's
@@ -275,7 +282,7 @@ test('the live region says what the view shows, once a second at most, and out o
   while (Date.now() - started < 3000) await page.mouse.move(view.x + view.width - 5 - ((Date.now() / 50) % 2), view.y + 5);
   const during = await page.evaluate(() => window.__said.map(([, text]) => text));
   await page.mouse.up();
-  for (let i = 0; i < 100 && !/^UR10\. .*out of reach/.test(await live()); i++) await settle(page, 2);
+  await liveSays(page, /^UR10\. .*out of reach/);
   const changes = await page.evaluate(() => window.__said);
   const seconds = (Date.now() - started) / 1000;
   console.log('LIVE_REGION', JSON.stringify({ seconds, during, changes: changes.length, last: await live() }));
@@ -294,7 +301,7 @@ test('the live region says what the view shows, once a second at most, and out o
 test('the live region and the names speak Finnish in the Finnish interface', async () => {
   const { page, errors } = await open('#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3&lang=fi');
   const live = () => page.evaluate(() => document.getElementById('armlab_live')?.textContent ?? '');
-  for (let i = 0; i < 100 && !(await live()).includes('Kohde saavutettu'); i++) await settle(page, 2);
+  await liveSays(page, /Kohde saavutettu/);
   assert.match(await live(), /^UR10\. Työkalu kohdassa x .* Kohde saavutettu\./);
   const tree = await axTree(page);
   assert.ok(find(tree, 'slider', 'θ2'));
@@ -315,9 +322,11 @@ test('the live region and the names speak Finnish in the Finnish interface', asy
 async function tabTo(page, name, { back = false, most = 120 } = {}) {
   const seen = [];
   for (let i = 1; i <= most; i++) {
+    const before = (await state(page)).frame;
     await page.keyboard.press(back ? 'Shift+Tab' : 'Tab');
-    // A key makes the next frame build the tree, and the DOM focus follows egui's in it.
-    await settle(page, 1);
+    // The key's frame builds the tree, and the DOM focus follows egui's in it: the second
+    // frame from here at the latest (the first may be one begun before the key).
+    await drawnTo(page, before + 2);
     const at = await page.evaluate(() => {
       const a = document.activeElement;
       const by = a?.getAttribute('aria-labelledby');
@@ -506,9 +515,11 @@ test('a label that comes into sight names its control once: "Preset", not "Prese
   for (let i = 0; i < 8 && !inSight(preset); i++) {
     await page.mouse.move(rect.x / 2, rect.y + rect.height / 2);
     await page.mouse.wheel(0, 150);
-    await settle(page, 1);
+    // The wheel's frames and the one mirrorNow asks for come by themselves.
+    await drawnTo(page, (await state(page)).frame + 1);
+    const placed = (await state(page)).frame;
     await page.evaluate(() => window.armlab.mirrorNow());
-    await settle(page, 1);
+    await drawnTo(page, placed + 1);
     const tree = await axTree(page);
     const node = tree.find((n) => n.role === 'combobox' && /Preset/.test(n.name));
     preset = node && { name: node.name, box: (await boxes(page, [node]))[0] };

@@ -60,6 +60,21 @@ export async function settle(page, frames = 3) {
   throw new Error('the app stopped drawing frames');
 }
 
+/**
+ * Waits until the app's frame count reaches `frame` after input already sent (a key, a
+ * wheel), drawing no frame of its own unless none comes for half a second (then one, as
+ * `settle` does). A key's frame and the one egui draws after every input come by
+ * themselves; a nudge of the pointer is one input more, so a frame and its follow-up
+ * more, each about a tenth of a CPU-second on the software renderer.
+ */
+export async function drawnTo(page, frame) {
+  for (let i = 0; i < 25; i++) {
+    if ((await state(page)).frame >= frame) return;
+    await page.waitForTimeout(20);
+  }
+  await settle(page, 1);
+}
+
 /** The first frame drawn, and a few more. */
 export async function ready(page) {
   await rendered(page);

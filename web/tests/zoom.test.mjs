@@ -16,7 +16,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import path from 'node:path';
 import { browserSuite } from './browser-suite.mjs';
-import { dist, shots, SCREENS, settle, pageOpener } from './page.mjs';
+import { dist, shots, SCREENS, state, settle, drawnTo, pageOpener } from './page.mjs';
 import { CONTROLS, axTree, boxes } from './axtree.mjs';
 
 const measurements = {};
@@ -46,10 +46,12 @@ function seen(c, w, h) {
 async function look(page, all, where) {
   // The frame that takes in what the test did (a scroll moves the column on the next),
   // then one that places it and builds the tree for the mirror (while only the pointer
-  // moves it would follow twice a second).
-  await settle(page, 1);
+  // moves it would follow twice a second). The input's frames and the one mirrorNow asks
+  // for come by themselves: a nudge of the pointer would draw two more.
+  await drawnTo(page, (await state(page)).frame + 1);
+  const placed = (await state(page)).frame;
   await page.evaluate(() => window.armlab.mirrorNow());
-  await settle(page, 1);
+  await drawnTo(page, placed + 1);
   const { width, height } = page.viewportSize();
   const now = await controls(page);
   for (const c of now) {
