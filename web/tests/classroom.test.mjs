@@ -72,27 +72,28 @@ async function room(page) {
   return text ? JSON.parse(text) : {};
 }
 
-/** Waits (nudging frames) until `check(room)` holds; fails naming `what`. */
+/** Waits until `check(room)` holds, sending no input: the page draws the frames a
+ * message, a closed connection or a reconnection's wait brings by itself, as for a
+ * student who watches without touching the pointer. Fails naming `what`. */
 async function roomUntil(page, check, what, seconds = 30) {
   const end = Date.now() + seconds * 1000;
   let last;
   while (Date.now() < end) {
     last = await room(page);
     if (check(last)) return last;
-    await page.mouse.move(VIEW.width / 2 + (Math.random() - 0.5) * 4, 60);
     await page.waitForTimeout(40);
   }
   throw new Error(`waited ${seconds} s for ${what}: ${JSON.stringify(last)}`);
 }
 
-/** Waits until the page's joint values are `q` (to the link's decimals). */
+/** Waits until the page's joint values are `q` (to the link's decimals), sending no
+ * input (as `roomUntil`). */
 async function qUntil(page, q, what) {
   const end = Date.now() + 30000;
   let s;
   while (Date.now() < end) {
     s = await state(page);
     if (s.q.length === q.length && s.q.every((v, i) => Math.abs(v - q[i]) < 1e-5)) return s;
-    await page.mouse.move(VIEW.width / 2 + (Math.random() - 0.5) * 4, 60);
     await page.waitForTimeout(40);
   }
   throw new Error(`waited for ${what}: q = ${JSON.stringify(s?.q)}, not ${JSON.stringify(q)}`);
