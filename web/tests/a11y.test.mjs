@@ -10,7 +10,7 @@ import assert from 'node:assert/strict';
 import { browserSuite } from './browser-suite.mjs';
 import path from 'node:path';
 import { dist, shots, state, settle, drawnTo, until, point, pageOpener, pixels, at, close } from './page.mjs';
-import { CONTROLS, axTree, boxes } from './axtree.mjs';
+import { CONTROLS, axTree, boxes, mirrored } from './axtree.mjs';
 
 const suite = browserSuite(dist, { untimed: true });
 const { open, openKept } = pageOpener(suite, { view: { width: 1366, height: 768 } });
@@ -515,11 +515,7 @@ test('a label that comes into sight names its control once: "Preset", not "Prese
   for (let i = 0; i < 8 && !inSight(preset); i++) {
     await page.mouse.move(rect.x / 2, rect.y + rect.height / 2);
     await page.mouse.wheel(0, 150);
-    // The wheel's frames and the one mirrorNow asks for come by themselves.
-    await drawnTo(page, (await state(page)).frame + 1);
-    const placed = (await state(page)).frame;
-    await page.evaluate(() => window.armlab.mirrorNow());
-    await drawnTo(page, placed + 1);
+    await mirrored(page);
     const tree = await axTree(page);
     const node = tree.find((n) => n.role === 'combobox' && /Preset/.test(n.name));
     preset = node && { name: node.name, box: (await boxes(page, [node]))[0] };

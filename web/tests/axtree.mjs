@@ -1,6 +1,7 @@
 // The page as a screen reader sees it, for the browser tests: Chromium's accessibility tree
 // (CDP Accessibility.getFullAXTree) and where its nodes' elements are. Not a *.test.mjs
 // file, so the test command does not run it on its own.
+import { state, drawnTo } from './page.mjs';
 
 /** Roles a person operates or reads entry by entry. */
 export const CONTROLS = new Set(['button', 'slider', 'spinbutton', 'checkbox', 'combobox', 'textbox', 'radio',
@@ -15,6 +16,20 @@ async function session(page) {
   let cdp = sessions.get(page);
   if (!cdp) sessions.set(page, (cdp = await page.context().newCDPSession(page)));
   return cdp;
+}
+
+/**
+ * Waits for the frame that takes in the input just sent (a scroll moves a column on the
+ * next), then for one that places it and builds the tree for the mirror
+ * (`window.armlab.mirrorNow`; while only the pointer moves the mirror follows twice a
+ * second). The input's frames and the one mirrorNow asks for come by themselves: a nudge
+ * of the pointer would draw two more.
+ */
+export async function mirrored(page) {
+  await drawnTo(page, (await state(page)).frame + 1);
+  const placed = (await state(page)).frame;
+  await page.evaluate(() => window.armlab.mirrorNow());
+  await drawnTo(page, placed + 1);
 }
 
 /** The accessibility tree: every node that is not ignored, with its role, name, value,

@@ -16,8 +16,8 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import path from 'node:path';
 import { browserSuite } from './browser-suite.mjs';
-import { dist, shots, SCREENS, state, settle, drawnTo, pageOpener } from './page.mjs';
-import { CONTROLS, axTree, boxes } from './axtree.mjs';
+import { dist, shots, SCREENS, settle, pageOpener } from './page.mjs';
+import { CONTROLS, axTree, boxes, mirrored } from './axtree.mjs';
 
 const measurements = {};
 const suite = browserSuite(dist, { label: 'ARMLAB_ZOOM200', measurements, untimed: true });
@@ -44,14 +44,7 @@ function seen(c, w, h) {
 /** Records every control in the tree now and which of them are seen; returns where the
  * controls are (to tell whether a scroll moved anything). */
 async function look(page, all, where) {
-  // The frame that takes in what the test did (a scroll moves the column on the next),
-  // then one that places it and builds the tree for the mirror (while only the pointer
-  // moves it would follow twice a second). The input's frames and the one mirrorNow asks
-  // for come by themselves: a nudge of the pointer would draw two more.
-  await drawnTo(page, (await state(page)).frame + 1);
-  const placed = (await state(page)).frame;
-  await page.evaluate(() => window.armlab.mirrorNow());
-  await drawnTo(page, placed + 1);
+  await mirrored(page);
   const { width, height } = page.viewportSize();
   const now = await controls(page);
   for (const c of now) {
