@@ -161,8 +161,8 @@ pub fn install(ctx: &egui::Context) {
         live.set_id("armlab_live");
         // A polite live region read whole, without the status role: Orca's Say all read an
         // element with that role as "statusbar" alone, not its sentence; a plain element
-        // with the same two attributes is read as text there and announced the same way
-        // when it changes.
+        // with the two properties the role implies (polite, atomic) is read as text there
+        // and announced the same way when it changes.
         let _ = live.set_attribute("aria-live", "polite");
         let _ = live.set_attribute("aria-atomic", "true");
         let _ = root.append_child(&live);
