@@ -22,8 +22,9 @@ ensure_npm
 # them, and are awaited where first needed (apt: the classroom server's Redis test;
 # wasm-bindgen: the core's wasm tests). The page's release build follows trunk's install
 # there, once wasm-bindgen is there too, and is awaited by the browser tests, so that it
-# takes whatever CPU the tests leave. On a fresh machine that is little: the builds before keep both cores busy,
-# and the installs and the page finish mostly after the JS API's tests (docs/benchmarks.md).
+# takes whatever CPU the tests leave. On a fresh machine that is little: the builds before
+# keep both cores busy, and the installs and the page finish mostly after the JS API's
+# tests (docs/benchmarks.md).
 # The EXIT trap stops the unfinished ones.
 wasm_bindgen_marked() { # ensure_wasm_bindgen, and a file in $LOG that says how it ended
   if ensure_wasm_bindgen; then touch "$LOG/wasm-bindgen.ok"; else touch "$LOG/wasm-bindgen.failed"; return 1; fi
@@ -198,12 +199,11 @@ add js-native
 at "install wasm-bindgen-cli (in the background)"
 await_background wasm-bindgen
 # With the QR encoder, as in the native build (where the app asks for it).
-# With the JS package (whose own tests need its feature urdf: they run natively, above):
-# the JS API's Node build then comes from this call's dependencies, built once with one set
-# of features.
-# Built alone, cargo gave serde, approx, wasm-bindgen and js-sys other features without the
-# libraries' test dependencies, and compiled them and nalgebra, parry3d and the workspace's
-# crates again (about 80 s of CPU on a fresh machine).
+# With the JS package (whose own tests need its feature urdf: they run natively, above),
+# so that the JS API's Node module below comes from this call's dependencies: in a cargo
+# call of its own, without the libraries' test dependencies, serde, approx, wasm-bindgen
+# and js-sys resolve to other features, and cargo compiles them, nalgebra, parry3d and the
+# workspace's crates a second time (about 80 s of CPU on a fresh machine).
 WASM_TESTS=(--profile wasm-test "${LIBS[@]}" -p armlab-js --features armlab-room/qr --target wasm32-unknown-unknown)
 run libs-wasm cargo test "${WASM_TESTS[@]}" --tests
 same_count libs-native libs-wasm "the libraries' tests (core, text, session, JSON API, URDF, benchmarks, lecture-room protocol)"
@@ -224,7 +224,8 @@ add js-api
 # The UI tests (egui_kittest) run beside the page's release build, in the idle scheduling
 # class, so that they take no CPU the build wants: on a fresh machine the build ends on one
 # core (the page's link-time optimisation, then wasm-opt: about 3 min), and they take the
-# other (docs/benchmarks.md, the test command). Awaited before the browser tests, which would draw beside them.
+# other (docs/benchmarks.md, the test command). Awaited before the browser tests, which
+# would draw beside them.
 ui_tests() { native_tests armlab 2>&1 | tee "$LOG/ui.log"; }
 in_background --idle ui ui_tests
 at "page-build (trunk's install and the page's build, in the background)"
