@@ -51,10 +51,14 @@ for (const file of glue) {
 }
 // Trunk's minifier leaves the module script it writes into index.html as written (blank
 // lines, long names): esbuild minifies it as it does the glue (its top-level await is ES2022,
-// in every browser with WebAssembly SIMD), without the `window.wasmBindings` it sets, which
-// nothing reads. The tags HTML lets a page leave out go too (</head><body> before the
-// canvas, </body></html> at the end): the parser builds the same document without them.
-const loader = (code) => code.replace(/window\.wasmBindings\s*=\s*bindings;?/, '');
+// in every browser with WebAssembly SIMD), without what nothing reads: the
+// `window.wasmBindings` it sets, and the wasm's exports, kept in a `const` and handed to its
+// start event as `detail.wasm` (the event stays, for index.html's service worker). The tags
+// HTML lets a page leave out go too (</head><body> before the canvas, </body></html> at the
+// end): the parser builds the same document without them.
+const loader = (code) => code.replace(/window\.wasmBindings\s*=\s*bindings;?/, '')
+  .replace(/const wasm = (await init\()/, '$1')
+  .replace(/new CustomEvent\("TrunkApplicationStarted", \{detail: \{wasm\}\}\)/, 'new Event("TrunkApplicationStarted")');
 index = index.replace(/(<script type=module>)([\s\S]*?)(<\/script>)/, (_, open, code, close) =>
   open + minify(loader(code), 'es2022').trim() + close);
 fs.writeFileSync(indexPath, index.replace('</head><body>', '').replace(/<\/body><\/html>\s*$/, ''));

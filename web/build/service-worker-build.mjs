@@ -57,6 +57,9 @@ if (!dir || !fs.existsSync(path.join(dir, 'index.html'))) {
 const files = buildFiles(dir);
 const version = sha256(files.map((f) => `${f}\n${sha256(fs.readFileSync(path.join(dir, f)))}\n`).join('')).slice(0, 16);
 const header = `const ARMLAB_BUILD = ${JSON.stringify({ version, files })};\n`;
-const { code } = transformSync(fs.readFileSync(template, 'utf8'), { minify: true, target: 'es2020', legalComments: 'none' });
+// As a function's body (format iife): its names are its own, so the minifier shortens them
+// (a classic script's top-level names are globals, kept whole).
+const { code } = transformSync(fs.readFileSync(template, 'utf8'),
+  { minify: true, target: 'es2020', legalComments: 'none', format: 'iife' });
 fs.writeFileSync(path.join(dir, WORKER), header + code);
 console.log(`service-worker-build: ${WORKER} caches ${files.length} files as version ${version}`);
