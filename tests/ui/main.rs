@@ -327,7 +327,7 @@ fn left_column_overflow(h: &Harness<'_, ArmLabApp>, fold: &str) -> Vec<String> {
         let ak = node.accesskit_node();
         let text = ak.label().or(ak.value()).unwrap_or_default();
         // The top bar and the column's resize handle are not the column's content.
-        if r.top() < view.top() || text == "Resize panel" || r.top() > view.bottom() {
+        if r.top() < view.top() || ak.role() == Role::Splitter || r.top() > view.bottom() {
             continue;
         }
         if r.left() < view.left() - 1.0 && r.right() > view.left() + 1.0 {

@@ -192,3 +192,29 @@ fn a_sliders_rail_has_3_to_1_on_its_panel() {
         }
     }
 }
+
+/// A wide layout's two columns each have an edge (egui's resize handle), named for screen
+/// readers by the column it widens, in the interface's language: egui would call both
+/// "Resize panel", in English on the Finnish page too.
+#[test]
+fn each_columns_edge_is_named_in_the_interfaces_language() {
+    for (hash, left, right) in [
+        (
+            "#robot=ur10",
+            "Width of the left column",
+            "Width of the right column",
+        ),
+        (
+            "#robot=ur10&lang=fi",
+            "Vasemman sarakkeen leveys",
+            "Oikean sarakkeen leveys",
+        ),
+    ] {
+        let h = harness(hash);
+        let names: Vec<String> = h
+            .query_all_by_role(Role::Splitter)
+            .map(|n| n.accesskit_node().label().unwrap_or_default())
+            .collect();
+        assert_eq!(names, [left, right], "{hash}");
+    }
+}

@@ -313,6 +313,8 @@ catalogue! {
     ViewWordsWorkspace: "Workspace: {0} sampled tool positions, up to {1} {4} from the base, at heights {2} to {3} {4}." / "Työtila: {0} näytteistettyä työkalun paikkaa, enintään {1} {4} kannasta, korkeuksilla {2}…{3} {4}.",
     ViewWordsSingular: "At a singularity: the tool cannot move along ({0})." / "Singulaarisuudessa: työkalu ei voi liikkua suuntaan ({0}).",
     ClosePanelNamed: "Close the {0} panel" / "Sulje paneeli {0}",
+    ColumnWidthLeft: "Width of the left column" / "Vasemman sarakkeen leveys",
+    ColumnWidthRight: "Width of the right column" / "Oikean sarakkeen leveys",
     PageTitle: "ArmLab — robot-arm kinematics in the browser" / "ArmLab — robottikäsivarren kinematiikka selaimessa",
     CanvasName: "The robot arm in 3D" / "Robottikäsivarsi 3D:nä",
     CanvasDescription: "The arm, its target and frames; a line of text below the controls says what the view shows." / "Käsivarsi, sen kohde ja koordinaatistot; ohjainten alla oleva tekstirivi kertoo, mitä näkymä näyttää.",

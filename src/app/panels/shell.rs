@@ -88,16 +88,19 @@ impl SidePanels {
                 (ui.ctx().zoom_factor() * 100.0).round() as i32,
                 (plan.width / 50.0).round() as i32,
             );
-            let panel = match column.side {
-                Side::Left => egui::Panel::left(salt),
-                Side::Right => egui::Panel::right(salt),
+            let (panel, width_name) = match column.side {
+                Side::Left => (egui::Panel::left(salt), Key::ColumnWidthLeft),
+                Side::Right => (egui::Panel::right(salt), Key::ColumnWidthRight),
             };
+            let edge = edge_id(ui, salt);
+            step_edge_by_keys(ui.ctx(), edge);
             let response = panel
                 .frame(panel_frame(ui.style()))
                 .default_size(column.default_width.min(max))
                 .size_range(column.min_width.min(max)..=max)
                 .resizable(true)
                 .show(ui, |ui| self.column_body(column, id, model, ui, points));
+            name_and_mark_edge(ui, edge, t(model, width_name));
             used += response.response.rect.width();
         }
     }
@@ -196,6 +199,69 @@ impl SidePanels {
                         self.ui(kind, model, ui, points);
                     });
             });
+    }
+}
+
+/// The id of a side column's edge, egui's resize handle of the panel with `salt` in `ui`.
+/// egui keeps the id to itself: this makes it as egui does (were egui to make it otherwise,
+/// the edge would keep egui's name and no key: the UI tests that find it by its name fail).
+fn edge_id(ui: &egui::Ui, salt: impl egui::AsIdSalt) -> egui::Id {
+    ui.scope_id()
+        .with_salt(egui::IdSalt::new(salt))
+        .with("__resize")
+}
+
+/// Tab reaches a column's edge after the column's controls (egui's handle takes the
+/// focus); there the arrow keys step the column's width, as a screen reader's Increment
+/// and Decrement do: Right wider, Left narrower. Called before the panel is drawn, which
+/// reads the steps.
+fn step_edge_by_keys(ctx: &egui::Context, edge: egui::Id) {
+    use egui::accesskit::{Action, ActionRequest, TreeId};
+    if !ctx.memory(|m| m.has_focus(edge)) {
+        return;
+    }
+    // Left and Right are the edge's own, as a slider's: egui would otherwise move the focus
+    // to the control beside it.
+    let arrows = egui::EventFilter {
+        horizontal_arrows: true,
+        ..Default::default()
+    };
+    ctx.memory_mut(|m| m.set_focus_lock_filter(edge, arrows));
+    let steps = [
+        (egui::Key::ArrowRight, Action::Increment),
+        (egui::Key::ArrowLeft, Action::Decrement),
+    ];
+    ctx.input_mut(|i| {
+        for (key, action) in steps {
+            while i.consume_key(egui::Modifiers::NONE, key) {
+                i.events
+                    .push(egui::Event::AccessKitActionRequest(ActionRequest {
+                        action,
+                        target_tree: TreeId::ROOT,
+                        target_node: edge.accesskit_id(),
+                        data: None,
+                    }));
+            }
+        }
+    });
+}
+
+/// Names a column's edge for screen readers (`name`, "Width of the left column" in the
+/// interface's language) in place of the English "Resize panel" egui gives every handle,
+/// and outlines it in the focus colour while it has the keyboard (egui marks it only under
+/// the pointer).
+fn name_and_mark_edge(ui: &egui::Ui, edge: egui::Id, name: &str) {
+    ui.ctx()
+        .accesskit_node_builder(edge, |node| node.set_label(name.to_owned()));
+    if ui.memory(|m| m.has_focus(edge))
+        && let Some(handle) = ui.ctx().read_response(edge)
+    {
+        ui.painter().rect_stroke(
+            handle.rect,
+            2.0,
+            ui.visuals().selection.stroke,
+            egui::StrokeKind::Inside,
+        );
     }
 }
 

@@ -493,6 +493,9 @@ fn aria_role(role: Role) -> Option<&'static str> {
         Role::Window | Role::Dialog => "dialog",
         Role::Group | Role::Pane => "group",
         Role::Canvas => "img",
+        // A column's edge: a focusable separator whose value is the column's width (the
+        // arrow keys step it while it has the focus: panels::shell).
+        Role::Splitter => "separator",
         _ => return None,
     })
 }
@@ -561,8 +564,12 @@ fn set(el: &web_sys::Element, k: &str, v: Option<&str>) {
 /// Writes node's value and states (checked, pressed, expanded, selected, disabled).
 fn states(el: &web_sys::HtmlElement, node: &Node, role: Option<&str>) {
     let set = |k: &str, v: Option<&str>| set(el, k, v);
+    // A separator is a column's resize handle: vertical, its value the column's share of
+    // the window.
+    let separator = role == Some("separator");
     let num = |v: Option<f64>| v.map(|v| format!("{v}"));
-    let ranged = matches!(role, Some("slider" | "spinbutton" | "progressbar"));
+    let ranged = separator || matches!(role, Some("slider" | "spinbutton" | "progressbar"));
+    set("aria-orientation", separator.then_some("vertical"));
     set(
         "aria-valuenow",
         num(node.numeric_value()).filter(|_| ranged).as_deref(),
