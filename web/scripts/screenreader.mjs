@@ -6,7 +6,7 @@
 //
 //   apt-get install -y --no-install-recommends orca xvfb xdotool at-spi2-core dbus-daemon
 //   (Debian 12 has Orca 43.1; Chromium and web/node_modules as for the browser tests)
-//   cd web && node scripts/screenreader.mjs [DIST_DIR=../dist] [--log FILE]
+//   cd web && node scripts/screenreader.mjs [DIST_DIR=../dist] [--log FILE] [--lang=fi]
 //
 // It starts, each in a process group of its own and all ended at the end: Xvfb on a free
 // display, a D-Bus session bus, the AT-SPI bus, Orca with its debug log, the page served on
@@ -16,9 +16,11 @@
 // make by its own navigation is done through the DOM, and a drag by the mouse through
 // Chromium's DevTools protocol. Steps: the page loads; Tab five times; joint 2's slider
 // focused and moved by the arrow keys; Orca's table commands in the Jacobian; the target
-// dragged out of reach (the live region); a button pressed by Enter; the page read from
-// its top by Orca's Say all (logged at once: with no synthesiser nothing paces it). With
-// --log, Orca's whole debug log is kept in FILE. Takes about two minutes.
+// dragged out of reach (the live region); a button pressed by Enter; the left column's edge
+// focused and widened by an arrow key; the page read from its top by Orca's Say all
+// (logged at once: with no synthesiser nothing paces it). With --log, Orca's whole debug log
+// is kept in FILE; with --lang=fi, the page is the Finnish one (Orca's own words stay in its
+// language). Takes about two minutes.
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -31,7 +33,13 @@ const logAt = args.indexOf('--log');
 const keepLog = logAt >= 0 ? path.resolve(args[logAt + 1]) : null;
 const distArg = args.filter((a, i) => !a.startsWith('--') && (logAt < 0 || i !== logAt + 1))[0];
 const dist = path.resolve(distArg ?? path.join(import.meta.dirname, '..', '..', 'dist'));
-const HASH = '#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3&task=position';
+// The words the scenario waits for and the button it focuses, in the page's language.
+const WORDS = args.includes('--lang=fi')
+  ? { lang: '&lang=fi', reached: 'Kohde saavutettu', outOfReach: 'ulottumattomissa', closeJoints: 'Sulje paneeli Nivelet',
+    leftColumn: 'Vasemman sarakkeen leveys' }
+  : { lang: '', reached: 'Target reached', outOfReach: 'out of reach', closeJoints: 'Close the Joints panel',
+    leftColumn: "Width of the left column" };
+const HASH = `#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3&task=position${WORDS.lang}`;
 
 const work = fs.mkdtempSync(path.join(os.tmpdir(), 'armlab-orca-'));
 const debugLog = path.join(work, 'orca.debug');
@@ -89,7 +97,9 @@ runpy.run_path('/usr/bin/orca', run_name='__main__')
 
 /** The spoken lines in the debug log from byte `from` on: [{ at, text }]. */
 function spoken(from = 0) {
-  const text = fs.existsSync(debugLog) ? fs.readFileSync(debugLog, 'utf8').slice(from) : '';
+  // `from` is a size in bytes (logSize): slice the bytes, not the decoded text, whose
+  // characters are fewer wherever Orca logged a θ, a × or a Finnish ä before.
+  const text = fs.existsSync(debugLog) ? fs.readFileSync(debugLog).subarray(from).toString('utf8') : '';
   const lines = [];
   // An utterance is logged with its voice ("{...}") after it, but without one in Say all.
   for (const m of text.matchAll(/^(\d\d:\d\d:\d\d\.\d+) - SPEECH OUTPUT: '(.*)'(?: voice=\w+)?\s*(?:\{.*)?$/gm)) {
@@ -152,8 +162,8 @@ async function focusControl(page, role, name) {
 async function scenario(page, env, base) {
   await step('page load', async () => {
     await page.goto(base + HASH);
-    await page.waitForFunction(() => (document.getElementById('armlab_live')?.textContent ?? '').includes('Target reached'),
-      null, { timeout: 120000 });
+    await page.waitForFunction((w) => (document.getElementById('armlab_live')?.textContent ?? '').includes(w),
+      WORDS.reached, { timeout: 120000 });
   }, { quiet: 3000, most: 20000 });
   for (let i = 1; i <= 5; i++) await step(`Tab ${i}`, () => keys(env, 'Tab'));
   await step('joint 2\'s slider focused (through the DOM)', () => focusControl(page, 'slider', 'θ2'));
@@ -169,14 +179,16 @@ async function scenario(page, env, base) {
   await step('target dragged out of reach for about 3 s', async () => {
     await dragTargetAway(page);
     // On a loaded machine the arm follows the target a few seconds late.
-    await page.waitForFunction(() => (document.getElementById('armlab_live')?.textContent ?? '').includes('out of reach'),
-      null, { timeout: 30000 }).catch(() => console.log('(the live region never said "out of reach")'));
+    await page.waitForFunction((w) => (document.getElementById('armlab_live')?.textContent ?? '').includes(w),
+      WORDS.outOfReach, { timeout: 30000 }).catch(() => console.log(`(the live region never said "${WORDS.outOfReach}")`));
   }, { quiet: 3000, most: 15000 });
   // Orca passes over a focus change that follows its own caret commands: the button is
   // reached by Tab from the control before it.
-  await step('"Close the Joints panel" focused (through the DOM)', () => focusControl(page, 'button', 'Close the Joints panel'));
+  await step(`"${WORDS.closeJoints}" focused (through the DOM)`, () => focusControl(page, 'button', WORDS.closeJoints));
   await step('Tab to "Zero"', () => keys(env, 'Tab'));
   await step('Enter on "Zero"', () => keys(env, 'Return'), { quiet: 2500 });
+  await step(`"${WORDS.leftColumn}" focused (through the DOM)`, () => focusControl(page, 'separator', WORDS.leftColumn));
+  await step('Right arrow on the column\'s edge', () => keys(env, 'Right'));
   await orcaMode(env, 'Browse mode');
   await step('Control+Home, then Orca\'s Say all (KP_Add)', () => keys(env, 'ctrl+Home', 'KP_Add'), { quiet: 3000, most: 30000 });
 }
