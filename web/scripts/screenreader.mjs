@@ -38,7 +38,7 @@ const WORDS = args.includes('--lang=fi')
   ? { lang: '&lang=fi', reached: 'Kohde saavutettu', outOfReach: 'ulottumattomissa', closeJoints: 'Sulje paneeli Nivelet',
     leftColumn: 'Vasemman sarakkeen leveys' }
   : { lang: '', reached: 'Target reached', outOfReach: 'out of reach', closeJoints: 'Close the Joints panel',
-    leftColumn: "Width of the left column" };
+    leftColumn: 'Width of the left column' };
 const HASH = `#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3&task=position${WORDS.lang}`;
 
 const work = fs.mkdtempSync(path.join(os.tmpdir(), 'armlab-orca-'));
@@ -188,7 +188,12 @@ async function scenario(page, env, base) {
   await step('Tab to "Zero"', () => keys(env, 'Tab'));
   await step('Enter on "Zero"', () => keys(env, 'Return'), { quiet: 2500 });
   await step(`"${WORDS.leftColumn}" focused (through the DOM)`, () => focusControl(page, 'separator', WORDS.leftColumn));
+  // In browse mode Orca keeps the arrows for its own caret; a user switches to focus mode.
+  await orcaMode(env, 'Focus mode');
+  const viewX = () => page.evaluate(() => window.armlab.viewRect().x);
+  const x0 = await viewX();
   await step('Right arrow on the column\'s edge', () => keys(env, 'Right'));
+  console.log(`  (the 3D view's left edge: ${x0} → ${await viewX()} px)`);
   await orcaMode(env, 'Browse mode');
   await step('Control+Home, then Orca\'s Say all (KP_Add)', () => keys(env, 'ctrl+Home', 'KP_Add'), { quiet: 3000, most: 30000 });
 }

@@ -226,20 +226,20 @@ test('a button pressed through the DOM (a screen reader\'s click) does what the 
 test('a column\'s edge is a separator with the column\'s width, stepped by the arrow keys', async () => {
   const { page, errors } = await open('#robot=ur10&task=position');
   const edge = async (name) => find(await axTree(page), 'separator', name);
-  const left = await edge("Width of the left column");
-  assert.ok(await edge("Width of the right column"), 'the right column\'s edge too');
+  const left = await edge('Width of the left column');
+  assert.ok(await edge('Width of the right column'), 'the right column\'s edge too');
   assert.ok(left.value > 0 && left.value <= 0.5, `the column's share of the window: ${left.value}`);
   const before = await page.evaluate(() => window.armlab.viewRect());
   const { target } = await state(page);
   // A screen reader focuses the edge's element, and egui's focus follows; then Right
   // widens the column (the 3D view gives way), Left narrows it.
-  await page.evaluate(() => document.querySelector(`#armlab_a11y [role=separator][aria-label="Width of the left column"]`).focus());
+  await page.evaluate(() => document.querySelector('#armlab_a11y [role=separator][aria-label="Width of the left column"]').focus());
   await mirrored(page);
   for (const k of ['ArrowRight', 'ArrowRight']) await page.keyboard.press(k);
   await mirrored(page);
   const wider = await page.evaluate(() => window.armlab.viewRect());
   assert.ok(wider.x > before.x + 40, `the view's left edge moved right: ${before.x} → ${wider.x}`);
-  assert.ok((await edge("Width of the left column")).value > left.value, 'and the edge says the new width');
+  assert.ok((await edge('Width of the left column')).value > left.value, 'and the edge says the new width');
   await page.keyboard.press('ArrowLeft');
   await mirrored(page);
   const narrower = await page.evaluate(() => window.armlab.viewRect());
