@@ -217,16 +217,19 @@ fn edge_id(ui: &egui::Ui, salt: impl egui::AsIdSalt) -> egui::Id {
 /// reads the steps.
 fn step_edge_by_keys(ctx: &egui::Context, edge: egui::Id) {
     use egui::accesskit::{Action, ActionRequest, TreeId};
-    if !ctx.memory(|m| m.has_focus(edge)) {
-        return;
-    }
     // Left and Right are the edge's own, as a slider's: egui would otherwise move the focus
     // to the control beside it.
     let arrows = egui::EventFilter {
         horizontal_arrows: true,
         ..Default::default()
     };
-    ctx.memory_mut(|m| m.set_focus_lock_filter(edge, arrows));
+    let focused = ctx.memory_mut(|m| {
+        m.set_focus_lock_filter(edge, arrows);
+        m.has_focus(edge)
+    });
+    if !focused {
+        return;
+    }
     let steps = [
         (egui::Key::ArrowRight, Action::Increment),
         (egui::Key::ArrowLeft, Action::Decrement),
@@ -252,14 +255,17 @@ fn step_edge_by_keys(ctx: &egui::Context, edge: egui::Id) {
 /// the pointer).
 fn name_and_mark_edge(ui: &egui::Ui, edge: egui::Id, name: &str) {
     ui.ctx()
-        .accesskit_node_builder(edge, |node| node.set_label(name.to_owned()));
-    if ui.memory(|m| m.has_focus(edge))
-        && let Some(handle) = ui.ctx().read_response(edge)
+        .accesskit_node_builder(edge, |node| node.set_label(name));
+    if let Some(handle) = ui.ctx().read_response(edge)
+        && handle.has_focus()
     {
+        // Three points wide: the view drawn after the column covers the half of the handle
+        // beyond the column's edge, so one line of the outline shows, along that edge.
+        let colour = ui.visuals().selection.stroke.color;
         ui.painter().rect_stroke(
             handle.rect,
             2.0,
-            ui.visuals().selection.stroke,
+            egui::Stroke::new(3.0, colour),
             egui::StrokeKind::Inside,
         );
     }
