@@ -327,14 +327,15 @@ fn with_reduced_motion_a_fold_opens_in_one_frame() {
     );
 }
 
-/// The left column's edge (egui's resize handle) by its name: its left and right x.
-fn edge(h: &Harness<'_, ArmLabApp>) -> (f64, f64) {
-    let b = h
-        .get_by_role_and_label(Role::Splitter, "Width of the left column")
+/// The left column's edge (egui's resize handle) by its name: its left and right x, and
+/// whether it has the keyboard.
+fn edge(h: &Harness<'_, ArmLabApp>) -> ((f64, f64), bool) {
+    let node = h.get_by_role_and_label(Role::Splitter, "Width of the left column");
+    let b = node
         .accesskit_node()
         .bounding_box()
         .expect("the edge is laid out");
-    (b.x0, b.x1)
+    ((b.x0, b.x1), node.is_focused())
 }
 
 /// Tab reaches a column's edge after the column's controls and outlines it; there Right and
@@ -343,10 +344,6 @@ fn edge(h: &Harness<'_, ArmLabApp>) -> (f64, f64) {
 fn tab_reaches_a_columns_edge_and_the_arrow_keys_step_its_width() {
     let mut h = harness("#robot=ur10&q=0,-1.1,1.2,-1.5,-1.2,0.3&task=position");
     h.run_steps(2);
-    let focused_edge = |h: &Harness<'_, ArmLabApp>| {
-        h.query_by_role_and_label(Role::Splitter, "Width of the left column")
-            .is_some_and(|n| n.is_focused())
-    };
     // The edge's pixels in the focus colour (a column of its rectangle, its middle third).
     let outlined = |h: &mut Harness<'_, ArmLabApp>| {
         let colour = h
@@ -357,7 +354,7 @@ fn tab_reaches_a_columns_edge_and_the_arrow_keys_step_its_width() {
             .stroke
             .color
             .to_array();
-        let (x0, _) = edge(h);
+        let ((x0, _), _) = edge(h);
         let image = h.render().expect("a frame");
         let ppp = f64::from(h.ctx.pixels_per_point());
         let x = ((x0 + 0.5) * ppp) as u32;
@@ -372,7 +369,7 @@ fn tab_reaches_a_columns_edge_and_the_arrow_keys_step_its_width() {
         "no outline before the edge has the keyboard"
     );
     let mut tabs = 0;
-    while !focused_edge(&h) {
+    while !edge(&h).1 {
         tabs += 1;
         assert!(tabs < 150, "Tab never reached the left column's edge");
         h.key_press(egui::Key::Tab);
@@ -382,12 +379,12 @@ fn tab_reaches_a_columns_edge_and_the_arrow_keys_step_its_width() {
         outlined(&mut h),
         "the edge is outlined in the focus colour after {tabs} Tabs"
     );
-    let (start, target0) = (edge(&h), target(&h));
+    let (start, target0) = (edge(&h).0, target(&h));
     h.key_press(egui::Key::ArrowRight);
     h.run_steps(2);
     h.key_press(egui::Key::ArrowRight);
     h.run_steps(3);
-    let wider = edge(&h);
+    let wider = edge(&h).0;
     let step = h.ctx.global_style().spacing.interact_size.x as f64;
     assert!(
         (wider.0 - start.0 - 2.0 * step).abs() < 1.0,
@@ -395,8 +392,9 @@ fn tab_reaches_a_columns_edge_and_the_arrow_keys_step_its_width() {
     );
     h.key_press(egui::Key::ArrowLeft);
     h.run_steps(3);
-    assert!((edge(&h).0 - wider.0 + step).abs() < 1.0, "one step back");
-    assert!(focused_edge(&h), "the edge keeps the keyboard");
+    let (back, focused) = edge(&h);
+    assert!((back.0 - wider.0 + step).abs() < 1.0, "one step back");
+    assert!(focused, "the edge keeps the keyboard");
     assert_eq!(
         target(&h),
         target0,
