@@ -68,11 +68,11 @@ ensure_trunk() {
 }
 
 # binaryen's wasm-opt (v132, from npm: Debian's v108 breaks eframe pages), esbuild (minifies
-# the page's JS glue: web/build/minify-build.mjs) and playwright-core, pinned by
-# web/package-lock.json.
+# the page's JS glue: web/build/minify-build.mjs), xzwasm (the page's xz decoder:
+# web/build/pack-wasm.mjs) and playwright-core, pinned by web/package-lock.json.
 ensure_npm() {
   if [ ! -x "$ROOT/web/node_modules/.bin/wasm-opt" ] || [ ! -d "$ROOT/web/node_modules/playwright-core" ] \
-    || [ ! -d "$ROOT/web/node_modules/esbuild" ]; then
+    || [ ! -d "$ROOT/web/node_modules/esbuild" ] || [ ! -d "$ROOT/web/node_modules/xzwasm" ]; then
     say "installing web/ npm packages"
     (cd "$ROOT/web" && npm ci --no-audit --no-fund)
   fi
@@ -157,6 +157,8 @@ ensure_apt() {
 # .cargo/config.toml's for wasm32, so they repeat its SIMD flag.
 build_web() {
   say "building the page (trunk build --release)"
+  # xz packs the page's wasm (web/build/pack-wasm.mjs): Debian's xz-utils, in most installs.
+  command -v xz >/dev/null || ensure_apt xz-utils || return 1
   (cd "$ROOT" && cargo fetch --target wasm32-unknown-unknown -q) || return 1
   # Cargo does not see what a RUSTC_WRAPPER adds to a crate's flags: page-rustc's code (not
   # its comments) keys the build's cache (its checksum as a -C metadata, which only mixes

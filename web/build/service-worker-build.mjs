@@ -8,9 +8,10 @@
 // (every browser's first visit fetches it: its comments were half its bytes), preceded by
 // one line,
 //   const ARMLAB_BUILD = {"version":"…","files":["icon.svg","index.html",…]};
-// `files`: every file of the build except the worker itself, dot files and the copies
+// `files`: every file of the build except the worker itself, dot files, the copies
 // compressed ahead (`.br`, `.gz`: web/build/precompress.mjs; a browser never asks for them
-// by name, the server sends them in place of the file), relative to the
+// by name, the server sends them in place of the file) and the wasm the page unpacks from
+// its `.xz` (web/build/pack-wasm.mjs), relative to the
 // folder, sorted; `version`: the first 16 hex digits of the SHA-256 of, for each file in
 // that order, its path, a newline, the SHA-256 (hex) of its contents and a newline. Every
 // build whose files differ has another version, so its worker installs and replaces the
@@ -44,7 +45,9 @@ function buildFiles(dir, prefix = '') {
     if (entry.isDirectory()) files.push(...buildFiles(dir, rel));
     else if (entry.isFile() && rel !== WORKER && !PRECOMPRESSED.test(rel)) files.push(rel);
   }
-  return files.sort();
+  // A file packed beside itself (NAME.xz: web/build/pack-wasm.mjs) is fetched only where the
+  // packed copy cannot be, online: the worker caches the copy, which the page asks for.
+  return files.filter((f) => !files.includes(`${f}.xz`)).sort();
 }
 
 const sha256 = (data) => crypto.createHash('sha256').update(data).digest('hex');

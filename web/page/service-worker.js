@@ -3,9 +3,10 @@
 // post_build hook) with one line before this text: ARMLAB_BUILD = {version, files}, the
 // build's own files and a hash of their contents. Registered by index.html.
 //
-// What the page needs is those files: index.html, the JS glue, the wasm, the manifest and
-// the icon. The fonts are compiled into the wasm (include_bytes! in src/app/style.rs), so
-// caching the wasm caches the fonts. The one file the app fetches at run time, the URDF
+// What the page needs is those files: index.html, the JS glue, the wasm packed with xz and
+// its decoder (the page unpacks it on every visit; the wasm itself, its fallback, is not in
+// the list), the manifest and the icon. The fonts are compiled into the wasm (include_bytes!
+// in src/app/widgets/style.rs), so caching the wasm caches the fonts. The one file the app fetches at run time, the URDF
 // module (urdf/, on the first URDF file opened or saved), is in the build's list too.
 //
 // - install: puts this build's files into the cache named by its version.

@@ -2,7 +2,7 @@
 // loopback: a benchmark, it prints figures and asserts nothing, and it is not part of the
 // test command.
 //
-//   node web/scripts/firstframe.mjs DIST_DIR [runs=5] [--encoding=gzip|br] [--down=9] [--up=3] [--rtt=100]
+//   node web/scripts/firstframe.mjs DIST_DIR [runs=5] [--encoding=gzip|br] [--down=9] [--up=3] [--rtt=100] [--revisit]
 //
 // The build is served compressed as a host serves it (gzip, as GitHub Pages; br, as an
 // Apache with mod_brotli), and each run opens the page in a fresh browser context (an
@@ -17,6 +17,9 @@
 // requested more than once, and how many wasm files the server had sent by the first
 // frame (the page's own, and any a service worker fetched meanwhile: its fetches pass
 // through the server but not through the page's emulated link); then the median of each set.
+// With --revisit, instead, a returning visitor on loopback: one visit, and once the service
+// worker has cached the build, `runs` reloads, each page from the worker's cache (the
+// first frame of each, and its median).
 import fs from 'node:fs';
 import path from 'node:path';
 import { serveDist, launchChromium } from '../tests/static-server.mjs';
@@ -79,7 +82,7 @@ async function run(throttled) {
   // Whether the server sent the wasm from the build's copy compressed ahead (NAME.br, NAME.gz).
   let precompressed = false;
   cdp.on('Network.responseReceived', (e) => {
-    if (e.response.url.endsWith('.wasm')) precompressed = e.response.headers['x-precompressed'] === '1';
+    if (/\.wasm(\.xz)?$/.test(e.response.url)) precompressed = e.response.headers['x-precompressed'] === '1';
   });
   served.length = 0;
   await page.goto(`${base}#robot=ur10`, { waitUntil: 'commit' });
@@ -88,7 +91,7 @@ async function run(throttled) {
     return at && window.armlabCanvasBlits.some((t) => t >= at);
   }, null, { timeout: 120000, polling: 100 });
   const timing = await page.evaluate(() => {
-    const wasm = performance.getEntriesByType('resource').filter((e) => e.name.endsWith('.wasm'));
+    const wasm = performance.getEntriesByType('resource').filter((e) => /\.wasm(\.xz)?$/.test(e.name));
     return {
       first_frame_ms: Math.round(window.armlab.firstFrameAt()),
       shown_ms: Math.round(window.armlabCanvasBlits.find((t) => t >= window.armlab.firstFrameAt())),
@@ -105,12 +108,33 @@ async function run(throttled) {
   await ctx.close();
   const { first_frame_epoch_ms: firstAt, ...shown } = timing;
   // The wasm files the server sent before the first frame: the page's, and a worker's.
-  const wasmServed = served.filter((s) => s.at <= firstAt && s.path.endsWith('.wasm')).length;
+  const wasmServed = served.filter((s) => s.at <= firstAt && /\.wasm(\.xz)?$/.test(s.path)).length;
   return { ...shown, wire_bytes: bytes, requests: requested.length, requested_twice: twice, wasm_files_served_before_first_frame: wasmServed, wasm_precompressed: precompressed };
 }
 
+/** A returning visitor: the first frames of `runs` reloads once the worker has cached the build. */
+async function revisits() {
+  const ctx = await browser.newContext({ viewport: { width: 1366, height: 768 }, deviceScaleFactor: 1 });
+  const page = await ctx.newPage();
+  const drawn = () => page.waitForFunction(() => window.armlab?.firstFrameAt?.(), null, { timeout: 120000, polling: 100 });
+  await page.goto(`${base}#robot=ur10`);
+  await drawn();
+  await page.evaluate(() => Promise.race([navigator.serviceWorker.ready,
+    new Promise((_, reject) => setTimeout(() => reject(new Error('no service worker became ready in 60 s')), 60000))]));
+  const times = [];
+  for (let i = 0; i < runs; i++) {
+    await page.reload();
+    await drawn();
+    const { at, controlled } = await page.evaluate(() => ({ at: window.armlab.firstFrameAt(), controlled: !!navigator.serviceWorker.controller }));
+    if (!controlled) throw new Error('the reload did not come from the service worker');
+    times.push(Math.round(at));
+  }
+  await ctx.close();
+  return times;
+}
+
 const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor(xs.length / 2)];
-for (const throttled of [true, false]) {
+for (const throttled of args.includes('--revisit') ? [] : [true, false]) {
   const label = throttled ? `${link.down}/${link.up} Mbit/s, ${link.rtt} ms RTT, ${encoding}` : `loopback, ${encoding}`;
   const results = [];
   for (let i = 1; i <= runs; i++) {
@@ -121,6 +145,10 @@ for (const throttled of [true, false]) {
   console.log(JSON.stringify({ link: label, median_first_frame_ms: median(results.map((r) => r.first_frame_ms)),
     first_frame_ms: results.map((r) => r.first_frame_ms), median_shown_ms: median(results.map((r) => r.shown_ms)),
     shown_ms: results.map((r) => r.shown_ms), median_wasm_end_ms: median(results.map((r) => r.wasm_end_ms)) }));
+}
+if (args.includes('--revisit')) {
+  const times = await revisits();
+  console.log(JSON.stringify({ link: `loopback, ${encoding}, a returning visit (the service worker's cache)`, median_first_frame_ms: median(times), first_frame_ms: times }));
 }
 await browser.close();
 server.close();

@@ -72,7 +72,7 @@ test('checks on: the module loads once, the driving UR10 stops at a collision-fr
   let s = await until(page, (st) => st.frame > 3, 'a few frames');
   assert.equal(s.motion.keep_outs, 1, 'the link brought the box');
   assert.equal(s.motion.collisions, false);
-  assert.ok(requests.some((p) => p.endsWith('_bg.wasm')), 'the first load fetched the page\'s wasm');
+  assert.ok(requests.some((p) => p.endsWith('_bg.wasm.xz')), 'the first load fetched the page\'s packed wasm');
   assert.deepEqual(moduleRequests(requests), [], 'the first load does not fetch the collision module');
 
   const clicked = Date.now();

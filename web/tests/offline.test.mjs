@@ -105,12 +105,14 @@ function workerBuild(dir) {
 }
 
 /** The version a build of `dir` must carry: SHA-256 over each file (sorted by path, the
- * worker, dot files and the copies compressed ahead, `.br` and `.gz`, left out) of "path\n" + the hex SHA-256 of its bytes + "\n". */
+ * worker, dot files, the copies compressed ahead, `.br` and `.gz`, and the wasm the page
+ * unpacks from its `.xz` left out) of "path\n" + the hex SHA-256 of its bytes + "\n". */
 function expectedBuild(dir) {
   const files = fs.readdirSync(dir, { recursive: true, withFileTypes: true })
     .filter((e) => e.isFile())
     .map((e) => path.relative(dir, path.join(e.parentPath ?? e.path, e.name)).split(path.sep).join('/'))
     .filter((f) => f !== WORKER && !f.split('/').some((part) => part.startsWith('.')) && !/\.(br|gz)$/.test(f))
+    .filter((f, _, files) => !files.includes(`${f}.xz`))
     .sort();
   const hash = crypto.createHash('sha256');
   for (const f of files) hash.update(`${f}\n${crypto.createHash('sha256').update(fs.readFileSync(path.join(dir, f))).digest('hex')}\n`);
@@ -151,7 +153,8 @@ test('the worker lists exactly the build\'s files, under a version hashed from t
   const expected = expectedBuild(dist);
   assert.deepEqual(build.files, expected.files);
   assert.equal(build.version, expected.version);
-  for (const kind of [/^index\.html$/, /^armlab-[0-9a-f]+\.js$/, /^armlab-[0-9a-f]+_bg\.wasm$/, /^manifest\.webmanifest$/, /^icon\.svg$/,
+  for (const kind of [/^index\.html$/, /^armlab-[0-9a-f]+\.js$/, /^armlab-[0-9a-f]+_bg\.wasm\.xz$/, /^unxz-[0-9a-f]+\.js$/,
+    /^manifest\.webmanifest$/, /^icon\.svg$/,
     /^urdf\/armlab_urdf\.js$/, /^urdf\/armlab_urdf-[0-9a-f]+_bg\.wasm$/]) {
     assert.ok(build.files.some((f) => kind.test(f)), `the worker caches ${kind}`);
   }

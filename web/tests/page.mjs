@@ -178,7 +178,7 @@ export function pageOpener(suite, defaults = {}) {
     const { ctx, page, errors } = await newPage(suite.browser, pageOptions);
     if (slowWasm) {
       // Hold the wasm back a moment so the page's loading text can be seen, as on slow Wi-Fi.
-      await ctx.route('**/*.wasm', async (route) => { await new Promise((r) => setTimeout(r, 1500)); await route.continue(); });
+      await ctx.route(/_bg\.wasm(\.xz)?$/, async (route) => { await new Promise((r) => setTimeout(r, 1500)); await route.continue(); });
     }
     await setup(ctx, page);
     const requests = [];

@@ -11,7 +11,7 @@ import { chromium } from 'playwright-core';
 
 const types = {
   '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.wasm': 'application/wasm', '.css': 'text/css',
-  '.json': 'application/json', '.png': 'image/png', '.svg': 'image/svg+xml',
+  '.json': 'application/json', '.png': 'image/png', '.svg': 'image/svg+xml', '.xz': 'application/x-xz',
 };
 
 /**
@@ -22,7 +22,7 @@ const types = {
  * fly uses less, a host serving files compressed ahead, the same). Compressed once per file;
  * where the build wrote the file compressed ahead (`NAME.br`, `NAME.gz`:
  * web/build/precompress.mjs), that copy is sent, as nginx's `gzip_static` and the classroom
- * server do (the answer's `x-precompressed` header says so).
+ * server do (the answer's `x-precompressed` header says so). An `.xz` file is sent as it is.
  */
 export async function serveDist(dist, { encoding } = {}) {
   const packed = new Map();
@@ -43,7 +43,9 @@ export async function serveDist(dist, { encoding } = {}) {
     fs.readFile(file, (err, data) => {
       if (err) { res.writeHead(404); res.end(); return; }
       const headers = { 'content-type': types[path.extname(file)] ?? 'application/octet-stream' };
-      if (encoding && (req.headers['accept-encoding'] ?? '').includes(encoding)) {
+      // An .xz (the page's packed wasm) is sent as it is: compressed already, it would not
+      // shrink, and hosts compress text types only.
+      if (encoding && !file.endsWith('.xz') && (req.headers['accept-encoding'] ?? '').includes(encoding)) {
         headers['content-encoding'] = encoding;
         headers.vary = 'Accept-Encoding';
         const ahead = `${file}.${encoding === 'br' ? 'br' : 'gz'}`;

@@ -45,7 +45,7 @@ const RRR_POSITION = ['c1(222.1 c2 + 136.2 c23)', 's1(222.1 c2 + 136.2 c23)', '1
 test('ticked, the module loads once and makes the RRR\'s symbolic T_03; another robot is asked for without a second fetch', async () => {
   const { page, ctx, requests, errors } = await open('#robot=rrr&panels=matrices');
   let s = await until(page, (st) => st.frame > 3, 'a few frames');
-  assert.ok(requests.some((p) => p.endsWith('_bg.wasm')), 'the first load fetched the page\'s wasm');
+  assert.ok(requests.some((p) => p.endsWith('_bg.wasm.xz')), 'the first load fetched the page\'s packed wasm');
   assert.deepEqual(moduleRequests(requests), [], 'the first load does not fetch the module');
   assert.equal(s.symbolic, 'idle', 'nothing asked for before the tick');
 

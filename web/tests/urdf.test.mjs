@@ -146,7 +146,7 @@ test('the URDF module is built beside the page and outside its first load', asyn
 test('a URDF file opened in the page loads its robot (Panda flange at SPEC §1.5); a broken one gets the sentence and the robot stays', async () => {
   const { page, ctx, requests, errors } = await open('#robot=ur10&panels=robot');
   assert.equal((await state(page)).robot, 'UR10');
-  assert.ok(requests.some((p) => p.endsWith('_bg.wasm')), 'the first load fetched the page\'s wasm');
+  assert.ok(requests.some((p) => p.endsWith('_bg.wasm.xz')), 'the first load fetched the page\'s packed wasm');
   assert.deepEqual(urdfRequests(requests), [], 'the first load does not fetch the URDF module');
 
   await chooseFile(page, 'panda.urdf', PANDA_URDF);
