@@ -6,8 +6,9 @@
 // What the page needs is those files: index.html, the JS glue, the wasm packed with xz and
 // its decoder (the page unpacks it on every visit; the wasm itself, its fallback, is not in
 // the list), the manifest and the icon. The fonts are compiled into the wasm (include_bytes!
-// in src/app/widgets/style.rs), so caching the wasm caches the fonts. The one file the app fetches at run time, the URDF
-// module (urdf/, on the first URDF file opened or saved), is in the build's list too.
+// in src/app/widgets/style.rs), so caching the wasm caches the fonts. The one file the app
+// fetches at run time, the URDF module (urdf/, on the first URDF file opened or saved), is
+// in the build's list too.
 //
 // - install: puts this build's files into the cache named by its version.
 // - activate: deletes every other ArmLab cache of this scope, and takes over open pages.

@@ -13,7 +13,8 @@ import { XzReadableStream } from 'xzwasm';
 export default async function packedWasm(url) {
   const packed = await fetch(url + '.xz').catch(() => null);
   if (!packed?.ok || !packed.body) return fetch(url);
-  return new Response(copied(new XzReadableStream(packed.body)), { headers: { 'content-type': 'application/wasm' } });
+  const body = copied(new XzReadableStream(packed.body));
+  return new Response(body, { headers: { 'content-type': 'application/wasm' } });
 }
 
 /**
@@ -29,7 +30,9 @@ function copied(stream) {
   return new ReadableStream({
     async start(controller) {
       try {
-        for (let read = await reader.read(); !read.done; read = await reader.read()) controller.enqueue(read.value.slice());
+        for (let read = await reader.read(); !read.done; read = await reader.read()) {
+          controller.enqueue(read.value.slice());
+        }
         controller.close();
       } catch (e) {
         controller.error(e);
