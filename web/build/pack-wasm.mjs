@@ -15,6 +15,10 @@
 // asks for the .xz, the decoder is preloaded beside the glue, and the loader hands the app's
 // init the unpacked answer (then, if that fails, the wasm itself).
 //
+// The lazily loaded module in urdf/ (tools/setup.sh, build_urdf_module) is packed the same
+// way, and its glue exports the decoder and its wasm's address (`packedWasm`, `wasmUrl`),
+// with which the page's import starts it (src/app/platform/web/modules.rs).
+//
 // Only release builds (TRUNK_PROFILE=release): `trunk serve` loads the wasm as trunk wrote it.
 // Run by hand on a built folder: TRUNK_PROFILE=release TRUNK_STAGING_DIR=dist node web/build/pack-wasm.mjs
 import crypto from 'node:crypto';
@@ -31,22 +35,31 @@ if (!dir || !fs.existsSync(path.join(dir, 'index.html'))) {
 }
 if ((process.env.TRUNK_PROFILE ?? 'release') !== 'release') process.exit(0);
 
-const indexPath = path.join(dir, 'index.html');
-let index = fs.readFileSync(indexPath, 'utf8');
-const [wasm, ...others] = fs.readdirSync(dir).filter((f) => f.endsWith('_bg.wasm'));
-if (!wasm || others.length) {
-  console.error(`pack-wasm: expected one page wasm in ${dir}, found ${[wasm, ...others].join(', ')}`);
-  process.exit(1);
+/** The one file of `folder` (under the staging directory) whose name ends with `end`. */
+function single(folder, end) {
+  const found = fs.readdirSync(path.join(dir, folder)).filter((f) => f.endsWith(end));
+  if (found.length !== 1) {
+    console.error(`pack-wasm: expected one *${end} in ${path.join(dir, folder)}, found ${found.join(', ') || 'none'}`);
+    process.exit(1);
+  }
+  return found[0];
 }
 
-// LZMA2's dictionary as large as the wasm (a power of two): a larger one finds nothing more,
-// and the decoder allocates all of it.
-const wasmPath = path.join(dir, wasm);
-const size = fs.statSync(wasmPath).size;
-const dict = 2 ** Math.max(12, Math.ceil(Math.log2(size)));
-const packed = execFileSync('xz', ['--format=xz', `--lzma2=preset=9e,dict=${dict}`, '--threads=1', '--stdout', wasmPath],
-  { maxBuffer: 2 * size });
-fs.writeFileSync(`${wasmPath}.xz`, packed);
+/** Writes `wasmPath`.xz; logs and returns nothing. LZMA2's dictionary is as large as the
+ * wasm (a power of two): a larger one finds nothing more, and the decoder allocates all of it. */
+function pack(wasmPath) {
+  const size = fs.statSync(wasmPath).size;
+  const dict = 2 ** Math.max(12, Math.ceil(Math.log2(size)));
+  const packed = execFileSync('xz', ['--format=xz', `--lzma2=preset=9e,dict=${dict}`, '--threads=1', '--stdout', wasmPath],
+    { maxBuffer: 2 * size });
+  fs.writeFileSync(`${wasmPath}.xz`, packed);
+  console.log(`pack-wasm: ${path.relative(dir, wasmPath)} ${size} → ${packed.length} bytes (xz)`);
+}
+
+const indexPath = path.join(dir, 'index.html');
+let index = fs.readFileSync(indexPath, 'utf8');
+const wasm = single('.', '_bg.wasm');
+pack(path.join(dir, wasm));
 
 // The decoder, bundled as an ES module under a name that changes with its contents.
 const source = path.join(path.dirname(fileURLToPath(import.meta.url)), '..', 'page', 'unxz.mjs');
@@ -73,4 +86,11 @@ index = rewrite(index, /(<script type=["']?module["']?>)([\s\S]*?)await init\(\{
     + `await init({ module_or_path: packedWasm(${url}) }).catch(() => init({ module_or_path: ${url} }))`,
   'loader calling init with the wasm');
 fs.writeFileSync(indexPath, index);
-console.log(`pack-wasm: ${wasm} ${size} → ${packed.length} bytes (xz), decoder ${unxz} ${bundle.contents.length} bytes`);
+console.log(`pack-wasm: decoder ${unxz} ${bundle.contents.length} bytes`);
+
+// The lazy module: its glue (wasm-bindgen's, for `--target web`) gains two exports.
+const lazyWasm = single('urdf', '_bg.wasm');
+pack(path.join(dir, 'urdf', lazyWasm));
+const gluePath = path.join(dir, 'urdf', single('urdf', '.js'));
+fs.appendFileSync(gluePath, `\nexport { default as packedWasm } from '../${unxz}';\n`
+  + `export const wasmUrl = new URL('${lazyWasm}', import.meta.url).href;\n`);

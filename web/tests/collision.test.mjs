@@ -175,7 +175,7 @@ test('a module that cannot be loaded (offline, no cache): the checks say so; on 
   s = await until(page, (st) => !st.motion.collisions, 'checks off');
   await click(page, 'motion-collisions');
   s = await until(page, (st) => st.motion.collisions && st.motion.checker === 'ready', 'the module on the second try');
-  assert.ok(moduleRequests(requests).some((p) => p.endsWith('_bg.wasm')), 'the wasm came on the second try');
+  assert.ok(moduleRequests(requests).some((p) => p.endsWith('_bg.wasm.xz')), 'the packed wasm came on the second try');
   assert.ok(errors.every((e) => /urdf|import|fetch/i.test(e)), `only the failed import: ${errors}`);
   await ctx.close();
 });

@@ -155,7 +155,7 @@ test('the worker lists exactly the build\'s files, under a version hashed from t
   assert.equal(build.version, expected.version);
   for (const kind of [/^index\.html$/, /^armlab-[0-9a-f]+\.js$/, /^armlab-[0-9a-f]+_bg\.wasm\.xz$/, /^unxz-[0-9a-f]+\.js$/,
     /^manifest\.webmanifest$/, /^icon\.svg$/,
-    /^urdf\/armlab_urdf\.js$/, /^urdf\/armlab_urdf-[0-9a-f]+_bg\.wasm$/]) {
+    /^urdf\/armlab_urdf\.js$/, /^urdf\/armlab_urdf-[0-9a-f]+_bg\.wasm\.xz$/]) {
     assert.ok(build.files.some((f) => kind.test(f)), `the worker caches ${kind}`);
   }
   const manifest = JSON.parse(fs.readFileSync(path.join(dist, 'manifest.webmanifest'), 'utf8'));

@@ -1,7 +1,8 @@
 // The page's wasm packed with xz (web/build/pack-wasm.mjs, web/page/unxz.mjs) in the built
 // page (dist/) in headless Chromium. Here: the first load fetches the packed copy and not
 // the wasm, the page's decoder gives back exactly the wasm's bytes, and where the copy is
-// missing or broken the page loads the wasm itself and draws.
+// missing or broken the page loads the wasm itself and draws; the lazy module (urdf/) the
+// same way. (That the module starts from its packed copy: urdf.test.mjs, collision.test.mjs.)
 //
 // The contexts block service workers: the worker's precaching is not the page's first load.
 import { test } from 'node:test';
@@ -11,7 +12,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import zlib from 'node:zlib';
 import { browserSuite } from './browser-suite.mjs';
-import { dist, state, pageOpener } from './page.mjs';
+import { dist, state, pageOpener, until, moduleRequests } from './page.mjs';
 
 const suite = browserSuite(dist, { untimed: true });
 const { open } = pageOpener(suite, { contextOptions: { serviceWorkers: 'block' }, consoleErrors: false, waitUntil: 'load' });
@@ -19,6 +20,8 @@ const { open } = pageOpener(suite, { contextOptions: { serviceWorkers: 'block' }
 const wasm = fs.readdirSync(dist).find((f) => f.endsWith('_bg.wasm'));
 const unxz = fs.readdirSync(dist).find((f) => /^unxz-[0-9a-f]{16}\.js$/.test(f));
 const HASH = '#robot=ur10&q=0.4,-1.1,1.3,-1.6,-1.4,0.2';
+/** Half of `file`'s bytes: its decoder fails partway. */
+const cut = (file) => { const bytes = fs.readFileSync(file); return bytes.subarray(0, bytes.length >> 1); };
 
 test('the first load fetches the wasm packed, a quarter smaller than gzip, and the page unpacks it to its exact bytes', async () => {
   const raw = fs.readFileSync(path.join(dist, wasm));
@@ -57,8 +60,7 @@ test('the first load fetches the wasm packed, a quarter smaller than gzip, and t
 for (const [what, answer] of [
   ['missing', (route) => route.fulfill({ status: 404, body: '' })],
   // Cut in half: the decoder fails partway, after the app's init has begun compiling.
-  ['broken', (route) => route.fulfill({ status: 200, contentType: 'application/x-xz',
-    body: fs.readFileSync(path.join(dist, `${wasm}.xz`)).subarray(0, 600000) })],
+  ['broken', (route) => route.fulfill({ status: 200, contentType: 'application/x-xz', body: cut(path.join(dist, `${wasm}.xz`)) })],
 ]) {
   test(`where the packed copy is ${what}, the page loads the wasm itself and draws the arm`, async () => {
     const { page, ctx, errors, requests } = await open(HASH, { setup: (c) => c.route(`**/${wasm}.xz`, answer) });
@@ -70,3 +72,16 @@ for (const [what, answer] of [
     await ctx.close();
   });
 }
+
+test('where the lazy module\'s packed copy is broken, the module starts from its wasm itself', async () => {
+  const module = fs.readdirSync(path.join(dist, 'urdf')).find((f) => f.endsWith('_bg.wasm'));
+  const broken = (route) => route.fulfill({ status: 200, contentType: 'application/x-xz', body: cut(path.join(dist, 'urdf', `${module}.xz`)) });
+  // collide=on: the collision checks load the module at once.
+  const { page, ctx, errors, requests } = await open('#robot=ur10&panels=motion&collide=on',
+    { setup: (c) => c.route(`**/urdf/${module}.xz`, broken) });
+  await until(page, (s) => s.motion.checker === 'ready', 'the collision checks ready');
+  const fetched = moduleRequests(requests).map((p) => p.replace(/.*\//, ''));
+  assert.deepEqual(fetched, ['armlab_urdf.js', `${module}.xz`, module], 'the glue, the packed copy, then the wasm itself');
+  assert.deepEqual(errors, []);
+  await ctx.close();
+});

@@ -80,7 +80,7 @@ test('a module that cannot be loaded (offline, no cache): the panel says so; tic
   await tick(page);
   s = await until(page, (st) => symbolic(st).state === 'ready', 'the tables on the second try');
   assert.deepEqual(position(s), RRR_POSITION);
-  assert.ok(moduleRequests(requests).some((p) => p.endsWith('_bg.wasm')), 'the wasm came on the second try');
+  assert.ok(moduleRequests(requests).some((p) => p.endsWith('_bg.wasm.xz')), 'the packed wasm came on the second try');
   assert.ok(errors.every((e) => /urdf|import|fetch/i.test(e)), `only the failed import: ${errors}`);
   await ctx.close();
 });

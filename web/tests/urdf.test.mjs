@@ -129,16 +129,20 @@ async function chooseFile(page, name, text) {
 const until = (page, check, what) => waitFor(page, check, what, { pause: 50, detail: (s) => s.message });
 
 test('the URDF module is built beside the page and outside its first load', async () => {
-  // Beside each file its copies compressed ahead (`.br`, `.gz`), which a server sends instead.
+  // Beside the glue and the wasm their copies compressed ahead (`.br`, `.gz`), which a server
+  // sends instead; beside the wasm its copy packed with xz, which the page fetches.
   const all = fs.readdirSync(path.join(dist, 'urdf'));
   const files = all.filter((f) => !/\.(br|gz)$/.test(f));
-  assert.equal(files.length, 2, `dist/urdf/ holds the glue and the wasm: ${files}`);
-  for (const f of files) for (const ext of ['br', 'gz']) assert.ok(all.includes(`${f}.${ext}`), `${f}.${ext} beside it`);
+  assert.equal(files.length, 3, `dist/urdf/ holds the glue, the wasm and its packed copy: ${files}`);
   assert.ok(files.includes('armlab_urdf.js'), `the glue: ${files}`);
   const wasm = files.find((f) => /^armlab_urdf-[0-9a-f]{16}_bg\.wasm$/.test(f));
   assert.ok(wasm, `the wasm, named by its hash: ${files}`);
+  assert.ok(files.includes(`${wasm}.xz`), `its packed copy: ${files}`);
+  for (const f of ['armlab_urdf.js', wasm]) for (const ext of ['br', 'gz']) assert.ok(all.includes(`${f}.${ext}`), `${f}.${ext} beside it`);
   const glue = fs.readFileSync(path.join(dist, 'urdf', 'armlab_urdf.js'), 'utf8');
   assert.ok(glue.includes(wasm), 'the glue names its own wasm');
+  assert.match(glue, /export \{ default as packedWasm \} from '\.\.\/unxz-[0-9a-f]{16}\.js';/, 'it hands on the page\'s decoder');
+  assert.ok(glue.includes(`export const wasmUrl = new URL('${wasm}', import.meta.url).href;`), 'and its wasm\'s address');
   assert.ok(/export function urdf_import\b/.test(glue) && /export function robot_to_urdf\b/.test(glue), 'it exports the page\'s two calls');
   assert.ok(!fs.readFileSync(path.join(dist, 'index.html'), 'utf8').includes('urdf/'), 'index.html does not name it');
 });
@@ -156,8 +160,8 @@ test('a URDF file opened in the page loads its robot (Panda flange at SPEC §1.5
   assert.equal(s.length_unit, 'm');
   assert.equal(s.message, 'Loaded panda. Its meshes (2) are not drawn: ArmLab draws its own boxes and cylinders along the DH table.');
   const fetched = urdfRequests(requests);
-  assert.equal(fetched.length, 2, `the glue and the wasm, once: ${fetched}`);
-  assert.ok(fetched.some((p) => p.endsWith('/urdf/armlab_urdf.js')) && fetched.some((p) => p.endsWith('_bg.wasm')));
+  assert.equal(fetched.length, 2, `the glue and the packed wasm, once: ${fetched}`);
+  assert.ok(fetched.some((p) => p.endsWith('/urdf/armlab_urdf.js')) && fetched.some((p) => p.endsWith('_bg.wasm.xz')));
 
   // The ready pose through a link of the loaded robot: its flange where SPEC §1.5 has it.
   const hash = s.hash.split('&').map((kv) => (kv.startsWith('q=') ? `q=${READY.join(',')}` : kv)).join('&');

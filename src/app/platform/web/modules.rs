@@ -58,10 +58,18 @@ fn import_urdf_module() -> Result<js_sys::Promise, String> {
     }
     let url = url.href();
     // A dynamic import, which a function body may hold; the absolute address leaves
-    // nothing to resolve against the caller.
+    // nothing to resolve against the caller. A release build's glue names its wasm packed
+    // with xz and the page's decoder (web/build/pack-wasm.mjs): the module starts from the
+    // packed copy, or, where that fails, from its wasm itself; other builds' glue from the
+    // wasm.
     let import = js_sys::Function::new_with_args(
         "url",
-        "return import(url).then(function (m) { return m.default().then(function () { return m; }); });",
+        "return import(url).then(function (m) {\
+           var packed = m.packedWasm && m.packedWasm(m.wasmUrl);\
+           return m.default(packed && { module_or_path: packed })\
+             .catch(function () { return m.default(); })\
+             .then(function () { return m; });\
+         });",
     );
     import
         .call1(&JsValue::NULL, &url.into())
