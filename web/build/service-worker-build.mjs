@@ -22,8 +22,9 @@
 // the symbolic matrices are shown. The worker precaches it anyway, on purpose: it installs
 // after the page's load event, so the first load and the first frame do not wait for it,
 // and then opening a URDF file or ticking "symbolic" works offline too, like the
-// rest of the page (the lecture hall whose Wi-Fi fails). The cost is the module's ~305 kB
-// gzip once per build per browser, in the background.
+// rest of the page (the lecture hall whose Wi-Fi fails). The cost is the module's ~250 kB
+// (its wasm packed with xz: web/build/pack-wasm.mjs) once per build per browser, in the
+// background.
 //
 // Run by hand on a built folder: TRUNK_STAGING_DIR=dist node web/build/service-worker-build.mjs
 import crypto from 'node:crypto';
