@@ -57,7 +57,7 @@ for (const file of glue) {
 // HTML lets a page leave out go too (</head><body> before the canvas, </body></html> at the
 // end): the parser builds the same document without them.
 const loader = (code) => code.replace(/window\.wasmBindings\s*=\s*bindings;?/, '')
-  .replace(/const wasm = (await init\()/, '$1')
+  .replace(/const wasm = (await )/, '$1')
   .replace(/new CustomEvent\("TrunkApplicationStarted", \{detail: \{wasm\}\}\)/, 'new Event("TrunkApplicationStarted")');
 index = index.replace(/(<script type=module>)([\s\S]*?)(<\/script>)/, (_, open, code, close) =>
   open + minify(loader(code), 'es2022').trim() + close);

@@ -12,12 +12,12 @@
 //
 // Writes NAME_bg.wasm.xz beside the wasm (kept: the loader falls back to it where the packed
 // copy cannot be fetched or unpacked) and unxz-HASH.js, and rewrites index.html: the preload
-// asks for the .xz, the decoder is preloaded beside the glue, and the loader hands the app's
-// init the unpacked answer (then, if that fails, the wasm itself).
+// asks for the .xz, the decoder is preloaded beside the glue, and the loader starts the app
+// with the decoder's `startPacked` (from the packed copy, or, where that fails, the wasm).
 //
 // The lazily loaded module in urdf/ (tools/setup.sh, build_urdf_module) is packed the same
-// way, and its glue exports the decoder and its wasm's address (`packedWasm`, `wasmUrl`),
-// with which the page's import starts it (src/app/platform/web/modules.rs).
+// way, and its glue exports `startPacked` and its wasm's address (`wasmUrl`), with which
+// the page's import starts it (src/app/platform/web/modules.rs).
 //
 // Only release builds (TRUNK_PROFILE=release): `trunk serve` loads the wasm as trunk wrote it.
 // Run by hand on a built folder: TRUNK_PROFILE=release TRUNK_STAGING_DIR=dist node web/build/pack-wasm.mjs
@@ -82,8 +82,7 @@ index = rewrite(index, new RegExp(`(<link[^>]*href=["']?[^"' >]*${file})(["']?)(
 index = rewrite(index, /(<link[^>]*rel=["']?modulepreload["']?[^>]*>)/, `$1<link rel=modulepreload href=./${unxz} crossorigin>`,
   'modulepreload of the glue');
 index = rewrite(index, /(<script type=["']?module["']?>)([\s\S]*?)await init\(\{\s*module_or_path:\s*(['"][^'"]+['"])\s*\}\)/,
-  (_, open, head, url) => `${open}import packedWasm from './${unxz}';${head}`
-    + `await init({ module_or_path: packedWasm(${url}) }).catch(() => init({ module_or_path: ${url} }))`,
+  (_, open, head, url) => `${open}import { startPacked } from './${unxz}';${head}await startPacked(init, ${url})`,
   'loader calling init with the wasm');
 fs.writeFileSync(indexPath, index);
 console.log(`pack-wasm: decoder ${unxz} ${bundle.contents.length} bytes`);
@@ -92,5 +91,5 @@ console.log(`pack-wasm: decoder ${unxz} ${bundle.contents.length} bytes`);
 const lazyWasm = single('urdf', '_bg.wasm');
 pack(path.join(dir, 'urdf', lazyWasm));
 const gluePath = path.join(dir, 'urdf', single('urdf', '.js'));
-fs.appendFileSync(gluePath, `\nexport { default as packedWasm } from '../${unxz}';\n`
+fs.appendFileSync(gluePath, `\nexport { startPacked } from '../${unxz}';\n`
   + `export const wasmUrl = new URL('${lazyWasm}', import.meta.url).href;\n`);

@@ -141,7 +141,7 @@ test('the URDF module is built beside the page and outside its first load', asyn
   for (const f of ['armlab_urdf.js', wasm]) for (const ext of ['br', 'gz']) assert.ok(all.includes(`${f}.${ext}`), `${f}.${ext} beside it`);
   const glue = fs.readFileSync(path.join(dist, 'urdf', 'armlab_urdf.js'), 'utf8');
   assert.ok(glue.includes(wasm), 'the glue names its own wasm');
-  assert.match(glue, /export \{ default as packedWasm \} from '\.\.\/unxz-[0-9a-f]{16}\.js';/, 'it hands on the page\'s decoder');
+  assert.match(glue, /export \{ startPacked \} from '\.\.\/unxz-[0-9a-f]{16}\.js';/, 'it hands on the page\'s decoder');
   assert.ok(glue.includes(`export const wasmUrl = new URL('${wasm}', import.meta.url).href;`), 'and its wasm\'s address');
   assert.ok(/export function urdf_import\b/.test(glue) && /export function robot_to_urdf\b/.test(glue), 'it exports the page\'s two calls');
   assert.ok(!fs.readFileSync(path.join(dist, 'index.html'), 'utf8').includes('urdf/'), 'index.html does not name it');

@@ -58,17 +58,15 @@ fn import_urdf_module() -> Result<js_sys::Promise, String> {
     }
     let url = url.href();
     // A dynamic import, which a function body may hold; the absolute address leaves
-    // nothing to resolve against the caller. A release build's glue names its wasm packed
-    // with xz and the page's decoder (web/build/pack-wasm.mjs): the module starts from the
-    // packed copy, or, where that fails, from its wasm itself; other builds' glue from the
-    // wasm.
+    // nothing to resolve against the caller. A release build's glue hands on the page's
+    // decoder and its wasm's address (web/build/pack-wasm.mjs): the module starts from its
+    // wasm packed with xz, or, where that fails, from the wasm itself; other builds' glue
+    // from the wasm.
     let import = js_sys::Function::new_with_args(
         "url",
         "return import(url).then(function (m) {\
-           var packed = m.packedWasm && m.packedWasm(m.wasmUrl);\
-           return m.default(packed && { module_or_path: packed })\
-             .catch(function () { return m.default(); })\
-             .then(function () { return m; });\
+           var started = m.startPacked ? m.startPacked(m.default, m.wasmUrl) : m.default();\
+           return started.then(function () { return m; });\
          });",
     );
     import
